@@ -1,0 +1,216 @@
+"""Populate a MultibodyPlant with a scenario's cell, robot, tool and objects.
+
+Every consumer (``rt-drake show``, the planner's RobotDiagram, the retimer,
+the simulation station) builds its plant through :func:`add_scenario_models`
+so they all see the same models. World frame W: at the robot base, z up.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+
+import numpy as np
+from pydrake.multibody.parsing import (
+    AddModel,
+    ModelDirective,
+    ModelDirectives,
+    ModelInstanceInfo,
+    Parser,
+    ProcessModelDirectives,
+)
+from pydrake.geometry import Sphere
+from pydrake.math import RigidTransform
+from pydrake.multibody.plant import CoulombFriction, MultibodyPlant
+from pydrake.multibody.tree import Frame, ModelInstanceIndex
+
+from rt_drake.contact import CupParameters
+
+from rt_drake.errors import ScenarioError
+from rt_drake.resources import models_dir
+from rt_drake.scenario import Scenario
+
+#: Name of the cup frame C (origin at the centre of the cup's contact face,
+#: +z out of the cup toward the object), defined in suction_tool.urdf.
+CUP_FRAME = "suction_cup"
+#: Name of each object's body in its SDF.
+OBJECT_BODY = "body"
+#: Friction coefficient of the objects' SDF collision geometry.
+OBJECT_FRICTION = 1.0
+#: m, radius of the spheres that model the cup's rim.
+RIM_SPHERE_RADIUS = 0.002
+
+
+class ObjectMode(enum.Enum):
+    """How the scenario's objects enter the plant."""
+
+    FREE = "free"  # free bodies at their start poses (simulation, show)
+    WELDED = "welded"  # welded to the world at their start poses (planning)
+    NONE = "none"  # left out
+
+
+@dataclasses.dataclass(frozen=True)
+class ScenarioModels:
+    """Model instances added by :func:`add_scenario_models`."""
+
+    robot: ModelInstanceIndex
+    tool: ModelInstanceIndex
+    objects: dict[str, ModelInstanceIndex]
+
+
+def make_parser(plant: MultibodyPlant) -> Parser:
+    """Return a Parser that resolves ``package://rt_drake/...``."""
+    parser = Parser(plant)
+    package_map = parser.package_map()
+    if not package_map.Contains("rt_drake"):
+        package_map.Add("rt_drake", str(models_dir()))
+    return parser
+
+
+def add_scenario_models(
+    plant: MultibodyPlant,
+    scenario: Scenario,
+    objects: ObjectMode = ObjectMode.FREE,
+    parser: Parser | None = None,
+) -> ScenarioModels:
+    """Add the scenario's directives and objects to an unfinalized ``plant``.
+
+    Free objects get their start pose X_WO as default free-body pose; welded
+    objects are welded to W at X_WO. The caller finalizes the plant.
+
+    Raises:
+        ScenarioError: the directives do not contain ``robot.model_instance``
+            or the ``suction_cup`` frame.
+    """
+    parser = parser or make_parser(plant)
+    if not parser.package_map().Contains("rt_drake"):
+        parser.package_map().Add("rt_drake", str(models_dir()))
+    infos: list[ModelInstanceInfo] = ProcessModelDirectives(
+        ModelDirectives(directives=scenario.directives), plant, parser
+    )
+    by_name = {info.model_name: info.model_instance for info in infos}
+    robot_name = scenario.robot.model_instance
+    if robot_name not in by_name:
+        raise ScenarioError(
+            f"key 'robot.model_instance': '{robot_name}' is not a model of the "
+            f"directives (they add: {', '.join(by_name)})"
+        )
+    if not plant.HasFrameNamed(CUP_FRAME):
+        raise ScenarioError(f"the directives define no frame named '{CUP_FRAME}'")
+    cup_frame = plant.GetFrameByName(CUP_FRAME)
+    tool = cup_frame.model_instance()
+    if plant.geometry_source_is_registered():
+        add_cup_rim(plant, cup_frame, scenario.cup)
+    added: dict[str, ModelInstanceIndex] = {}
+    if objects is not ObjectMode.NONE:
+        for obj in scenario.objects:
+            instance = _add_object(plant, parser, obj.name, obj.model)
+            X_WO = obj.start.GetDeterministicValue()
+            body = plant.GetBodyByName(OBJECT_BODY, instance)
+            if objects is ObjectMode.WELDED:
+                plant.WeldFrames(plant.world_frame(), body.body_frame(), X_WO)
+            else:
+                plant.SetDefaultFloatingBaseBodyPose(body, X_WO)
+            added[obj.name] = instance
+    return ScenarioModels(robot=by_name[robot_name], tool=tool, objects=added)
+
+
+def rim_friction(cup_friction: float, object_friction: float = OBJECT_FRICTION) -> float:
+    """Friction of the rim spheres so that rim-object contact has ``cup_friction``.
+
+    Drake combines two coefficients as ``2 a b / (a + b)``; solving
+    ``2 r o / (r + o) = mu`` for the rim's r gives ``r = mu o / (2 o - mu)``.
+    """
+    if not 0.0 <= cup_friction < 2.0 * object_friction:
+        raise ScenarioError(
+            f"key 'cup.friction': {cup_friction} must lie in [0, {2 * object_friction})"
+            f" for objects of friction {object_friction}"
+        )
+    return cup_friction * object_friction / (2.0 * object_friction - cup_friction)
+
+
+def add_cup_rim(plant: MultibodyPlant, cup_frame: Frame, cup: CupParameters) -> None:
+    """Register the cup's rim as ``cup.points`` small spheres on the tool body.
+
+    Sphere i touches the plane z_C = 0 at the contact point
+    ``p_CPi_C = r (cos(2 pi i/m), sin(2 pi i/m), 0)`` of the contact model, so
+    the simulated cup touches an object exactly where the grasp constraint
+    assumes (friction: :func:`rim_friction`).
+    """
+    mu = rim_friction(cup.friction)
+    X_BC = cup_frame.GetFixedPoseInBodyFrame()
+    for i in range(cup.points):
+        angle = 2.0 * np.pi * i / cup.points
+        p_CS = [cup.radius * np.cos(angle), cup.radius * np.sin(angle), -RIM_SPHERE_RADIUS]
+        plant.RegisterCollisionGeometry(
+            cup_frame.body(),
+            X_BC @ RigidTransform(p_CS),
+            Sphere(RIM_SPHERE_RADIUS),
+            f"rim_{i}",
+            CoulombFriction(mu, mu),
+        )
+
+
+def _add_object(
+    plant: MultibodyPlant, parser: Parser, name: str, model: str
+) -> ModelInstanceIndex:
+    """Load one object SDF as a model instance called ``name``."""
+    directive = ModelDirectives(
+        directives=[ModelDirective(add_model=AddModel(file=model, name=name))]
+    )
+    (info,) = ProcessModelDirectives(directive, plant, parser)
+    instance = info.model_instance
+    if not plant.HasBodyNamed(OBJECT_BODY, instance):
+        raise ScenarioError(
+            f"object '{name}': model '{model}' has no body named '{OBJECT_BODY}'"
+        )
+    return instance
+
+
+def home_configuration(plant: MultibodyPlant, scenario: Scenario) -> np.ndarray:
+    """Return the robot's home joint positions (rad), checked against the plant.
+
+    Raises:
+        ScenarioError: ``robot.home`` has the wrong length or leaves the limits.
+    """
+    robot = plant.GetModelInstanceByName(scenario.robot.model_instance)
+    q_home = np.asarray(scenario.robot.home, dtype=float)
+    n = plant.num_positions(robot)
+    if q_home.shape != (n,):
+        raise ScenarioError(
+            f"key 'robot.home': expected {n} joint positions, got {q_home.tolist()}"
+        )
+    indices = robot_position_indices(plant, robot)
+    lower = plant.GetPositionLowerLimits()[indices]
+    upper = plant.GetPositionUpperLimits()[indices]
+    outside = np.flatnonzero((q_home < lower) | (q_home > upper))
+    if outside.size:
+        i = int(outside[0])
+        raise ScenarioError(
+            f"key 'robot.home[{i}]': {q_home[i]:.4f} rad is outside the joint "
+            f"limits [{lower[i]:.4f}, {upper[i]:.4f}]"
+        )
+    return q_home
+
+
+def robot_position_indices(
+    plant: MultibodyPlant, instance: ModelInstanceIndex
+) -> np.ndarray:
+    """Indices of a model instance's joint positions in the plant's q."""
+    q = np.zeros(plant.num_positions())
+    plant.SetPositionsInArray(instance, np.ones(plant.num_positions(instance)), q)
+    return np.flatnonzero(q)
+
+
+__all__ = [
+    "CUP_FRAME",
+    "OBJECT_BODY",
+    "ObjectMode",
+    "ScenarioModels",
+    "add_cup_rim",
+    "add_scenario_models",
+    "home_configuration",
+    "make_parser",
+    "rim_friction",
+    "robot_position_indices",
+]
