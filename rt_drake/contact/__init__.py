@@ -1,0 +1,51 @@
+"""Suction-cup grasp stability (paper Section II): numpy, scipy and cdd only.
+
+Conventions (details in :mod:`rt_drake.contact.cup`): cup frame C at the
+centre of the contact face, +z out of the cup into the object; a wrench is
+``w = [torque; force]`` (N*m, N) that the cup exerts on the object, about C's
+origin, expressed in C. The grasp is stable when ``F w <= g``.
+
+- :class:`CupParameters`: the point-contact model of the cup.
+- :func:`contact_wrench_polytope`: the exact set W_c (minimal H-rep and
+  vertices); :func:`cached_wrench_polytope` stores it on disk.
+- :func:`is_realizable` (H-rep), :func:`is_realizable_lp` (independent LP).
+- :func:`guided_approximation`: the paper's inner approximation.
+
+Only :mod:`rt_drake.contact.cup` (numpy) is imported with the package, so a
+scenario can name ``CupParameters`` cheaply; the rest (scipy) loads on first
+use of its names.
+"""
+
+import importlib
+
+from rt_drake.contact.cup import CupParameters, grasp_matrices, suction_wrench
+
+#: Public name -> submodule defining it, imported on first access.
+_LAZY = {
+    "GuidedApproximation": "approximation",
+    "guided_approximation": "approximation",
+    "cache_path": "cache",
+    "cached_wrench_polytope": "cache",
+    "default_cache_dir": "cache",
+    "load_polytope": "cache",
+    "save_polytope": "cache",
+    "is_realizable_lp": "lp",
+    "lp_residual": "lp",
+    "object_wrench_sampler": "samplers",
+    "WrenchPolytope": "wrench_polytope",
+    "contact_wrench_polytope": "wrench_polytope",
+    "is_realizable": "wrench_polytope",
+}
+
+__all__ = ["CupParameters", "grasp_matrices", "suction_wrench", *_LAZY]
+
+
+def __getattr__(name: str) -> object:
+    """Import the submodule defining ``name`` on first access (PEP 562)."""
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

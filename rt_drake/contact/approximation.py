@@ -1,0 +1,159 @@
+"""Guided inner approximation of the contact wrench set (paper Section II-D).
+
+W_c can have hundreds to thousands of facets. The paper approximates it by
+the convex hull H of a few points Y of W_c chosen to cover "guiding samples",
+wrenches likely to occur in execution:
+
+1. keep the guiding samples that lie in W_c (``F w <= g``);
+2. start Y from 7 affinely independent samples (a 6-simplex);
+3. take the facet h* of H = conv(Y) with the most samples outside it;
+4. add to Y the vertex of W_c farthest beyond h*;
+5. repeat 3-4 until Y has ``max_vertices`` points, or every sample is covered.
+
+Since Y is in W_c, H is inside W_c: every wrench H accepts is realizable.
+The hull is kept by qhull in scaled coordinates ``[torque / r; force]`` (N),
+which is also the metric of "farthest"; the result is mapped back to wrenches
+``[torque; force]`` on the object, about and in the cup frame C, as unit rows.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+
+import numpy as np
+from scipy.spatial import ConvexHull
+
+from rt_drake.contact.wrench_polytope import WrenchPolytope, wrench_scale
+
+
+@dataclasses.dataclass(frozen=True)
+class GuidedApproximation:
+    """An inner approximation ``{w : F w <= g} = conv(vertices)`` of W_c.
+
+    Attributes:
+        F: (rows, 6) unit rows (qhull facets, coplanar ones merged).
+        g: (rows,) offsets, N*m / N.
+        vertices: (count, 6) vertices of the hull, ``[torque; force]``.
+        covered: Guiding samples inside W_c that the hull also contains.
+        samples: Guiding samples inside W_c.
+        rejected: Guiding samples outside W_c (dropped in step 1).
+    """
+
+    F: np.ndarray
+    g: np.ndarray
+    vertices: np.ndarray
+    covered: int
+    samples: int
+    rejected: int
+
+    @property
+    def fraction(self) -> float:
+        """Fraction of the (realizable) guiding samples the hull contains."""
+        return self.covered / self.samples
+
+
+def _affine_distance(points: np.ndarray, simplex: list[np.ndarray]) -> np.ndarray:
+    """Return the distance of each point to the affine hull of ``simplex``."""
+    origin = simplex[0]
+    if len(simplex) == 1:
+        return np.linalg.norm(points - origin, axis=1)
+    q, _ = np.linalg.qr((np.array(simplex[1:]) - origin).T)
+    offsets = points - origin
+    return np.linalg.norm(offsets - (offsets @ q) @ q.T, axis=1)
+
+
+def _initial_simplex(
+    samples: np.ndarray, vertices: np.ndarray, rng: np.random.Generator, atol: float
+) -> list[np.ndarray]:
+    """Return 7 affinely independent points (a 6-simplex).
+
+    Random samples if they span 6-D, else samples and then vertices of W_c
+    farthest from the affine hull of the points so far.
+    """
+    for _ in range(50 if len(samples) >= 7 else 0):
+        pick = samples[rng.choice(len(samples), 7, replace=False)]
+        if np.linalg.svd(pick[1:] - pick[0], compute_uv=False)[-1] > atol:
+            return list(pick)
+    simplex = [samples[rng.integers(len(samples))]]
+    for pool in (samples, vertices):
+        while len(simplex) < 7:
+            distance = _affine_distance(pool, simplex)
+            if distance.max() <= atol:
+                break
+            simplex.append(pool[np.argmax(distance)])
+    return simplex
+
+
+def guided_approximation(
+    polytope: WrenchPolytope,
+    guiding_samples: np.ndarray | Callable[[int], np.ndarray],
+    max_vertices: int,
+    seed: int = 0,
+    sample_count: int = 2000,
+    tol: float = 1e-9,
+) -> GuidedApproximation:
+    """Approximate W_c from inside by the hull of at most ``max_vertices`` points.
+
+    Args:
+        polytope: The exact W_c.
+        guiding_samples: (N, 6) wrenches ``[torque; force]`` in C, or a callable
+            ``count -> (count, 6)`` called once with ``sample_count``.
+        max_vertices: Largest number of points of Y (>= 7).
+        seed: Seed of the choice of the initial simplex.
+        sample_count: Samples drawn when ``guiding_samples`` is a callable.
+        tol: Allowed violation of a unit row for a sample to count as covered
+            (N*m / N, like ``F w - g``).
+
+    Raises:
+        ValueError: On bad arguments, or when no guiding sample lies in W_c.
+    """
+    if isinstance(max_vertices, bool) or not isinstance(max_vertices, int):
+        raise ValueError(f"max_vertices must be an integer, got {max_vertices!r}")
+    if max_vertices < 7:
+        raise ValueError(f"max_vertices must be >= 7 (a 6-simplex), got {max_vertices}")
+    if callable(guiding_samples):
+        guiding_samples = guiding_samples(sample_count)
+    wrenches = np.asarray(guiding_samples, dtype=float)
+    if wrenches.ndim != 2 or wrenches.shape[1] != 6 or len(wrenches) == 0:
+        raise ValueError(
+            f"guiding samples must be (N, 6) wrenches, got {wrenches.shape}"
+        )
+    if not np.all(np.isfinite(wrenches)):
+        raise ValueError("guiding samples contain NaN or inf")
+    inside = polytope.contains(wrenches, tol=0.0)
+    if not inside.any():
+        raise ValueError(f"none of the {len(wrenches)} guiding samples lies in W_c")
+    scale = wrench_scale(polytope.cup)
+    samples, vertices = wrenches[inside] * scale, polytope.vertices * scale
+    atol = tol * max(1.0, float(np.abs(vertices).max()))
+    rng = np.random.default_rng(seed)
+    points = _initial_simplex(samples, vertices, rng, atol)
+    while True:
+        hull = ConvexHull(np.array(points))
+        if len(points) >= max_vertices:
+            break
+        outside = samples @ hull.equations[:, :-1].T + hull.equations[:, -1] > atol
+        counts = outside.sum(axis=0)
+        if counts.max() == 0:
+            break  # every sample is covered
+        face = hull.equations[np.argmax(counts)]
+        beyond = vertices @ face[:-1] + face[-1]
+        if beyond.max() <= atol:
+            break  # cannot happen in exact arithmetic: samples lie in W_c
+        points.append(vertices[np.argmax(beyond)])
+    F = hull.equations[:, :-1] * scale
+    norms = np.linalg.norm(F, axis=1)
+    rows = np.column_stack([F / norms[:, None], -hull.equations[:, -1] / norms])
+    _, first = np.unique(rows.round(12), axis=0, return_index=True)
+    rows = rows[np.sort(first)]
+    F, g = rows[:, :-1], rows[:, -1]
+    covered = int(np.all(wrenches[inside] @ F.T <= g + tol, axis=1).sum())
+    return GuidedApproximation(
+        F=F,
+        g=g,
+        vertices=hull.points[hull.vertices] / scale,
+        covered=covered,
+        samples=int(inside.sum()),
+        rejected=int(len(wrenches) - inside.sum()),
+    )

@@ -1,0 +1,171 @@
+"""Suction-cup contact model: parameters, contact frames and force generators.
+
+Conventions (every function of ``rt_drake.contact`` uses them):
+
+- Cup frame C: origin at the centre of the contact face, +z out of the cup
+  into the object.
+- A wrench is ``w = [torque; force]`` (Drake's SpatialForce order), the wrench
+  the cup exerts ON THE OBJECT, about C's origin, expressed in C; N*m and N.
+- Contact point i (i = 0..m-1) sits at ``p_CPi_C = r (cos(2 pi i/m),
+  sin(2 pi i/m), 0)``. Its frame Pi has z = C's z and x radial outward, so
+  ``R_CPi`` is the rotation by ``2 pi i/m`` about z.
+- The rim force at point i, in Pi, is bounded by the pyramid
+  ``0 <= fz <= f_max`` and the k-sided friction polygon whose vertices lie at
+  angles ``2 pi j/k`` from Pi's x axis at radius ``mu fz`` (k = 4 gives
+  ``|fx| + |fy| <= mu fz``). Rim forces push the object (fz >= 0).
+- Suction pulls the object onto the cup: the force ``-P A`` along C's z at
+  C's origin, i.e. the constant wrench ``[0, 0, 0, 0, 0, -P A]``.
+
+So a wrench is realizable (paper eqs 8-9, Assumption 1) when
+``w = sum_i G_i f_i + [0, 0, 0, 0, 0, -P A]`` with ``f_i`` in pyramid i and
+``G_i = [[p_CPi_C]x R_CPi; R_CPi]``.
+"""
+
+# No ``from __future__ import annotations`` here: pydrake's yaml_load_typed reads
+# the dataclass field types, which must be real types, not strings.
+import dataclasses
+import math
+from typing import Self
+
+import numpy as np
+
+
+@dataclasses.dataclass
+class CupParameters:
+    """Point-contact model of a suction cup (defaults: the paper's cup).
+
+    Attributes:
+        radius: Radius r of the circle of contact points, in m.
+        points: Number m of contact points on the rim (>= 3).
+        friction: Coulomb friction coefficient mu (>= 0).
+        sides: Number k of sides of the linearised friction cone (>= 3).
+        suction_force: Suction force P A pulling the object onto the cup, N.
+        max_normal_force: Bound f_max on the normal force of each point, N.
+    """
+
+    radius: float = 0.0125
+    points: int = 6
+    friction: float = 0.3
+    sides: int = 4
+    suction_force: float = 20.0
+    max_normal_force: float = 33.3
+
+    def __post_init__(self) -> None:
+        self.validate()
+
+    def validate(self) -> None:
+        """Raise ValueError naming the first parameter that is out of range."""
+        for name in ("points", "sides"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+                raise ValueError(f"cup {name} must be an integer, got {value!r}")
+            if value < 3:
+                raise ValueError(f"cup {name} must be >= 3, got {value!r}")
+        for name in ("radius", "friction", "suction_force", "max_normal_force"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(
+                value, (int, float, np.integer, np.floating)
+            ):
+                raise ValueError(f"cup {name} must be a number, got {value!r}")
+            if not math.isfinite(value):
+                raise ValueError(f"cup {name} must be finite, got {value!r}")
+        for name in ("radius", "suction_force", "max_normal_force"):
+            value = getattr(self, name)
+            if value <= 0.0:
+                raise ValueError(f"cup {name} must be > 0, got {value!r}")
+        if self.friction < 0.0:
+            raise ValueError(f"cup friction must be >= 0, got {self.friction!r}")
+
+    @classmethod
+    def from_vacuum(
+        cls, pressure_pa: float, area_m2: float, **fields: float | int
+    ) -> Self:
+        """Return a cup whose suction force is ``P A`` (N).
+
+        Args:
+            pressure_pa: Vacuum (negative gauge) pressure P, in Pa, > 0.
+            area_m2: Suction area A, in m^2, > 0.
+            **fields: Any other field of CupParameters.
+        """
+        for name, value in (("pressure_pa", pressure_pa), ("area_m2", area_m2)):
+            if not (isinstance(value, (int, float)) and math.isfinite(value)):
+                raise ValueError(f"{name} must be a finite number, got {value!r}")
+            if value <= 0.0:
+                raise ValueError(f"{name} must be > 0, got {value!r}")
+        return cls(suction_force=float(pressure_pa) * float(area_m2), **fields)
+
+    def as_dict(self) -> dict[str, float | int]:
+        """Return the fields as plain Python numbers, in declaration order."""
+        return {
+            f.name: (int if f.type is int else float)(getattr(self, f.name))
+            for f in dataclasses.fields(self)
+        }
+
+
+def contact_positions(cup: CupParameters) -> np.ndarray:
+    """Return ``p_CPi_C`` (m, 3), in m: the rim contact points in C."""
+    angles = 2.0 * np.pi * np.arange(cup.points) / cup.points
+    zeros = np.zeros_like(angles)
+    return cup.radius * np.stack([np.cos(angles), np.sin(angles), zeros], axis=1)
+
+
+def contact_rotations(cup: CupParameters) -> np.ndarray:
+    """Return ``R_CPi`` (m, 3, 3): rotation by ``2 pi i/m`` about C's z."""
+    angles = 2.0 * np.pi * np.arange(cup.points) / cup.points
+    c, s = np.cos(angles), np.sin(angles)
+    rotations = np.zeros((cup.points, 3, 3))
+    rotations[:, 0, 0], rotations[:, 0, 1] = c, -s
+    rotations[:, 1, 0], rotations[:, 1, 1] = s, c
+    rotations[:, 2, 2] = 1.0
+    return rotations
+
+
+def grasp_matrices(cup: CupParameters) -> np.ndarray:
+    """Return ``G_i`` (m, 6, 3): force in Pi -> wrench about C's origin in C.
+
+    ``G_i = [[p_CPi_C]x R_CPi; R_CPi]`` (paper eq. 8).
+    """
+    p = contact_positions(cup)
+    rotations = contact_rotations(cup)
+    skew = np.zeros((cup.points, 3, 3))
+    skew[:, 0, 1], skew[:, 0, 2] = -p[:, 2], p[:, 1]
+    skew[:, 1, 0], skew[:, 1, 2] = p[:, 2], -p[:, 0]
+    skew[:, 2, 0], skew[:, 2, 1] = -p[:, 1], p[:, 0]
+    return np.concatenate([skew @ rotations, rotations], axis=1)
+
+
+def friction_pyramid(cup: CupParameters) -> np.ndarray:
+    """Return the (k + 1, 3) vertices of the bounded friction cone, in Pi, N.
+
+    Row 0 is the apex 0; row 1 + j is ``f_max (mu cos a_j, mu sin a_j, 1)``
+    with ``a_j = 2 pi j/k``.
+    """
+    angles = 2.0 * np.pi * np.arange(cup.sides) / cup.sides
+    mu = cup.friction
+    base = np.stack(
+        [mu * np.cos(angles), mu * np.sin(angles), np.ones_like(angles)], axis=1
+    )
+    return np.vstack([np.zeros(3), cup.max_normal_force * base])
+
+
+def friction_halfspaces(cup: CupParameters) -> tuple[np.ndarray, np.ndarray]:
+    """Return ``(A, b)`` with the pyramid as ``A f <= b`` for f in Pi (N).
+
+    Polygon edge j has outward normal at angle ``2 pi (j + 1/2)/k`` and reads
+    ``cos(b_j) fx + sin(b_j) fy <= mu cos(pi/k) fz``; then ``-fz <= 0`` and
+    ``fz <= f_max``. This is the H-form, independent of the vertex list.
+    """
+    k, mu = cup.sides, cup.friction
+    normals = 2.0 * np.pi * (np.arange(k) + 0.5) / k
+    polygon = np.stack(
+        [np.cos(normals), np.sin(normals), np.full(k, -mu * np.cos(np.pi / k))],
+        axis=1,
+    )
+    A = np.vstack([polygon, [0.0, 0.0, -1.0], [0.0, 0.0, 1.0]])
+    b = np.concatenate([np.zeros(k + 1), [cup.max_normal_force]])
+    return A, b
+
+
+def suction_wrench(cup: CupParameters) -> np.ndarray:
+    """Return the suction wrench on the object, ``[0, 0, 0, 0, 0, -P A]``."""
+    return np.array([0.0, 0.0, 0.0, 0.0, 0.0, -cup.suction_force])
