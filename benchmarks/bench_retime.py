@@ -1,0 +1,196 @@
+"""Median wall time to retime 6-DOF MOVE paths, 100 grid points, exact grasp.
+
+Run: ``PYTHONPATH=. python benchmarks/bench_retime.py [--repeats 30]``.
+
+Every method retimes the same paths (lift out of the bin, swing joint 1 by
+0.6 to 1.8 rad, set down; the notebook held by the scenario's cup) and is
+timed including its dynamics evaluation:
+
+- ``rt_drake.retime``: ours (precomputed coefficients, row selection with
+  exactness check, toppra's seidel LP, lean passes);
+- the same with ``engine="toppra"`` (toppra's own TOPPRA class);
+- toppra with precomputed coefficients and all rows of one constant F;
+- the paper's way: toppra ``SecondOrderConstraint`` whose inverse-dynamics
+  callback computes the object wrench with Drake, all rows of F;
+- Drake's ``Toppra`` with joint limits and ``AddFrameAccelerationLimit`` on
+  the cup frame (a box on its spatial acceleration: another constraint, so
+  another duration; timed for reference).
+
+OpenBLAS is made single-threaded (unless OPENBLAS_NUM_THREADS is set): on a
+busy 2-core machine its threads made toppra's matrix products 10-50x slower.
+"""
+
+import os
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import argparse  # noqa: E402
+import statistics  # noqa: E402
+import time  # noqa: E402
+
+import numpy as np  # noqa: E402
+import toppra  # noqa: E402
+from pydrake.multibody.optimization import Toppra  # noqa: E402
+from pydrake.multibody.plant import MultibodyPlant  # noqa: E402
+from toppra.algorithm import TOPPRA  # noqa: E402
+from toppra.constraint import (  # noqa: E402
+    DiscretizationType,
+    JointAccelerationConstraint,
+    JointVelocityConstraint,
+    SecondOrderConstraint,
+)
+
+from rt_drake.dynamics import (  # noqa: E402
+    HeldObject,
+    object_wrench,
+    path_wrench_coefficients,
+)
+from rt_drake.planning.path import GeometricPath  # noqa: E402
+from rt_drake.plant import CUP_FRAME, ObjectMode, add_scenario_models  # noqa: E402
+from rt_drake.resources import scenarios_dir  # noqa: E402
+from rt_drake.retime import GraspConstraint, JointLimits, retime  # noqa: E402
+from rt_drake.retiming.passes import AffineConstraint  # noqa: E402
+from rt_drake.retiming.path import drake_path, path_waypoints_and_knots  # noqa: E402
+from rt_drake.scenario import load_scenario  # noqa: E402
+
+HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
+
+
+def move_paths(count: int) -> list[GeometricPath]:
+    """MOVE-like paths: lift, swing joint 1 (and the wrist), set down.
+
+    As the planner hands them over: ``GeometricPath`` (waypoints, knots and
+    its clamped spline).
+    """
+    paths = []
+    for swing in np.linspace(0.6, 1.8, count):
+        lift = HOME + [0.0, -0.25, -0.3, 0.0, 0.55, 0.0]
+        waypoints = [
+            HOME,
+            lift,
+            lift + [0.5 * swing, 0.05, 0.1, 0.1, -0.1, 0.3 * swing],
+            lift + [swing, 0.0, 0.0, 0.0, 0.0, 0.6 * swing],
+            HOME + [swing, 0.0, 0.0, 0.0, 0.0, 0.6 * swing],
+        ]
+        paths.append(GeometricPath.from_waypoints(np.array(waypoints)))
+    return paths
+
+
+def ours(plant, path, limits, grasp, grid, context):
+    return retime(plant, path, limits, grasp, grid, context=context).duration
+
+
+def ours_toppra_loop(plant, path, limits, grasp, grid, context):
+    return retime(
+        plant, path, limits, grasp, grid, context=context, engine="toppra"
+    ).duration
+
+
+def _spline(path):
+    return toppra.SplineInterpolator(
+        *path_waypoints_and_knots(path)[::-1], bc_type="clamped"
+    )
+
+
+def _toppra_duration(constraints, spline, grid):
+    algorithm = TOPPRA(constraints, spline, grid, solver_wrapper="seidel")
+    _, sd, _ = algorithm.compute_parameterization(0.0, 0.0)
+    return float(np.sum(2 * np.diff(grid) / (sd[1:] + sd[:-1])))
+
+
+def toppra_all_rows(plant, path, limits, grasp, grid, context):
+    spline = _spline(path)
+    w = path_wrench_coefficients(
+        plant, grasp.held, spline(grid), spline(grid, 1), spline(grid, 2), context
+    )
+    constraints = [
+        JointVelocityConstraint(limits.velocity),
+        JointAccelerationConstraint(limits.acceleration),
+        AffineConstraint(*w, grasp.F, grasp.g),
+    ]
+    return _toppra_duration(constraints, spline, grid)
+
+
+def paper_way(plant, path, limits, grasp, grid, context):
+    spline = _spline(path)
+
+    def inverse_dynamics(q, qd, qdd):
+        return object_wrench(plant, grasp.held, q, qd, qdd, context)[0]
+
+    wrench = SecondOrderConstraint(
+        inverse_dynamics,
+        lambda q: grasp.F,
+        lambda q: grasp.g,
+        dof=6,
+        discretization_scheme=DiscretizationType.Interpolation,
+    )
+    constraints = [
+        JointVelocityConstraint(limits.velocity),
+        JointAccelerationConstraint(limits.acceleration),
+        wrench,
+    ]
+    return _toppra_duration(constraints, spline, grid)
+
+
+def drake_frame_limit(plant, path, limits, grasp, grid, context):
+    q_of_s = drake_path(path)
+    solver = Toppra(q_of_s, plant, grid)
+    solver.AddJointVelocityLimit(-limits.velocity, limits.velocity)
+    solver.AddJointAccelerationLimit(-limits.acceleration, limits.acceleration)
+    box = np.array([20.0, 20.0, 20.0, 4.0, 4.0, 4.0])  # rad/s^2, m/s^2
+    solver.AddFrameAccelerationLimit(plant.GetFrameByName(CUP_FRAME), -box, box)
+    return solver.SolvePathParameterization().end_time()
+
+
+METHODS = {
+    "rt_drake.retime (ours)": ours,
+    "ours, toppra's TOPPRA loop": ours_toppra_loop,
+    "toppra, precomputed, all rows": toppra_all_rows,
+    "paper: SecondOrderConstraint + ID callback": paper_way,
+    "Drake Toppra + frame accel limit": drake_frame_limit,
+}
+
+
+def main() -> None:
+    """Time every method on the same paths and print a table of medians."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=20)
+    parser.add_argument("--paths", type=int, default=5)
+    parser.add_argument("--gridpoints", type=int, default=100)
+    parser.add_argument("--object", default="notebook")
+    args = parser.parse_args()
+    scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
+    plant = MultibodyPlant(0.0)
+    add_scenario_models(plant, scenario, ObjectMode.NONE)
+    plant.Finalize()
+    context = plant.CreateDefaultContext()
+    limits = JointLimits.from_plant(plant, scenario.robot)
+    held = HeldObject.from_scenario_object(scenario.object(args.object))
+    grasp = GraspConstraint.for_cup(held, scenario.cup)
+    grid = np.linspace(0.0, 1.0, args.gridpoints)
+    paths = move_paths(args.paths)
+    print(
+        f"{len(paths)} MOVE paths, {args.gridpoints} grid points, {args.object}, "
+        f"{len(grasp.g)}-row exact grasp polytope, {args.repeats} repeats; "
+        f"OPENBLAS_NUM_THREADS={os.environ['OPENBLAS_NUM_THREADS']}"
+    )
+    print(
+        f"{'method':44s} {'median ms':>10s} {'p10 ms':>8s} {'p90 ms':>8s}  durations s"
+    )
+    for name, method in METHODS.items():
+        times, durations = [], []
+        for path in paths:
+            durations.append(method(plant, path, limits, grasp, grid, context))  # warm
+            for _ in range(args.repeats):
+                start = time.perf_counter()
+                method(plant, path, limits, grasp, grid, context)
+                times.append(1e3 * (time.perf_counter() - start))
+        deciles = statistics.quantiles(times, n=10)
+        print(
+            f"{name:44s} {statistics.median(times):10.2f} {deciles[0]:8.2f} "
+            f"{deciles[-1]:8.2f}  " + " ".join(f"{d:.3f}" for d in durations)
+        )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,342 @@
+"""The wrench a suction cup must exert on a held object, from a Drake plant.
+
+Frames and symbols (monogram notation):
+
+- W: world frame (plant gravity ``g_W``, e.g. (0, 0, -9.81) m/s^2).
+- C: the cup frame :data:`rt_drake.plant.CUP_FRAME`, origin Co at the centre
+  of the contact face, +z out of the cup into the object.
+- S: the held object, rigidly attached to C; Scm its centre of mass at
+  ``p_CoScm_C`` (m), ``I_Scm_C`` its rotational inertia about Scm expressed in
+  C (kg m^2), ``m`` its mass (kg).
+- A wrench is ``w = [torque; force]`` (N m, N), the wrench the cup exerts ON
+  THE OBJECT, about Co, expressed in C (the frame of ``F w <= g`` in
+  :mod:`rt_drake.contact`).
+
+Newton-Euler about Scm (paper eq. 6), with ``alpha``, ``omega`` the angular
+acceleration and velocity of C in W and ``a`` the acceleration of Scm in W,
+all expressed in C, and ``g_C = R_CW g_W``::
+
+    f = m (a - g_C)
+    w = [I alpha + omega x (I omega) + p x f;  f]      (p = p_CoScm_C)
+
+Along a joint path ``q(s)`` with time scaling ``s(t)``, ``u = s''`` and
+``x = s'^2``, the joint velocity is ``v = q'(s) s'`` and the acceleration
+``vdot = q'(s) u + q''(s) x``. Drake's Jacobian J (``kV``, of point Scm fixed
+in C, measured in W, expressed in C) and bias ``A_bias(q, v)``, which is
+quadratic in v, give the spatial acceleration ``[alpha; a] = J vdot +
+A_bias(q, q') x``. Hence the wrench is affine in (u, x) (paper eq. 1)::
+
+    w = a(s) u + b(s) x + c(s)
+
+with ``c`` the gravity term ``[p x (-m g_C); -m g_C]``, ``a`` the inertial
+term of ``J q'`` and ``b`` that of ``J q'' + A_bias(q, q')`` plus the
+gyroscopic term ``omega1 x (I omega1)`` with ``omega1 = J_w q'``. One
+Jacobian, one bias and one pose per grid point; the rest is numpy.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import NamedTuple
+
+import numpy as np
+from pydrake.math import RigidTransform
+from pydrake.multibody.plant import MultibodyPlant
+from pydrake.multibody.tree import JacobianWrtVariable, MultibodyForces
+from pydrake.systems.framework import Context
+
+from rt_drake.plant import CUP_FRAME, OBJECT_BODY, make_parser
+from rt_drake.scenario import ObjectConfig
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class HeldObject:
+    """Inertia of an object held rigidly by the cup, in the cup frame C.
+
+    Attributes:
+        mass: m, kg (> 0).
+        p_CoScm_C: (3,) centre of mass Scm from the cup origin Co, in C, m.
+        I_Scm_C: (3, 3) rotational inertia about Scm, expressed in C, kg m^2.
+    """
+
+    mass: float
+    p_CoScm_C: np.ndarray
+    I_Scm_C: np.ndarray
+
+    def __post_init__(self) -> None:
+        p = np.asarray(self.p_CoScm_C, dtype=float).reshape(-1)
+        inertia = np.asarray(self.I_Scm_C, dtype=float)
+        if not (np.isfinite(self.mass) and self.mass > 0):
+            raise ValueError(f"object mass must be > 0 kg, got {self.mass!r}")
+        if p.shape != (3,) or not np.all(np.isfinite(p)):
+            raise ValueError(f"p_CoScm_C must be 3 finite numbers, got {p!r}")
+        if inertia.shape != (3, 3) or not np.all(np.isfinite(inertia)):
+            raise ValueError(f"I_Scm_C must be a finite 3x3 matrix, got {inertia!r}")
+        if not np.allclose(inertia, inertia.T, atol=1e-12):
+            raise ValueError("I_Scm_C must be symmetric")
+        object.__setattr__(self, "mass", float(self.mass))
+        object.__setattr__(self, "p_CoScm_C", p)
+        object.__setattr__(self, "I_Scm_C", inertia)
+
+    @classmethod
+    def from_scenario_object(
+        cls, obj: ObjectConfig, plant: MultibodyPlant | None = None
+    ) -> HeldObject:
+        """Inertia of a scenario object held with its grasp ``X_OC``.
+
+        Takes the spatial inertia of body ``body`` of model instance
+        ``obj.name`` from ``plant`` if it has one, else parses ``obj.model``,
+        and moves it from the object frame O to C through ``obj.grasp``.
+        """
+        if plant is not None and plant.HasModelInstanceNamed(obj.name):
+            instance = plant.GetModelInstanceByName(obj.name)
+            body = plant.GetBodyByName(OBJECT_BODY, instance)
+        else:
+            scratch = MultibodyPlant(0.0)
+            (instance,) = make_parser(scratch).AddModels(url=_as_url(obj.model))
+            body = scratch.GetBodyByName(OBJECT_BODY, instance)
+        M_OOo_O = body.default_spatial_inertia()
+        mass = M_OOo_O.get_mass()
+        p_OoScm_O = M_OOo_O.get_com()
+        I_Scm_O = M_OOo_O.CalcRotationalInertia().ShiftToCenterOfMass(mass, p_OoScm_O)
+        X_CO: RigidTransform = obj.grasp.GetDeterministicValue().inverse()
+        R_CO = X_CO.rotation().matrix()
+        return cls(
+            mass=mass,
+            p_CoScm_C=X_CO.multiply(p_OoScm_O),
+            I_Scm_C=R_CO @ I_Scm_O.CopyToFullMatrix3() @ R_CO.T,
+        )
+
+
+class PathCoefficients(NamedTuple):
+    """Coefficients of ``y = a u + b x + c`` at N grid points, each (N, k)."""
+
+    a: np.ndarray
+    b: np.ndarray
+    c: np.ndarray
+
+
+def path_wrench_coefficients(
+    plant: MultibodyPlant,
+    held: HeldObject,
+    q: np.ndarray,
+    dq: np.ndarray,
+    ddq: np.ndarray,
+    context: Context | None = None,
+) -> PathCoefficients:
+    """Return a, b, c (each (N, 6)) with ``w = a u + b x + c`` on the object.
+
+    Args:
+        plant: Finalized plant whose positions are the path's joints (objects
+            left out or welded) and which has the frame ``suction_cup``.
+        held: The object's inertia in C.
+        q: (N, n) path q(s) at the grid points, rad.
+        dq: (N, n) q'(s), rad per unit s.
+        ddq: (N, n) q''(s), rad per unit s^2.
+        context: Scratch context of ``plant`` (made if None).
+    """
+    q, dq, ddq = _as_rows(q, dq, ddq)
+    kin = _path_kinematics(plant, held.p_CoScm_C, q, dq, ddq, context)
+    return _wrench_coefficients(held, kin, dq, ddq)
+
+
+def path_torque_coefficients(
+    plant: MultibodyPlant,
+    q: np.ndarray,
+    dq: np.ndarray,
+    ddq: np.ndarray,
+    held: HeldObject | None = None,
+    context: Context | None = None,
+) -> PathCoefficients:
+    """Return a, b, c (each (N, n)) with joint torques ``tau = a u + b x + c``.
+
+    ``tau = M vdot + C(q, v) v - tau_g(q) + J_Coᵀ w`` (N m): inverse dynamics
+    of the arm plus the reaction of the held object's wrench ``w`` at Co
+    (``J_Co``: spatial Jacobian of Co in W, expressed in C).
+    """
+    q, dq, ddq = _as_rows(q, dq, ddq)
+    p = np.zeros(3) if held is None else held.p_CoScm_C
+    kin = _path_kinematics(plant, p, q, dq, ddq, context, dynamics=True)
+    a = _matvec(kin.M, dq)
+    b = _matvec(kin.M, ddq) + kin.Cv
+    c = -kin.tau_g
+    if held is not None:
+        w = _wrench_coefficients(held, kin, dq, ddq)
+        J_Co_T = np.swapaxes(_shift_jacobian(kin.J, -p), 1, 2)
+        a = a + _matvec(J_Co_T, w.a)
+        b = b + _matvec(J_Co_T, w.b)
+        c = c + _matvec(J_Co_T, w.c)
+    return PathCoefficients(a, b, c)
+
+
+def object_wrench(
+    plant: MultibodyPlant,
+    held: HeldObject,
+    q: np.ndarray,
+    v: np.ndarray,
+    vdot: np.ndarray,
+    context: Context | None = None,
+) -> np.ndarray:
+    """Return the wrenches (N, 6) the cup exerts on the object at N states.
+
+    Evaluated at each state on its own: ``[alpha; a] = J vdot + A_bias(q, v)``
+    and ``omega = J_w v`` for Scm, then Newton-Euler (module docstring).
+    """
+    q, v, vdot = _as_rows(q, v, vdot)
+    kin = _path_kinematics(plant, held.p_CoScm_C, q, v, vdot, context)
+    alpha, acc = np.split(_matvec(kin.J, vdot) + kin.bias, 2, axis=1)
+    omega = _matvec(kin.J[:, :3], v)
+    f = held.mass * (acc - kin.g_C)
+    torque = alpha @ held.I_Scm_C.T + _cross(omega, omega @ held.I_Scm_C.T)
+    return np.hstack([torque + _cross(held.p_CoScm_C, f), f])
+
+
+def joint_torques(
+    plant: MultibodyPlant,
+    q: np.ndarray,
+    v: np.ndarray,
+    vdot: np.ndarray,
+    held: HeldObject | None = None,
+    context: Context | None = None,
+) -> np.ndarray:
+    """Return joint torques (N, n), N m, at N states by Drake inverse dynamics.
+
+    ``CalcInverseDynamics`` with the force elements' forces (gravity) as
+    applied forces, plus ``J_Coᵀ w`` for the held object's wrench ``w`` from
+    :func:`object_wrench`.
+    """
+    q, v, vdot = _as_rows(q, v, vdot)
+    context = context or plant.CreateDefaultContext()
+    w = None if held is None else object_wrench(plant, held, q, v, vdot, context)
+    forces = MultibodyForces(plant)
+    frame, world = plant.GetFrameByName(CUP_FRAME), plant.world_frame()
+    tau = np.empty_like(q)
+    for i in range(len(q)):
+        plant.SetPositionsAndVelocities(context, np.concatenate([q[i], v[i]]))
+        plant.CalcForceElementsContribution(context, forces)
+        tau[i] = plant.CalcInverseDynamics(context, vdot[i], forces)
+        if w is not None:
+            J_Co = plant.CalcJacobianSpatialVelocity(
+                context, JacobianWrtVariable.kV, frame, np.zeros(3), world, frame
+            )
+            tau[i] += J_Co.T @ w[i]
+    return tau
+
+
+class _Kinematics(NamedTuple):
+    J: np.ndarray  # (N, 6, n) of Scm, kV, in W, expressed in C
+    bias: np.ndarray  # (N, 6) A_bias(q, dq)
+    g_C: np.ndarray  # (N, 3) gravity expressed in C
+    M: np.ndarray | None = None  # (N, n, n)
+    Cv: np.ndarray | None = None  # (N, n) C(q, dq) dq
+    tau_g: np.ndarray | None = None  # (N, n)
+
+
+def _path_kinematics(
+    plant: MultibodyPlant,
+    p_CoScm_C: np.ndarray,
+    q: np.ndarray,
+    dq: np.ndarray,
+    ddq: np.ndarray,
+    context: Context | None,
+    dynamics: bool = False,
+) -> _Kinematics:
+    """Evaluate Drake at each (q, dq): the only per-point Python loop."""
+    n = plant.num_positions()
+    if plant.num_velocities() != n or q.shape[1:] != (n,):
+        raise ValueError(
+            f"{q.shape=} but {plant.num_positions()=} and {plant.num_velocities()=}:"
+            " the plant must hold only the path's joints (objects welded or left out)"
+        )
+    if not (q.shape == dq.shape == ddq.shape):
+        raise ValueError(f"{q.shape=}, {dq.shape=}, {ddq.shape=} must be equal")
+    context = context or plant.CreateDefaultContext()
+    frame = plant.GetFrameByName(CUP_FRAME)
+    world = plant.world_frame()
+    kV = JacobianWrtVariable.kV
+    p = np.asarray(p_CoScm_C, dtype=float)
+    set_state = plant.SetPositionsAndVelocities
+    jacobian = plant.CalcJacobianSpatialVelocity
+    bias = plant.CalcBiasSpatialAcceleration
+    rotation = frame.CalcRotationMatrixInWorld
+    J, A_bias, R_WC, M, Cv, tau_g = [], [], [], [], [], []
+    for state in np.hstack([q, dq]):
+        set_state(context, state)
+        J.append(jacobian(context, kV, frame, p, world, frame))
+        A_bias.append(bias(context, kV, frame, p, world, frame))
+        R_WC.append(rotation(context))
+        if dynamics:
+            M.append(plant.CalcMassMatrix(context))
+            Cv.append(plant.CalcBiasTerm(context))
+            tau_g.append(plant.CalcGravityGeneralizedForces(context))
+    J = np.array(J)
+    A_bias = np.array([A.get_coeffs() for A in A_bias])
+    R_WC = np.array([R.matrix() for R in R_WC])
+    M, Cv, tau_g = (np.array(x) if dynamics else None for x in (M, Cv, tau_g))
+    g_W = plant.gravity_field().gravity_vector()
+    g_C = np.einsum("nji,j->ni", R_WC, g_W)
+    return _Kinematics(J, A_bias, g_C, M, Cv, tau_g)
+
+
+def _wrench_coefficients(
+    held: HeldObject, kin: _Kinematics, dq: np.ndarray, ddq: np.ndarray
+) -> PathCoefficients:
+    """Newton-Euler (module docstring) split into its u, x and constant terms."""
+    m, p, inertia = held.mass, held.p_CoScm_C, held.I_Scm_C
+    A_u = _matvec(kin.J, dq)  # [alpha; a] per unit u
+    A_x = _matvec(kin.J, ddq) + kin.bias  # [alpha; a] per unit x
+    omega1 = A_u[:, :3]  # omega = omega1 sqrt(x)
+    f_u, f_x, f_c = m * A_u[:, 3:], m * A_x[:, 3:], -m * kin.g_C
+    gyro = _cross(omega1, omega1 @ inertia.T)
+    return PathCoefficients(
+        a=np.hstack([A_u[:, :3] @ inertia.T + _cross(p, f_u), f_u]),
+        b=np.hstack([A_x[:, :3] @ inertia.T + gyro + _cross(p, f_x), f_x]),
+        c=np.hstack([_cross(p, f_c), f_c]),
+    )
+
+
+def _as_rows(*arrays: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Return float arrays of shape (N, n) (a single point becomes N = 1)."""
+    return tuple(np.atleast_2d(np.asarray(x, dtype=float)) for x in arrays)
+
+
+def _matvec(A: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Batched ``A[i] @ x[i]``."""
+    return np.matmul(A, x[..., None])[..., 0]
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise cross product of (..., 3) arrays (faster than np.cross)."""
+    a, b = np.broadcast_arrays(a, b)
+    return np.stack(
+        [
+            a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1],
+            a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2],
+            a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0],
+        ],
+        axis=-1,
+    )
+
+
+def _shift_jacobian(J: np.ndarray, p_ScmCo_C: np.ndarray) -> np.ndarray:
+    """Jacobian of the point at ``p_ScmCo_C`` from Scm (same body, same frame).
+
+    ``v_Co = v_Scm + omega x p_ScmCo`` so ``J_v += -[p]x J_w``.
+    """
+    shifted = J.copy()
+    shifted[:, 3:] += np.swapaxes(_cross(np.swapaxes(J[:, :3], 1, 2), p_ScmCo_C), 1, 2)
+    return shifted
+
+
+def _as_url(model: str) -> str:
+    return model if "://" in model else f"file://{model}"
+
+
+__all__ = [
+    "HeldObject",
+    "PathCoefficients",
+    "joint_torques",
+    "object_wrench",
+    "path_torque_coefficients",
+    "path_wrench_coefficients",
+]

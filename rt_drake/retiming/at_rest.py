@@ -1,0 +1,62 @@
+"""The robot must be able to stop anywhere on the path: checks at rest.
+
+With s' = s'' = 0 the object wrench is gravity's, ``c(s)``, and the joint
+torques hold the arm and object against gravity. Each check raises a typed
+error naming s (the first grid point that fails) and the cause.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rt_drake.retiming.errors import GraspUnstableAtRestError, TorqueLimitAtRestError
+from rt_drake.retiming.limits import GraspConstraint
+
+
+def check_grasp_at_rest(
+    s: np.ndarray, slack: np.ndarray, c: np.ndarray, grasp: GraspConstraint
+) -> None:
+    """Raise if the object cannot be held at rest at some grid point.
+
+    Args:
+        s: (G,) grid.
+        slack: (G, R) ``g - F c(s)``, the grasp rows' slack at rest.
+        c: (G, 6) the wrench at rest, ``[p x (-m g_C); -m g_C]``.
+        grasp: The grasp (for the message).
+    """
+    worst = slack.min(axis=1)
+    if np.all(worst > 0.0):
+        return
+    i = int(np.flatnonzero(worst <= 0.0)[0])
+    g_C = -c[i, 3:] / grasp.held.mass
+    tilt = np.degrees(np.arccos(np.clip(g_C[2] / np.linalg.norm(g_C), -1.0, 1.0)))
+    raise GraspUnstableAtRestError(
+        f"object slips even at rest at s = {s[i]:.3f}: gravity alone exceeds the "
+        f"grasp constraint ({grasp.describe()}, cup axis {tilt:.0f} deg from "
+        f"pointing down; worst row exceeded by {-worst[i]:.3g} N or N m)",
+        s=float(s[i]),
+    )
+
+
+def check_torque_at_rest(
+    s: np.ndarray, tau_rest: np.ndarray, limit: np.ndarray
+) -> None:
+    """Raise if the arm cannot be held still at some grid point.
+
+    Args:
+        s: (G,) grid.
+        tau_rest: (G, n) joint torques at rest (gravity, object included), N m.
+        limit: (n,) torque limits, N m.
+    """
+    ratio = np.abs(tau_rest) / limit
+    if np.all(ratio < 1.0):
+        return
+    i, j = (int(k[0]) for k in np.nonzero(ratio >= 1.0))
+    raise TorqueLimitAtRestError(
+        f"holding the arm at rest at s = {s[i]:.3f} needs {abs(tau_rest[i, j]):.3g} "
+        f"N m at joint {j + 1}, above its limit {limit[j]:.3g} N m",
+        s=float(s[i]),
+    )
+
+
+__all__ = ["check_grasp_at_rest", "check_torque_at_rest"]

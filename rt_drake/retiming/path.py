@@ -1,0 +1,92 @@
+"""The joint path ``q(s)``, s in [0, 1], in the planner's spline convention.
+
+Same convention as :class:`rt_drake.planning.path.GeometricPath`: knots from
+the cumulative Euclidean joint-space chord length of the waypoints, normalised
+to [0, 1], and toppra's ``SplineInterpolator(knots, waypoints,
+bc_type="clamped")`` (a scipy ``CubicSpline``, q'(0) = q'(1) = 0). Units: q
+in rad, q' in rad per unit s, q'' in rad per unit s^2.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import toppra
+from pydrake.trajectories import PiecewisePolynomial
+from scipy.interpolate import CubicSpline
+
+from rt_drake.retiming.errors import RetimeInputError
+
+
+def path_waypoints_and_knots(path: Any) -> tuple[np.ndarray, np.ndarray]:
+    """Return ``(waypoints (K, n), knots (K,))`` of a path or raw waypoints.
+
+    ``path`` is either an object with ``.waypoints`` and ``.knots`` (the
+    planner's ``GeometricPath``) or a (K, n) array of waypoints, whose knots
+    are then the normalised chord lengths.
+
+    Raises:
+        RetimeInputError: fewer than 2 waypoints, NaN or inf, equal
+            consecutive waypoints, or knots not strictly increasing from 0 to 1.
+    """
+    if hasattr(path, "waypoints") and hasattr(path, "knots"):
+        waypoints = np.asarray(path.waypoints, dtype=float)
+        knots = np.asarray(path.knots, dtype=float)
+    else:
+        waypoints = np.asarray(path, dtype=float)
+        knots = None
+    if waypoints.ndim != 2 or waypoints.shape[0] < 2 or waypoints.shape[1] < 1:
+        raise RetimeInputError(f"need (K >= 2, n) waypoints, got {waypoints.shape=}")
+    if not np.all(np.isfinite(waypoints)):
+        row = int(np.flatnonzero(~np.all(np.isfinite(waypoints), axis=1))[0])
+        raise RetimeInputError(f"waypoint {row} is not finite: {waypoints[row]}")
+    if knots is None:
+        chords = np.linalg.norm(np.diff(waypoints, axis=0), axis=1)
+        if np.any(chords <= 0.0):
+            i = int(np.flatnonzero(chords <= 0.0)[0])
+            raise RetimeInputError(f"waypoints {i} and {i + 1} are equal")
+        knots = np.concatenate([[0.0], np.cumsum(chords)]) / chords.sum()
+        knots[-1] = 1.0
+    if knots.shape != (waypoints.shape[0],) or not np.all(np.diff(knots) > 0.0):
+        raise RetimeInputError(f"knots must increase strictly, got {knots}")
+    if knots[0] != 0.0 or knots[-1] != 1.0:
+        raise RetimeInputError(f"knots must run from 0 to 1, got {knots[[0, -1]]}")
+    return waypoints, knots
+
+
+def path_spline(path: Any) -> CubicSpline:
+    """Return the path's clamped ``CubicSpline`` q(s) (what toppra wraps).
+
+    A ``GeometricPath``'s own ``spline`` is reused when it is that spline
+    (a ``CubicSpline`` on the path's knots); otherwise it is built.
+    """
+    waypoints, knots = path_waypoints_and_knots(path)
+    spline = getattr(path, "spline", None)
+    if (
+        isinstance(spline, CubicSpline)
+        and np.array_equal(spline.x, knots)
+        and spline.c.shape[2:] == waypoints.shape[1:]
+    ):
+        return spline
+    return CubicSpline(knots, waypoints, bc_type="clamped")
+
+
+def toppra_path(path: Any) -> toppra.SplineInterpolator:
+    """Return toppra's clamped spline through the path's waypoints."""
+    waypoints, knots = path_waypoints_and_knots(path)
+    return toppra.SplineInterpolator(knots, waypoints, bc_type="clamped")
+
+
+def drake_path(path: Any) -> PiecewisePolynomial:
+    """Return the same spline as a Drake ``PiecewisePolynomial`` q(s).
+
+    ``CubicHermite`` through the waypoints with the spline's slopes there
+    reproduces the C2 spline exactly (for Drake's own ``Toppra``).
+    """
+    waypoints, knots = path_waypoints_and_knots(path)
+    spline = toppra.SplineInterpolator(knots, waypoints, bc_type="clamped")
+    return PiecewisePolynomial.CubicHermite(knots, waypoints.T, spline(knots, 1).T)
+
+
+__all__ = ["drake_path", "path_spline", "path_waypoints_and_knots", "toppra_path"]
