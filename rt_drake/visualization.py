@@ -60,7 +60,7 @@ def _payloads(html: str):
 
 
 def meshcat_command_types(html: str) -> dict[str, int]:
-    """Count the Meshcat commands (``set_object``, ``set_animation``, ...) a page replays."""
+    """Count the Meshcat commands (``set_object``, ``set_animation``, ...) of a page."""
     counts: dict[str, int] = {}
     for payload in _payloads(html):
         match = _COMMAND_TYPE.search(payload[:64])

@@ -1,0 +1,190 @@
+"""Suction physics: the vacuum force between the cup and a box-shaped object.
+
+While the valve is on and an object's face lies within the seal distance of
+the cup, the vacuum pulls that object onto the cup with the force ``P A``
+along ``-z_C`` (C: the cup frame, +z out of the cup into the object), applied
+at the point of the face under the cup's centre; the opposite force acts on
+the tool at the cup's centre. Everything else (friction, the rim pushing the
+object) comes from the plant's contact between the six rim spheres and the
+object, with the friction coefficient of the contact model.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.math import RigidTransform
+from pydrake.multibody.plant import ExternallyAppliedSpatialForce
+from pydrake.multibody.tree import BodyIndex
+from pydrake.systems.framework import BasicVector, Context, LeafSystem
+
+#: Cosine of the largest angle between the cup axis and a face's inward
+#: normal at which the cup can still seal on that face (20 deg).
+_SEAL_COS = np.cos(np.radians(20.0))
+
+
+@dataclasses.dataclass(frozen=True)
+class SuctionTarget:
+    """A box-shaped object the cup can hold.
+
+    Attributes:
+        body_index: the object's body in the plant.
+        half_extents: m, half sizes of the box along its body axes.
+    """
+
+    body_index: BodyIndex
+    half_extents: np.ndarray
+
+
+@dataclasses.dataclass(frozen=True)
+class Seal:
+    """Where the cup meets an object's face.
+
+    Attributes:
+        gap: m, distance from the cup's centre to the face plane, along the
+            face's outward normal (negative when the cup presses into it).
+        p_OQ_O: m, the point Q of the face under the cup's centre, in O.
+    """
+
+    gap: float
+    p_OQ_O: np.ndarray
+
+
+def find_seal(
+    X_WC: RigidTransform, X_WO: RigidTransform, half_extents: np.ndarray
+) -> Seal | None:
+    """Return the seal of cup C on box O, or None if no face is under the cup.
+
+    The face under the cup is the one whose outward normal n_O is within 20
+    deg of ``-z_C`` and whose rectangle contains the projection of the cup's
+    centre; ``gap = (p_OC - p_OF) . n_O`` with F the face centre.
+    """
+    X_OC = X_WO.inverse() @ X_WC
+    p_OC = X_OC.translation()
+    z_C_O = X_OC.rotation().matrix()[:, 2]
+    for axis in range(3):
+        for sign in (1.0, -1.0):
+            n_O = np.zeros(3)
+            n_O[axis] = sign
+            if -z_C_O @ n_O < _SEAL_COS:
+                continue
+            others = [i for i in range(3) if i != axis]
+            if np.any(np.abs(p_OC[others]) > half_extents[others]):
+                return None
+            p_OQ = p_OC.copy()
+            p_OQ[axis] = sign * half_extents[axis]
+            return Seal(gap=float(sign * p_OC[axis] - half_extents[axis]), p_OQ_O=p_OQ)
+    return None
+
+
+class SuctionCup(LeafSystem):
+    """The vacuum force of a suction cup on the object under it.
+
+    .. pydrake_system::
+
+        name: SuctionCup
+        input_ports:
+        - valve
+        - body_poses
+        output_ports:
+        - spatial_forces
+        - sealed
+
+    ``valve`` (1-vector, on when > 0.5); ``body_poses`` is the plant's
+    ``body_poses`` output. ``spatial_forces`` is a list of
+    ExternallyAppliedSpatialForce for the plant; ``sealed`` holds, per
+    target, 1 if the vacuum pulls it, else 0. The cup holds at most one
+    object: the sealed target with the smallest gap.
+    """
+
+    def __init__(
+        self,
+        tool_body_index: BodyIndex,
+        X_TC: RigidTransform,
+        targets: list[SuctionTarget],
+        suction_force: float,
+        seal_distance: float = 0.005,
+    ) -> None:
+        """Make the system.
+
+        Args:
+            tool_body_index: body T that carries the cup.
+            X_TC: pose of the cup frame C in T.
+            targets: the objects the cup may hold.
+            suction_force: N, the vacuum force P A.
+            seal_distance: m, the largest gap at which the vacuum seals.
+        """
+        super().__init__()
+        self._tool = tool_body_index
+        self._X_TC = X_TC
+        self._targets = list(targets)
+        self._force = float(suction_force)
+        self._seal_distance = float(seal_distance)
+        self._valve_port = self.DeclareVectorInputPort("valve", 1)
+        self._poses_port = self.DeclareAbstractInputPort(
+            "body_poses", AbstractValue.Make([RigidTransform()])
+        )
+        self.DeclareAbstractOutputPort(
+            "spatial_forces",
+            lambda: AbstractValue.Make([ExternallyAppliedSpatialForce()]),
+            self._CalcSpatialForces,
+        )
+        self.DeclareVectorOutputPort("sealed", len(self._targets), self._CalcSealed)
+
+    def valve_input_port(self):
+        """The 1-vector valve command (on when > 0.5)."""
+        return self._valve_port
+
+    def body_poses_input_port(self):
+        """The plant's body poses."""
+        return self._poses_port
+
+    def _held(self, context: Context) -> tuple[int, Seal] | None:
+        """Index and seal of the target the vacuum pulls, if any."""
+        if self._valve_port.Eval(context)[0] <= 0.5:
+            return None
+        poses = self._poses_port.Eval(context)
+        X_WC = poses[int(self._tool)] @ self._X_TC
+        best: tuple[int, Seal] | None = None
+        for i, target in enumerate(self._targets):
+            seal = find_seal(X_WC, poses[int(target.body_index)], target.half_extents)
+            if seal is None or seal.gap > self._seal_distance:
+                continue
+            if best is None or seal.gap < best[1].gap:
+                best = (i, seal)
+        return best
+
+    def _CalcSealed(self, context: Context, output: BasicVector) -> None:
+        sealed = np.zeros(len(self._targets))
+        held = self._held(context)
+        if held is not None:
+            sealed[held[0]] = 1.0
+        output.SetFromVector(sealed)
+
+    def _CalcSpatialForces(self, context: Context, output: AbstractValue) -> None:
+        held = self._held(context)
+        if held is None:
+            output.set_value([])
+            return
+        index, seal = held
+        poses = self._poses_port.Eval(context)
+        X_WC = poses[int(self._tool)] @ self._X_TC
+        # Pull on the object toward the cup: -z_C, in W.
+        f_W = -self._force * X_WC.rotation().matrix()[:, 2]
+        on_object = ExternallyAppliedSpatialForce()
+        on_object.body_index = self._targets[index].body_index
+        on_object.p_BoBq_B = seal.p_OQ_O
+        on_object.F_Bq_W = _force_only(f_W)
+        on_tool = ExternallyAppliedSpatialForce()
+        on_tool.body_index = self._tool
+        on_tool.p_BoBq_B = self._X_TC.translation()
+        on_tool.F_Bq_W = _force_only(-f_W)
+        output.set_value([on_object, on_tool])
+
+
+def _force_only(f_W: np.ndarray):
+    from pydrake.multibody.math import SpatialForce
+
+    return SpatialForce(np.zeros(3), f_W)
