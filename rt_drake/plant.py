@@ -11,6 +11,8 @@ import dataclasses
 import enum
 
 import numpy as np
+from pydrake.geometry import Sphere
+from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import (
     AddModel,
     ModelDirective,
@@ -19,13 +21,10 @@ from pydrake.multibody.parsing import (
     Parser,
     ProcessModelDirectives,
 )
-from pydrake.geometry import Sphere
-from pydrake.math import RigidTransform
 from pydrake.multibody.plant import CoulombFriction, MultibodyPlant
 from pydrake.multibody.tree import Frame, ModelInstanceIndex
 
 from rt_drake.contact import CupParameters
-
 from rt_drake.errors import ScenarioError
 from rt_drake.resources import models_dir
 from rt_drake.scenario import Scenario
@@ -115,7 +114,9 @@ def add_scenario_models(
     return ScenarioModels(robot=by_name[robot_name], tool=tool, objects=added)
 
 
-def rim_friction(cup_friction: float, object_friction: float = OBJECT_FRICTION) -> float:
+def rim_friction(
+    cup_friction: float, object_friction: float = OBJECT_FRICTION
+) -> float:
     """Friction of the rim spheres so that rim-object contact has ``cup_friction``.
 
     Drake combines two coefficients as ``2 a b / (a + b)``; solving
@@ -141,7 +142,11 @@ def add_cup_rim(plant: MultibodyPlant, cup_frame: Frame, cup: CupParameters) -> 
     X_BC = cup_frame.GetFixedPoseInBodyFrame()
     for i in range(cup.points):
         angle = 2.0 * np.pi * i / cup.points
-        p_CS = [cup.radius * np.cos(angle), cup.radius * np.sin(angle), -RIM_SPHERE_RADIUS]
+        p_CS = [
+            cup.radius * np.cos(angle),
+            cup.radius * np.sin(angle),
+            -RIM_SPHERE_RADIUS,
+        ]
         plant.RegisterCollisionGeometry(
             cup_frame.body(),
             X_BC @ RigidTransform(p_CS),

@@ -38,7 +38,10 @@ def resolve_scenario_path(name: str | Path) -> Path:
     path = Path(name)
     if path.is_file():
         return path
-    for candidate in (scenarios_dir() / path.name, scenarios_dir() / f"{path.name}.yaml"):
+    for candidate in (
+        scenarios_dir() / path.name,
+        scenarios_dir() / f"{path.name}.yaml",
+    ):
         if candidate.is_file():
             return candidate
     raise FileNotFoundError(f"scenario file '{name}' does not exist")

@@ -12,12 +12,11 @@ Poses are ``pydrake.common.schema.Transform`` (metres, and degrees in
 field says otherwise.
 """
 
-
 import dataclasses
 import math
 import re
 from pathlib import Path
-from typing import Any, List, Optional
+from typing import Any
 
 import yaml
 from pydrake.common.schema import Transform
@@ -38,10 +37,10 @@ class RobotConfig:
     """
 
     model_instance: str = "vs060"
-    home: List[float] = dataclasses.field(default_factory=list)
-    velocity_limits: List[float] = dataclasses.field(default_factory=list)
-    acceleration_limits: List[float] = dataclasses.field(default_factory=list)
-    torque_limits: List[float] = dataclasses.field(default_factory=list)
+    home: list[float] = dataclasses.field(default_factory=list)
+    velocity_limits: list[float] = dataclasses.field(default_factory=list)
+    acceleration_limits: list[float] = dataclasses.field(default_factory=list)
+    torque_limits: list[float] = dataclasses.field(default_factory=list)
 
 
 @dataclasses.dataclass
@@ -78,9 +77,9 @@ class Timing:
 class Region:
     """An axis-aligned box of object positions (m, world) and a yaw range (deg)."""
 
-    lower: List[float] = dataclasses.field(default_factory=lambda: [0.0, 0.0, 0.0])
-    upper: List[float] = dataclasses.field(default_factory=lambda: [0.0, 0.0, 0.0])
-    yaw_deg: List[float] = dataclasses.field(default_factory=lambda: [0.0, 0.0])
+    lower: list[float] = dataclasses.field(default_factory=lambda: [0.0, 0.0, 0.0])
+    upper: list[float] = dataclasses.field(default_factory=lambda: [0.0, 0.0, 0.0])
+    yaw_deg: list[float] = dataclasses.field(default_factory=lambda: [0.0, 0.0])
 
 
 @dataclasses.dataclass
@@ -96,12 +95,12 @@ class RandomTransport:
 class Scenario:
     """Everything a cycle needs; see ``scenarios/stack_four_objects.yaml``."""
 
-    directives: List[ModelDirective] = dataclasses.field(default_factory=list)
+    directives: list[ModelDirective] = dataclasses.field(default_factory=list)
     robot: RobotConfig = dataclasses.field(default_factory=RobotConfig)
     cup: CupParameters = dataclasses.field(default_factory=CupParameters)
-    objects: List[ObjectConfig] = dataclasses.field(default_factory=list)
+    objects: list[ObjectConfig] = dataclasses.field(default_factory=list)
     timing: Timing = dataclasses.field(default_factory=Timing)
-    random_transport: Optional[RandomTransport] = None
+    random_transport: RandomTransport | None = None
 
     def object(self, name: str) -> ObjectConfig:
         """Return the object called ``name``; ScenarioError if there is none."""
@@ -236,10 +235,14 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
             key = f"{path}: key 'random_transport.{which}"
             if len(region.lower) != 3 or len(region.upper) != 3:
                 raise ScenarioError(f"{key}': lower and upper need 3 numbers each")
-            if any(lo > hi for lo, hi in zip(region.lower, region.upper)):
-                raise ScenarioError(f"{key}': lower {region.lower} > upper {region.upper}")
+            if any(lo > hi for lo, hi in zip(region.lower, region.upper, strict=True)):
+                raise ScenarioError(
+                    f"{key}': lower {region.lower} > upper {region.upper}"
+                )
             if len(region.yaw_deg) != 2 or region.yaw_deg[0] > region.yaw_deg[1]:
-                raise ScenarioError(f"{key}.yaw_deg': expected [low, high], got {region.yaw_deg}")
+                raise ScenarioError(
+                    f"{key}.yaw_deg': expected [low, high], got {region.yaw_deg}"
+                )
     try:
         scenario.cup.validate()
     except ValueError as error:
@@ -247,4 +250,6 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
     for field in ("attach_s", "detach_s"):
         value = getattr(scenario.timing, field)
         if not (math.isfinite(value) and value >= 0):
-            raise ScenarioError(f"{path}: key 'timing.{field}': must be >= 0 s, got {value}")
+            raise ScenarioError(
+                f"{path}: key 'timing.{field}': must be >= 0 s, got {value}"
+            )

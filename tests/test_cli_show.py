@@ -13,7 +13,14 @@ def test_show_writes_html_with_the_scene(tmp_path, capsys):
     assert main(["show", "stack_four_objects", "--html", str(out)]) == 0
     paths = meshcat_paths_in_html(out.read_text())
     # The robot, the tool, the cell, the bin and every object are drawn.
-    for model in ("vs060", "suction_tool", "cell", "bin", "whetstone_box", "carton_box"):
+    for model in (
+        "vs060",
+        "suction_tool",
+        "cell",
+        "bin",
+        "whetstone_box",
+        "carton_box",
+    ):
         assert any(f"/drake/visual/{model}/" in p for p in paths), model
 
 
@@ -25,7 +32,10 @@ def test_empty_page_has_no_scene():
 @pytest.mark.parametrize(
     "argv,words",
     [
-        (["show", "no_such_scenario.yaml", "--html", "x.html"], ["no_such_scenario.yaml", "does not exist"]),
+        (
+            ["show", "no_such_scenario.yaml", "--html", "x.html"],
+            ["no_such_scenario.yaml", "does not exist"],
+        ),
     ],
 )
 def test_bad_input_exits_2_with_one_line(tmp_path, capsys, argv, words):
@@ -38,7 +48,9 @@ def test_bad_input_exits_2_with_one_line(tmp_path, capsys, argv, words):
 
 def test_bad_scenario_key_exits_2(tmp_path, capsys, scenario_paths):
     bad = tmp_path / "bad.yaml"
-    bad.write_text(scenario_paths["stack_four_objects"].read_text().replace("  home:", "  hom:"))
+    bad.write_text(
+        scenario_paths["stack_four_objects"].read_text().replace("  home:", "  hom:")
+    )
     assert main(["show", str(bad), "--html", str(tmp_path / "x.html")]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "robot.hom" in err and "bad.yaml" in err

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from pydrake.geometry import Box, Role, SceneGraph
+from pydrake.geometry import Box, SceneGraph
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import AddMultibodyPlantSceneGraph, MultibodyPlant
 from pydrake.systems.framework import DiagramBuilder
@@ -24,9 +24,21 @@ MODEL_FILES = sorted(
 )
 
 # cell-facts.md: velocity and acceleration limits of the VS-060.
-VELOCITY_LIMITS = [3.92699082, 2.61799388, 2.85832572, 3.92699082, 3.02168853, 6.28318531]
+VELOCITY_LIMITS = [
+    3.92699082,
+    2.61799388,
+    2.85832572,
+    3.92699082,
+    3.02168853,
+    6.28318531,
+]
 ACCELERATION_LIMITS = [
-    19.73356519, 16.84469621, 20.70885517, 20.96646577, 23.72286426, 33.51032164,
+    19.73356519,
+    16.84469621,
+    20.70885517,
+    20.96646577,
+    23.72286426,
+    33.51032164,
 ]
 
 
@@ -53,7 +65,9 @@ def test_every_model_parses_and_finalizes(path):
 @pytest.mark.parametrize("name", sorted(OBJECT_FACTS))
 def test_object_mass_and_inertia_are_the_facts(name):
     plant = MultibodyPlant(0.0)
-    (instance,) = make_parser(plant).AddModels(str(models_dir() / "objects" / f"{name}.sdf"))
+    (instance,) = make_parser(plant).AddModels(
+        str(models_dir() / "objects" / f"{name}.sdf")
+    )
     plant.Finalize()
     body = plant.GetBodyByName(OBJECT_BODY, instance)
     mass, moments = OBJECT_FACTS[name]
@@ -89,7 +103,9 @@ def test_robot_limits_are_the_hardware_limits(scenario_paths):
     _, _, plant, _, models = _cell_plant(scenario_paths["stack_four_objects"])
     assert plant.num_positions(models.robot) == 6
     np.testing.assert_allclose(plant.GetVelocityUpperLimits()[:6], VELOCITY_LIMITS)
-    np.testing.assert_allclose(plant.GetAccelerationUpperLimits()[:6], ACCELERATION_LIMITS)
+    np.testing.assert_allclose(
+        plant.GetAccelerationUpperLimits()[:6], ACCELERATION_LIMITS
+    )
     np.testing.assert_allclose(
         np.degrees(plant.GetPositionUpperLimits()[:6]), [170, 120, 155, 270, 95, 185]
     )
@@ -98,7 +114,9 @@ def test_robot_limits_are_the_hardware_limits(scenario_paths):
 def test_robot_and_tool_mass_match_the_facts(scenario_paths):
     _, _, plant, _, models = _cell_plant(scenario_paths["stack_four_objects"])
     links = [plant.GetBodyByName(f"link{i}", models.robot) for i in range(1, 7)]
-    tool_mass = sum(plant.get_body(b).default_mass() for b in plant.GetBodyIndices(models.tool))
+    tool_mass = sum(
+        plant.get_body(b).default_mass() for b in plant.GetBodyIndices(models.tool)
+    )
     masses = [b.default_mass() for b in links]
     np.testing.assert_allclose(masses[:5], [4.327, 9.475, 4.097, 1.779, 1.211])
     # link6 + tool together carry the facts' 4.154 kg.
@@ -128,7 +146,9 @@ def test_home_configuration_is_collision_free(scenario_paths, name):
 def test_penetration_query_sees_a_colliding_configuration(scenario_paths):
     # Failable counterpart of the test above: at q = 0 the arm stands through
     # the top plate, and the same query must say so.
-    _, diagram, plant, scene_graph, models = _cell_plant(scenario_paths["stack_four_objects"])
+    _, diagram, plant, scene_graph, models = _cell_plant(
+        scenario_paths["stack_four_objects"]
+    )
     hits = _penetrations(diagram, plant, scene_graph, models, np.zeros(6))
     assert any("top_plate" in a + b for a, b, _ in hits)
 
@@ -157,7 +177,9 @@ def _object_corners(scene_graph, plant, models, name, X_WO: RigidTransform):
     body = plant.GetBodyByName(OBJECT_BODY, models.objects[name])
     (gid,) = plant.GetCollisionGeometriesForBody(body)
     size = np.array(inspector.GetShape(gid).size())
-    signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+    signs = np.array(
+        [[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)]
+    )
     return (X_WO @ (signs * size / 2).T).T
 
 
@@ -165,11 +187,25 @@ def _object_corners(scene_graph, plant, models, name, X_WO: RigidTransform):
 def test_starts_lie_in_the_bin_and_goals_on_the_destination(scenario_paths, name):
     scenario, _, plant, scene_graph, models = _cell_plant(scenario_paths[name])
     bin_boxes = _box_geometries(plant, scene_graph, "bin")
-    lo = np.array([bin_boxes["wall_back"][1][0], bin_boxes["wall_right"][1][1], bin_boxes["floor"][1][2]])
-    hi = np.array([bin_boxes["wall_front"][0][0], bin_boxes["wall_left"][0][1], bin_boxes["wall_left"][1][2]])
+    lo = np.array(
+        [
+            bin_boxes["wall_back"][1][0],
+            bin_boxes["wall_right"][1][1],
+            bin_boxes["floor"][1][2],
+        ]
+    )
+    hi = np.array(
+        [
+            bin_boxes["wall_front"][0][0],
+            bin_boxes["wall_left"][0][1],
+            bin_boxes["wall_left"][1][2],
+        ]
+    )
     zone_lo, zone_hi = _box_geometries(plant, scene_graph, "cell")["destination_zone"]
     for obj in scenario.objects:
-        start = _object_corners(scene_graph, plant, models, obj.name, obj.start.GetDeterministicValue())
+        start = _object_corners(
+            scene_graph, plant, models, obj.name, obj.start.GetDeterministicValue()
+        )
         assert np.all(start >= lo - 1e-9) and np.all(start <= hi + 1e-9), obj.name
         X_WO_goal = obj.goal.GetDeterministicValue()
         centre = X_WO_goal.translation()
@@ -180,10 +216,18 @@ def test_starts_lie_in_the_bin_and_goals_on_the_destination(scenario_paths, name
 
 
 def test_random_transport_regions_stay_in_the_bin_for_every_yaw(scenario_paths):
-    scenario, _, plant, scene_graph, models = _cell_plant(scenario_paths["random_transport"])
+    scenario, _, plant, scene_graph, models = _cell_plant(
+        scenario_paths["random_transport"]
+    )
     region = scenario.random_transport.start_region
     bin_boxes = _box_geometries(plant, scene_graph, "bin")
-    lo = np.array([bin_boxes["wall_back"][1][0], bin_boxes["wall_right"][1][1], bin_boxes["floor"][1][2]])
+    lo = np.array(
+        [
+            bin_boxes["wall_back"][1][0],
+            bin_boxes["wall_right"][1][1],
+            bin_boxes["floor"][1][2],
+        ]
+    )
     hi = np.array([bin_boxes["wall_front"][0][0], bin_boxes["wall_left"][0][1], np.inf])
     from pydrake.math import RollPitchYaw
 
@@ -191,6 +235,12 @@ def test_random_transport_regions_stay_in_the_bin_for_every_yaw(scenario_paths):
     for x in (region.lower[0], region.upper[0]):
         for y in (region.lower[1], region.upper[1]):
             for yaw in np.linspace(*region.yaw_deg, 7):
-                X_WO = RigidTransform(RollPitchYaw(0, 0, np.radians(yaw)), [x, y, region.lower[2]])
+                X_WO = RigidTransform(
+                    RollPitchYaw(0, 0, np.radians(yaw)), [x, y, region.lower[2]]
+                )
                 corners = _object_corners(scene_graph, plant, models, name, X_WO)
-                assert np.all(corners >= lo - 1e-9) and np.all(corners <= hi), (x, y, yaw)
+                assert np.all(corners >= lo - 1e-9) and np.all(corners <= hi), (
+                    x,
+                    y,
+                    yaw,
+                )

@@ -11,7 +11,10 @@ from rt_drake.scenario import load_scenario
 def test_shipped_scenarios_load(scenario_paths):
     stack = load_scenario(scenario_paths["stack_four_objects"])
     assert [o.name for o in stack.objects] == [
-        "whetstone_box", "kindle_box", "notebook", "carton_box",
+        "whetstone_box",
+        "kindle_box",
+        "notebook",
+        "carton_box",
     ]
     assert stack.cup.points == 6 and stack.cup.friction == pytest.approx(0.3)
     assert stack.timing.attach_s == pytest.approx(1.0)
@@ -29,20 +32,50 @@ def _write(tmp_path, scenario_paths, old: str, new: str):
 
 BAD_EDITS = [
     # (old text, new text, words the message must contain)
-    ("  approach_offset: 0.15", "  aproach_offset: 0.15", ["bad.yaml", "objects[0].aproach_offset", "unknown key"]),
-    ("start: {translation: [0.461, -0.357, 0.109]", "start: {translation: [0.461, -0.357]", ["bad.yaml", "objects[0].start.translation", "[0.461, -0.357]"]),
-    ("start: {translation: [0.461, -0.357, 0.109]", "start: {translation: [0.461, -0.357, high]", ["bad.yaml", "objects[0].start.translation", "'high'"]),
-    ("rotation: !Rpy {deg: [0, 0, 90]}}", "rotation: !Rpy {deg: [0, 90]}}", ["bad.yaml", "deg", "[0, 90]"]),
-    ("package://rt_drake/objects/notebook.sdf", "package://rt_drake/objects/notbook.sdf", ["bad.yaml", "objects[2].model", "notbook.sdf"]),
-    ("- name: kindle_box", "- name: whetstone_box", ["bad.yaml", "objects[1].name", "duplicate", "whetstone_box"]),
-    ("  approach_offset: 0.21", "  approach_offset: -0.21", ["bad.yaml", "objects[1].approach_offset", "-0.21"]),
+    (
+        "  approach_offset: 0.15",
+        "  aproach_offset: 0.15",
+        ["bad.yaml", "objects[0].aproach_offset", "unknown key"],
+    ),
+    (
+        "start: {translation: [0.461, -0.357, 0.109]",
+        "start: {translation: [0.461, -0.357]",
+        ["bad.yaml", "objects[0].start.translation", "[0.461, -0.357]"],
+    ),
+    (
+        "start: {translation: [0.461, -0.357, 0.109]",
+        "start: {translation: [0.461, -0.357, high]",
+        ["bad.yaml", "objects[0].start.translation", "'high'"],
+    ),
+    (
+        "rotation: !Rpy {deg: [0, 0, 90]}}",
+        "rotation: !Rpy {deg: [0, 90]}}",
+        ["bad.yaml", "deg", "[0, 90]"],
+    ),
+    (
+        "package://rt_drake/objects/notebook.sdf",
+        "package://rt_drake/objects/notbook.sdf",
+        ["bad.yaml", "objects[2].model", "notbook.sdf"],
+    ),
+    (
+        "- name: kindle_box",
+        "- name: whetstone_box",
+        ["bad.yaml", "objects[1].name", "duplicate", "whetstone_box"],
+    ),
+    (
+        "  approach_offset: 0.21",
+        "  approach_offset: -0.21",
+        ["bad.yaml", "objects[1].approach_offset", "-0.21"],
+    ),
     ("  friction: 0.3", "  friction: -0.3", ["bad.yaml", "cup", "-0.3"]),
     ("  attach_s: 1.0", "  attach_s: 1.0\n  wait_s: 2", ["bad.yaml", "timing.wait_s"]),
 ]
 
 
 @pytest.mark.parametrize("old,new,words", BAD_EDITS, ids=[e[2][1] for e in BAD_EDITS])
-def test_bad_scenario_gives_one_line_naming_file_key_value(tmp_path, scenario_paths, old, new, words):
+def test_bad_scenario_gives_one_line_naming_file_key_value(
+    tmp_path, scenario_paths, old, new, words
+):
     path = _write(tmp_path, scenario_paths, old, new)
     with pytest.raises(ScenarioError) as info:
         load_scenario(path)
@@ -64,7 +97,11 @@ def test_unknown_object_name(scenario_paths):
 
 
 def test_unknown_transport_object(tmp_path, scenario_paths):
-    text = scenario_paths["random_transport"].read_text().replace("  object: notebook", "  object: stapler")
+    text = (
+        scenario_paths["random_transport"]
+        .read_text()
+        .replace("  object: notebook", "  object: stapler")
+    )
     path = tmp_path / "bad.yaml"
     path.write_text(text)
     with pytest.raises(ScenarioError, match="random_transport.object.*'stapler'"):
@@ -74,7 +111,9 @@ def test_unknown_transport_object(tmp_path, scenario_paths):
 def test_cup_parameters_are_read_from_the_file(tmp_path, scenario_paths):
     # CupParameters is a field of the typed schema: non-default values arrive.
     text = scenario_paths["stack_four_objects"].read_text()
-    text = text.replace("  points: 6", "  points: 8").replace("  friction: 0.3", "  friction: 0.45")
+    text = text.replace("  points: 6", "  points: 8").replace(
+        "  friction: 0.3", "  friction: 0.45"
+    )
     path = tmp_path / "cup.yaml"
     path.write_text(text)
     cup = load_scenario(path).cup

@@ -22,9 +22,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument(
         "scenario",
-        help="scenario YAML file (or the name of a shipped one, e.g. stack_four_objects)",
+        help="scenario YAML file, or the name of a shipped one (stack_four_objects)",
     )
-    parser.add_argument("--html", type=Path, help="write the scene as a standalone HTML file")
+    parser.add_argument(
+        "--html", type=Path, help="write the scene as a standalone HTML file"
+    )
     parser.add_argument(
         "--goals", action="store_true", help="show the objects at their goal poses"
     )
