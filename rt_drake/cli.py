@@ -16,7 +16,14 @@ from collections.abc import Sequence
 from rt_drake.errors import RtDrakeError
 
 #: Subcommand modules, in the order ``--help`` lists them.
-_COMMANDS: tuple[str, ...] = ("show", "constraint", "plan", "retime", "run", "experiment")
+_COMMANDS: tuple[str, ...] = (
+    "run",
+    "experiment",
+    "constraint",
+    "plan",
+    "retime",
+    "show",
+)
 
 #: Exit code for bad input (argparse uses the same).
 EXIT_BAD_INPUT = 2

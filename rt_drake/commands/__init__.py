@@ -1,0 +1,1 @@
+"""Subcommands of ``rt-drake``: one module each, exposing ``register(subparsers)``."""
