@@ -31,7 +31,6 @@ import time  # noqa: E402
 import numpy as np  # noqa: E402
 import toppra  # noqa: E402
 from pydrake.multibody.optimization import Toppra  # noqa: E402
-from pydrake.multibody.plant import MultibodyPlant  # noqa: E402
 from toppra.algorithm import TOPPRA  # noqa: E402
 from toppra.constraint import (  # noqa: E402
     DiscretizationType,
@@ -46,7 +45,10 @@ from rt_drake.dynamics import (  # noqa: E402
     path_wrench_coefficients,
 )
 from rt_drake.planning.path import GeometricPath  # noqa: E402
-from rt_drake.plant import CUP_FRAME, ObjectMode, add_scenario_models  # noqa: E402
+from rt_drake.plant import (
+    CUP_FRAME,  # noqa: E402
+    make_arm_plant,
+)
 from rt_drake.resources import scenarios_dir  # noqa: E402
 from rt_drake.retime import GraspConstraint, JointLimits, retime  # noqa: E402
 from rt_drake.retiming.passes import AffineConstraint  # noqa: E402
@@ -160,9 +162,7 @@ def main() -> None:
     parser.add_argument("--object", default="notebook")
     args = parser.parse_args()
     scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
-    plant = MultibodyPlant(0.0)
-    add_scenario_models(plant, scenario, ObjectMode.NONE)
-    plant.Finalize()
+    plant = make_arm_plant(scenario)
     context = plant.CreateDefaultContext()
     limits = JointLimits.from_plant(plant, scenario.robot)
     held = HeldObject.from_scenario_object(scenario.object(args.object))

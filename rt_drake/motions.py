@@ -17,13 +17,12 @@ import time
 import numpy as np
 from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
-from pydrake.multibody.plant import MultibodyPlant
 from pydrake.trajectories import Trajectory
 
 from rt_drake.contact import cached_wrench_polytope
 from rt_drake.dynamics import HeldObject, path_wrench_coefficients
 from rt_drake.planning import CyclePlanner, PlannedPath
-from rt_drake.plant import ObjectMode, add_scenario_models
+from rt_drake.plant import make_arm_plant
 from rt_drake.retime import RetimeResult, retime
 from rt_drake.retiming.limits import GraspConstraint, JointLimits
 from rt_drake.scenario import ObjectConfig, Scenario
@@ -74,14 +73,6 @@ class TimeScaled(Trajectory):
         return self.Clone()
 
 
-def arm_plant(scenario: Scenario) -> MultibodyPlant:
-    """A finalized plant of the arm and tool only (the retimer's plant)."""
-    plant = MultibodyPlant(0.0)
-    add_scenario_models(plant, scenario, ObjectMode.NONE)
-    plant.Finalize()
-    return plant
-
-
 def held_object(obj: ObjectConfig, X_OC: RigidTransform) -> HeldObject:
     """Inertia of ``obj`` in the cup frame, held at grasp ``X_OC``."""
     return HeldObject.from_scenario_object(
@@ -113,7 +104,7 @@ class PlannedMotions:
             raise ValueError(f"speed factor must be > 0, got {move_speed}")
         self._scenario = scenario
         self._planner = CyclePlanner(scenario, seed=seed)
-        self._plant = arm_plant(scenario)
+        self._plant = make_arm_plant(scenario)
         self._context = self._plant.CreateDefaultContext()
         self._limits = JointLimits.from_plant(self._plant, scenario.robot)
         self._speed = move_speed

@@ -114,6 +114,18 @@ def add_scenario_models(
     return ScenarioModels(robot=by_name[robot_name], tool=tool, objects=added)
 
 
+def make_arm_plant(scenario: Scenario) -> MultibodyPlant:
+    """A finalized continuous plant of the arm and tool only (no objects).
+
+    Its positions are the arm's joints: the plant the retimer, the dynamics and
+    the controller's feedforward work on.
+    """
+    plant = MultibodyPlant(0.0)
+    add_scenario_models(plant, scenario, ObjectMode.NONE)
+    plant.Finalize()
+    return plant
+
+
 def rim_friction(
     cup_friction: float, object_friction: float = OBJECT_FRICTION
 ) -> float:
@@ -215,6 +227,7 @@ __all__ = [
     "add_cup_rim",
     "add_scenario_models",
     "home_configuration",
+    "make_arm_plant",
     "make_parser",
     "rim_friction",
     "robot_position_indices",

@@ -46,6 +46,7 @@ from rt_drake.plant import (
     ObjectMode,
     ScenarioModels,
     add_scenario_models,
+    make_arm_plant,
 )
 from rt_drake.scenario import Scenario
 from rt_drake.systems.suction import SuctionCup, SuctionTarget
@@ -102,9 +103,7 @@ def MakeStation(
     _set_pd_gains(plant, models, options)
     plant.Finalize()
 
-    controller_plant = MultibodyPlant(0.0)
-    add_scenario_models(controller_plant, scenario, ObjectMode.NONE)
-    controller_plant.Finalize()
+    controller_plant = make_arm_plant(scenario)
     feedforward = builder.AddNamedSystem(
         "inverse_dynamics", InverseDynamics(controller_plant)
     )

@@ -9,11 +9,10 @@ from __future__ import annotations
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.multibody.inverse_kinematics import InverseKinematics
-from pydrake.multibody.plant import MultibodyPlant
 from pydrake.solvers import Solve
 from pydrake.trajectories import PiecewisePolynomial
 
-from rt_drake.plant import CUP_FRAME, ObjectMode, add_scenario_models
+from rt_drake.plant import CUP_FRAME, make_arm_plant
 from rt_drake.systems.sequencer import Motion
 
 
@@ -44,9 +43,7 @@ class IkMotions:
     """APPROACH, REACH, MOVE as IK waypoints joined by minimum-jerk moves."""
 
     def __init__(self, scenario, approach_s=1.0, reach_s=0.6, move_s=(0.6, 1.0, 0.6)):
-        self._plant = MultibodyPlant(0.0)
-        add_scenario_models(self._plant, scenario, ObjectMode.NONE)
-        self._plant.Finalize()
+        self._plant = make_arm_plant(scenario)
         self._cup = self._plant.GetFrameByName(CUP_FRAME)
         self._q_home = np.array(scenario.robot.home)
         self._approach_s, self._reach_s, self._move_s = approach_s, reach_s, move_s

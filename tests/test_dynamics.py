@@ -22,7 +22,7 @@ from rt_drake.dynamics import (
     path_torque_coefficients,
     path_wrench_coefficients,
 )
-from rt_drake.plant import CUP_FRAME, ObjectMode, add_scenario_models
+from rt_drake.plant import CUP_FRAME, ObjectMode, add_scenario_models, make_arm_plant
 from rt_drake.resources import scenarios_dir
 from rt_drake.scenario import load_scenario
 
@@ -43,9 +43,7 @@ def scenario():
 
 @pytest.fixture(scope="module")
 def plant(scenario):
-    plant = MultibodyPlant(0.0)
-    add_scenario_models(plant, scenario, ObjectMode.NONE)
-    plant.Finalize()
+    plant = make_arm_plant(scenario)
     return plant
 
 

@@ -10,12 +10,11 @@ import toppra
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from pydrake.multibody.optimization import Toppra
-from pydrake.multibody.plant import MultibodyPlant
 from toppra.algorithm import TOPPRA
 from toppra.constraint import JointAccelerationConstraint, JointVelocityConstraint
 
 from rt_drake.dynamics import HeldObject, joint_torques, path_wrench_coefficients
-from rt_drake.plant import ObjectMode, add_scenario_models
+from rt_drake.plant import make_arm_plant
 from rt_drake.resources import scenarios_dir
 from rt_drake.retime import (
     GraspConstraint,
@@ -65,9 +64,7 @@ def scenario():
 
 @pytest.fixture(scope="module")
 def plant(scenario):
-    plant = MultibodyPlant(0.0)
-    add_scenario_models(plant, scenario, ObjectMode.NONE)
-    plant.Finalize()
+    plant = make_arm_plant(scenario)
     return plant
 
 

@@ -3,13 +3,12 @@
 import numpy as np
 import pytest
 from pydrake.common.value import AbstractValue
-from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantValueSource
 
 from rt_drake.dynamics import HeldObject
-from rt_drake.plant import ObjectMode, add_scenario_models
+from rt_drake.plant import make_arm_plant
 from rt_drake.resources import scenarios_dir
 from rt_drake.retime import GraspConstraint, JointLimits, retime
 from rt_drake.scenario import load_scenario
@@ -28,9 +27,7 @@ PATH = np.array(
 @pytest.fixture(scope="module")
 def setup():
     scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
-    plant = MultibodyPlant(0.0)
-    add_scenario_models(plant, scenario, ObjectMode.NONE)
-    plant.Finalize()
+    plant = make_arm_plant(scenario)
     limits = JointLimits.from_plant(plant, scenario.robot)
     held = HeldObject.from_scenario_object(scenario.object("notebook"))
     return plant, limits, GraspConstraint.for_cup(held, scenario.cup)

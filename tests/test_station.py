@@ -4,10 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
-from pydrake.multibody.inverse_kinematics import InverseKinematics
-from pydrake.multibody.plant import MultibodyPlant
-from pydrake.solvers import Solve
+from motion_helpers import IkMotions, min_jerk
+from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import Demultiplexer, TrajectorySource
@@ -16,9 +14,6 @@ from pydrake.trajectories import PiecewisePolynomial
 from rt_drake.plant import (
     CUP_FRAME,
     OBJECT_BODY,
-    ObjectMode,
-    add_scenario_models,
-    home_configuration,
 )
 from rt_drake.scenario import load_scenario
 from rt_drake.station import MakeStation
@@ -31,35 +26,13 @@ T_LIFT = 1.0  # s, duration of the lift
 T_HOLD = 0.5  # s, wait before the lift
 
 
-def _ik(plant, scenario, X_WC, seed):
-    ik = InverseKinematics(plant)
-    cup = plant.GetFrameByName(CUP_FRAME)
-    ik.AddPositionConstraint(
-        cup, [0, 0, 0], plant.world_frame(), X_WC.translation(), X_WC.translation()
-    )
-    ik.AddOrientationConstraint(
-        cup, RotationMatrix(), plant.world_frame(), X_WC.rotation(), 1e-4
-    )
-    ik.prog().SetInitialGuess(ik.q(), seed)
-    ik.prog().AddQuadraticErrorCost(np.eye(len(seed)), seed, ik.q())
-    result = Solve(ik.prog())
-    assert result.is_success()
-    return result.GetSolution(ik.q())
-
-
 def _hold_then_lift(q_start, q_end):
     """Stand still for T_HOLD, then a minimum-jerk joint motion over T_LIFT."""
     hold = PiecewisePolynomial.FirstOrderHold(
         [0.0, T_HOLD], np.column_stack([q_start, q_start])
     )
-    tau = np.linspace(0.0, 1.0, 21)
-    s = 10 * tau**3 - 15 * tau**4 + 6 * tau**5
-    lift = PiecewisePolynomial.CubicWithContinuousSecondDerivatives(
-        T_HOLD + T_LIFT * tau,
-        q_start[:, None] + np.outer(q_end - q_start, s),
-        np.zeros(6),
-        np.zeros(6),
-    )
+    lift = min_jerk([q_start, q_end], [T_LIFT])
+    lift.shiftRight(T_HOLD)
     hold.ConcatenateInTime(lift)
     return hold
 
@@ -67,16 +40,10 @@ def _hold_then_lift(q_start, q_end):
 def _run_lift(scenario_path, valve_times, valve_values, t_final):
     """Cup on the notebook, wait, lift 15 cm; return samples of the run."""
     scenario = load_scenario(scenario_path)
-    arm = MultibodyPlant(0.0)
-    add_scenario_models(arm, scenario, ObjectMode.NONE)
-    arm.Finalize()
-    notebook = scenario.object("notebook")
-    X_WC = (
-        notebook.start.GetDeterministicValue() @ notebook.grasp.GetDeterministicValue()
-    )
-    q_grasp = _ik(arm, scenario, X_WC, home_configuration(arm, scenario))
-    X_WC_up = RigidTransform(X_WC.rotation(), X_WC.translation() + [0, 0, LIFT])
-    q_up = _ik(arm, scenario, X_WC_up, q_grasp)
+    ik = IkMotions(scenario)
+    X_WC = ik.grasp(scenario.object("notebook"))
+    q_grasp = ik.ik(X_WC, np.array(scenario.robot.home))
+    q_up = ik.ik(ik.raised(X_WC, LIFT), q_grasp)
     q_traj = _hold_then_lift(q_grasp, q_up)
 
     station = MakeStation(scenario)

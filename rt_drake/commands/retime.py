@@ -77,10 +77,8 @@ def read_waypoints(path: Path, joints: int) -> np.ndarray:
 
 def run(args: argparse.Namespace) -> int:
     """Retime, write the .npz and print a summary; return 0."""
-    from pydrake.multibody.plant import MultibodyPlant
-
     from rt_drake.dynamics import HeldObject
-    from rt_drake.plant import CUP_FRAME, ObjectMode, add_scenario_models
+    from rt_drake.plant import CUP_FRAME, make_arm_plant
     from rt_drake.resources import resolve_scenario_path
     from rt_drake.retime import GraspConstraint, JointLimits, retime
     from rt_drake.retiming.path import path_waypoints_and_knots
@@ -90,9 +88,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--gridpoints must be >= 2, got {args.gridpoints}")
     scenario = load_scenario(resolve_scenario_path(args.scenario))
     obj = scenario.object(args.object)
-    plant = MultibodyPlant(0.0)
-    add_scenario_models(plant, scenario, ObjectMode.NONE)
-    plant.Finalize()
+    plant = make_arm_plant(scenario)
     waypoints = read_waypoints(args.waypoints, plant.num_positions())
     _, knots = path_waypoints_and_knots(waypoints)
     held = HeldObject.from_scenario_object(obj)
