@@ -12,6 +12,7 @@ import argparse
 import importlib
 import sys
 from collections.abc import Sequence
+from typing import NoReturn
 
 from rt_drake.errors import RtDrakeError
 
@@ -29,9 +30,21 @@ _COMMANDS: tuple[str, ...] = (
 EXIT_BAD_INPUT = 2
 
 
+class _OneLineParser(argparse.ArgumentParser):
+    """An ArgumentParser whose usage errors are one line (no usage dump), exit 2."""
+
+    def error(self, message: str) -> NoReturn:
+        """Print ``<prog>: error: <message>`` and exit with code 2."""
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    """Return the top-level parser with every subcommand registered."""
-    parser = argparse.ArgumentParser(
+    """Return the top-level parser with every subcommand registered.
+
+    Subparsers inherit the parser class, so every level reports argument
+    errors in one line.
+    """
+    parser = _OneLineParser(
         prog="rt-drake",
         description="Critically fast suction-cup pick-and-place on Drake.",
     )

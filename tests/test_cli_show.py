@@ -54,3 +54,21 @@ def test_bad_scenario_key_exits_2(tmp_path, capsys, scenario_paths):
     assert main(["show", str(bad), "--html", str(tmp_path / "x.html")]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "robot.hom" in err and "bad.yaml" in err
+
+
+@pytest.mark.parametrize(
+    "argv,words",
+    [
+        (["constraint", "--radius", "abc", "--out", "x.npz"], ["--radius", "'abc'"]),
+        (["experiment", "transport", "--n", "x", "--out", "d"], ["--n", "'x'"]),
+        (["nosuch"], ["'nosuch'"]),
+    ],
+)
+def test_malformed_arguments_exit_2_with_one_line(capsys, argv, words):
+    with pytest.raises(SystemExit) as info:
+        main(argv)
+    assert info.value.code == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "error:" in err
+    for word in words:
+        assert word in err

@@ -90,3 +90,21 @@ def test_bad_input_exits_2_with_one_line(tmp_path, capsys, argv, words):
     assert len(err.splitlines()) == 1 and err.startswith("rt-drake experiment: error:")
     for word in words:
         assert word in err
+
+
+def test_cycle_experiment_writes_the_breakdown(tmp_path):
+    # The one-object scenario keeps the test short; the default is the
+    # four-object stack of Table II.
+    argv = [
+        "experiment",
+        "cycle",
+        "--scenario",
+        "random_transport",
+        "--out",
+        str(tmp_path),
+    ]
+    assert main(argv) == 0
+    (entry,) = json.loads((tmp_path / "report.json").read_text())["objects"]
+    assert entry["name"] == "notebook" and entry["exec_s"]["move"] > 0
+    assert "| MOVE retime |" in (tmp_path / "report.md").read_text()
+    assert (tmp_path / "replay.html").stat().st_size > 100_000
