@@ -5,8 +5,11 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from pydrake.multibody.plant import MultibodyPlant
 
+from rt_drake.plant import make_arm_plant
 from rt_drake.resources import scenarios_dir
+from rt_drake.scenario import Scenario, load_scenario
 
 SCENARIO_NAMES = ("stack_four_objects", "random_transport")
 
@@ -15,3 +18,15 @@ SCENARIO_NAMES = ("stack_four_objects", "random_transport")
 def scenario_paths() -> dict[str, Path]:
     """Paths of the shipped scenario files, by name."""
     return {name: scenarios_dir() / f"{name}.yaml" for name in SCENARIO_NAMES}
+
+
+@pytest.fixture(scope="module")
+def scenario() -> Scenario:
+    """The four-object stacking scenario (Table II)."""
+    return load_scenario(scenarios_dir() / "stack_four_objects.yaml")
+
+
+@pytest.fixture(scope="module")
+def plant(scenario: Scenario) -> MultibodyPlant:
+    """The arm-and-tool plant of ``scenario`` (the retimer's plant)."""
+    return make_arm_plant(scenario)

@@ -22,9 +22,7 @@ from rt_drake.dynamics import (
     path_torque_coefficients,
     path_wrench_coefficients,
 )
-from rt_drake.plant import CUP_FRAME, ObjectMode, add_scenario_models, make_arm_plant
-from rt_drake.resources import scenarios_dir
-from rt_drake.scenario import load_scenario
+from rt_drake.plant import CUP_FRAME, ObjectMode, add_scenario_models
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 WAYPOINTS = np.array(
@@ -34,17 +32,6 @@ WAYPOINTS = np.array(
         HOME + [1.4, -0.1, 0.1, -0.2, 0.5, 1.2],
     ]
 )
-
-
-@pytest.fixture(scope="module")
-def scenario():
-    return load_scenario(scenarios_dir() / "stack_four_objects.yaml")
-
-
-@pytest.fixture(scope="module")
-def plant(scenario):
-    plant = make_arm_plant(scenario)
-    return plant
 
 
 @pytest.fixture(scope="module")

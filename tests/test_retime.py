@@ -14,8 +14,6 @@ from toppra.algorithm import TOPPRA
 from toppra.constraint import JointAccelerationConstraint, JointVelocityConstraint
 
 from rt_drake.dynamics import HeldObject, joint_torques, path_wrench_coefficients
-from rt_drake.plant import make_arm_plant
-from rt_drake.resources import scenarios_dir
 from rt_drake.retime import (
     GraspConstraint,
     GraspUnstableAtRestError,
@@ -32,7 +30,6 @@ from rt_drake.retiming import rows
 from rt_drake.retiming.check import DEFAULT_TOLERANCE
 from rt_drake.retiming.passes import AffineConstraint
 from rt_drake.retiming.path import drake_path
-from rt_drake.scenario import load_scenario
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 PATHS = {
@@ -55,17 +52,6 @@ PATHS = {
     ],
 }
 OBJECTS = ["notebook", "carton_box", "whetstone_box"]
-
-
-@pytest.fixture(scope="module")
-def scenario():
-    return load_scenario(scenarios_dir() / "stack_four_objects.yaml")
-
-
-@pytest.fixture(scope="module")
-def plant(scenario):
-    plant = make_arm_plant(scenario)
-    return plant
 
 
 @pytest.fixture(scope="module")
