@@ -60,7 +60,7 @@ from rt_drake.retiming.passes import (
     XBound,
     reachability,
 )
-from rt_drake.retiming.path import path_spline, path_waypoints_and_knots, toppra_path
+from rt_drake.retiming.path import path_spline, toppra_path
 from rt_drake.retiming.timed_path import TimedPath
 
 #: Grasp rows violated by more than this (N or N m) are added and re-solved.
@@ -135,9 +135,8 @@ def retime(
         TorqueLimitAtRestError: holding the arm still exceeds a torque limit.
         PathNotControllableError: no admissible speed reaches the end.
     """
-    waypoints, _ = path_waypoints_and_knots(path)
-    spline = path_spline(path)
-    n = waypoints.shape[1]
+    spline = path_spline(path)  # checks the path
+    n = spline.c.shape[2]
     if n != plant.num_positions() or n != limits.num_joints:
         raise RetimeInputError(
             f"path has {n} joints but {plant.num_positions()=} and {limits.num_joints=}"
@@ -225,7 +224,7 @@ def _solve_exact(
         violated = R.grasp_violations(
             *wrench, grasp.F, grasp.g, solution.u, solution.x, np.diff(s), ROW_TOLERANCE
         )
-        missed = np.setdiff1d(violated, rows)
+        missed = np.setdiff1d(violated, rows) if violated.size else violated
         if not missed.size:
             return solution, rows, repairs
         rows = np.union1d(rows, missed)

@@ -148,21 +148,20 @@ def _lean(
     low, high = [0.0] * (stages + 1), [0.0] * (stages + 1)
     low[stages] = high[stages] = sd_end**2
     for i in range(stages - 1, -1, -1):
-        args = (i, None, g_up, nan, nan, low[i + 1], high[i + 1])
-        upper = solve(*args)[1]
+        low_next, high_next = low[i + 1], high[i + 1]
+        upper = solve(i, None, g_up, nan, nan, low_next, high_next)[1]
         if upper != upper:  # NaN
-            upper = cold(*args)[1]
+            upper = cold(i, None, g_up, nan, nan, low_next, high_next)[1]
         lower = 0.0
-        if low[i + 1] > 0.0:
-            args = (i, None, g_down, nan, nan, low[i + 1], high[i + 1])
-            lower = solve(*args)[1]
+        if low_next > 0.0:
+            lower = solve(i, None, g_down, nan, nan, low_next, high_next)[1]
             if lower != lower:
-                lower = cold(*args)[1]
-        if math.isnan(upper) or math.isnan(lower):
+                lower = cold(i, None, g_down, nan, nan, low_next, high_next)[1]
+        if upper != upper or lower != lower:
             K = np.column_stack([low, high])
             K[: i + 1] = nan
             return Reachability(None, None, K, i)
-        low[i], high[i] = max(lower, 0.0), upper
+        low[i], high[i] = (0.0 if 0.0 > lower else lower), upper  # max(lower, 0)
     K = np.column_stack([low, high])
     x = [0.0] * (stages + 1)
     x[0] = sd_start**2
@@ -173,22 +172,27 @@ def _lean(
     two_ds = (2.0 * ds).tolist()
     i = tries = 0
     while i < stages:
+        x_i, low_next, high_next = x[i], low[i + 1], high[i + 1]
         g_forward[0] = -two_ds[i]
-        args = (i, None, g_forward, x[i], x[i], low[i + 1], high[i + 1])
-        step = solve(*args)[0]
+        step = solve(i, None, g_forward, x_i, x_i, low_next, high_next)[0]
         if step != step and tries == 0:
-            step = cold(*args)[0]
+            step = cold(i, None, g_forward, x_i, x_i, low_next, high_next)[0]
         if step != step:
             if tries == MAX_TRIES:
                 return Reachability(None, None, K, i)
-            x[i] = max(x[i] - TINY, 0.999 * x[i])
+            x[i] = max(x_i - TINY, 0.999 * x_i)
             tries += 1
             continue
         tries = 0
         u[i] = step
-        x_next = x[i] + two_ds[i] * step
-        x_next = max(x_next - TINY, 0.9999 * x_next)
-        x[i + 1] = min(high[i + 1], max(low[i + 1], x_next))
+        x_next = x_i + two_ds[i] * step
+        # The builtins' semantics (first argument on ties), without their calls:
+        # x_next = max(x_next - TINY, 0.9999 x_next), clamped into K_{i+1}.
+        reduced = x_next - TINY
+        x_next = 0.9999 * x_next
+        x_next = x_next if x_next > reduced else reduced
+        x_next = x_next if x_next > low_next else low_next
+        x[i + 1] = x_next if x_next < high_next else high_next
         i += 1
     return Reachability(np.array(x), np.array(u), K, None)
 

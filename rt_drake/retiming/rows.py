@@ -40,7 +40,8 @@ def grasp_rest_slack(c: np.ndarray, F: np.ndarray, g: np.ndarray) -> np.ndarray:
     Float32, then float64 for every grid point with a slack within float32
     rounding of zero (so the sign of each slack is exact).
     """
-    slack = g.astype(np.float32) - row_products(c, F)
+    slack = row_products(c, F)
+    np.subtract(g.astype(np.float32), slack, out=slack)
     margin = SCREEN * (1.0 + g.max() + np.abs(c).sum(axis=1))
     unsure = np.flatnonzero(slack.min(axis=1) <= margin)
     if unsure.size:
@@ -67,21 +68,25 @@ def grasp_candidates(
         x_cap: (G,) velocity bound on x (caps x_top).
         stride: Shoot at every ``stride``-th grid point.
     """
-    at = np.arange(0, a.shape[0], stride)
-    alpha, beta = np.split(row_products(np.vstack([a[at], b[at]]), F), 2)
-    slack = rest_slack[at].astype(np.float32)
-    points = np.arange(len(at))
+    alpha, beta = np.split(row_products(np.vstack([a[::stride], b[::stride]]), F), 2)
+    slack = np.ascontiguousarray(rest_slack[::stride], dtype=np.float32)
+    points = np.arange(len(slack))
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        top = np.argmax(beta / slack, axis=1)
+        ratio = np.divide(beta, slack)  # one (G / stride, R) buffer, reused
+        top = ratio.argmax(axis=1)
         x_top = np.minimum(
-            slack[points, top] / beta[points, top], x_cap[at].astype(np.float32)
+            slack[points, top] / beta[points, top], x_cap[::stride].astype(np.float32)
         )
-        lift = beta * x_top[:, None]
+        lift = np.multiply(beta, x_top[:, None], out=beta)
         hits = [top]
         for height in RAY_HEIGHTS:
-            room = slack - np.float32(height) * lift if height else slack
-            inverse = alpha / room
-            hits += [np.argmax(inverse, axis=1), np.argmin(inverse, axis=1)]
+            if height:  # alpha / (slack - height lift)
+                np.multiply(lift, np.float32(height), out=ratio)
+                np.subtract(slack, ratio, out=ratio)
+                np.divide(alpha, ratio, out=ratio)
+            else:
+                np.divide(alpha, slack, out=ratio)
+            hits += [ratio.argmax(axis=1), ratio.argmin(axis=1)]
     return np.unique(np.concatenate(hits))
 
 
@@ -101,8 +106,8 @@ def grasp_violations(
     Stage i (i < N) enforced ``s_i`` at ``(u_i, x_i)`` and ``s_{i+1}`` at
     ``(u_i, x_i + 2 ds_i u_i)``. Each of the 2N wrenches is screened against
     every row of F in float32, keeping the rows within ``SCREEN (1 + max g +
-    |w|_1)`` of their bound (well above float32 rounding), and the kept pairs
-    are evaluated exactly in float64.
+    max |w|_1)`` of their bound (well above float32 rounding), and the kept
+    pairs are evaluated exactly in float64.
 
     Returns:
         Sorted rows with ``F_k w - g_k > tol`` (N or N m) at some stage.
@@ -111,10 +116,10 @@ def grasp_violations(
     w_here = a[:-1] * u[:, None] + b[:-1] * x[:-1, None] + c[:-1]
     w_next = a[1:] * u[:, None] + b[1:] * x_next[:, None] + c[1:]
     wrenches = np.vstack([w_here, w_next])  # (2N, 6)
-    screen = row_products(wrenches, F)
-    screen -= g.astype(np.float32)
-    margin = SCREEN * (1.0 + g.max() + np.abs(wrenches).sum(axis=1))
-    near = np.flatnonzero(screen > -margin.astype(np.float32)[:, None])
+    # One margin for all wrenches (the largest): a comparison with a row
+    # vector, with no (2N, R) temporary for the slack.
+    margin = SCREEN * (1.0 + g.max() + np.abs(wrenches).sum(axis=1).max())
+    near = np.flatnonzero(row_products(wrenches, F) > (g - margin).astype(np.float32))
     column, row = np.divmod(near, F.shape[0])  # (np.nonzero is slow in 2-D)
     excess = np.einsum("ij,ij->i", F[row], wrenches[column]) - g[row]
     return np.unique(row[excess > tol])
