@@ -59,7 +59,11 @@ class ScenarioModels:
 
 def make_parser(plant: MultibodyPlant) -> Parser:
     """Return a Parser that resolves ``package://rt_drake/...``."""
-    parser = Parser(plant)
+    return _with_rt_drake_package(Parser(plant))
+
+
+def _with_rt_drake_package(parser: Parser) -> Parser:
+    """Register ``package://rt_drake`` (the shipped models) with ``parser``."""
     package_map = parser.package_map()
     if not package_map.Contains("rt_drake"):
         package_map.Add("rt_drake", str(models_dir()))
@@ -81,9 +85,7 @@ def add_scenario_models(
         ScenarioError: the directives do not contain ``robot.model_instance``
             or the ``suction_cup`` frame.
     """
-    parser = parser or make_parser(plant)
-    if not parser.package_map().Contains("rt_drake"):
-        parser.package_map().Add("rt_drake", str(models_dir()))
+    parser = _with_rt_drake_package(parser or Parser(plant))
     infos: list[ModelInstanceInfo] = ProcessModelDirectives(
         ModelDirectives(directives=scenario.directives), plant, parser
     )

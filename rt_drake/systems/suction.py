@@ -16,6 +16,7 @@ import dataclasses
 import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.math import RigidTransform
+from pydrake.multibody.math import SpatialForce
 from pydrake.multibody.plant import ExternallyAppliedSpatialForce
 from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.framework import BasicVector, Context, LeafSystem
@@ -184,7 +185,6 @@ class SuctionCup(LeafSystem):
         output.set_value([on_object, on_tool])
 
 
-def _force_only(f_W: np.ndarray):
-    from pydrake.multibody.math import SpatialForce
-
+def _force_only(f_W: np.ndarray) -> SpatialForce:
+    """A spatial force with no torque and force ``f_W`` (N)."""
     return SpatialForce(np.zeros(3), f_W)
