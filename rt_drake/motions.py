@@ -112,7 +112,8 @@ class PlannedMotions:
         self._polytope = (
             cached_wrench_polytope(scenario.cup) if grasp_constraint else None
         )
-        #: The last MOVE: its retime result, path and grasp (for reports, plots).
+        #: The last MOVE's retime result, path and grasp: outputs for reports
+        #: and plots, never read back by the planning.
         self.last_move: RetimeResult | None = None
         self.last_path = None
         self.last_grasp: GraspConstraint | None = None
@@ -174,14 +175,25 @@ class PlannedMotions:
         return self._timed(self._planner.plan_reach, q_start, obj, carrying=False)
 
     def move(self, q_start: np.ndarray, obj: ObjectConfig) -> Motion:
-        """Carry ``obj`` to its goal; afterwards the planner sees it there."""
-        motion = self._timed(self._planner.plan_move, q_start, obj, carrying=True)
-        self._planner.set_object_pose(obj.name, obj.goal.GetDeterministicValue())
-        return motion
+        """Carry ``obj`` from its grasp to its goal."""
+        return self._timed(self._planner.plan_move, q_start, obj, carrying=True)
+
+    def _place_objects_for(self, obj: ObjectConfig) -> None:
+        """Objects picked before ``obj`` are at their goals, the rest at their starts.
+
+        Derived from the picking order on every call (not accumulated), so a
+        re-run of the same cycle plans in the same scene.
+        """
+        names = [o.name for o in self._scenario.objects]
+        current = names.index(obj.name)
+        for index, other in enumerate(self._scenario.objects):
+            pose = other.goal if index < current else other.start
+            self._planner.set_object_pose(other.name, pose.GetDeterministicValue())
 
     def _timed(
         self, plan, q_start: np.ndarray, obj: ObjectConfig, carrying: bool
     ) -> Motion:
+        self._place_objects_for(obj)
         start = time.perf_counter()
         planned: PlannedPath = plan(q_start, obj.name)
         planned_s = time.perf_counter() - start
