@@ -35,7 +35,7 @@ from rt_drake.errors import ScenarioError
 from rt_drake.motions import PlannedMotions, TimeScaled
 from rt_drake.planning.transport import sample_transports
 from rt_drake.retime import RetimeResult
-from rt_drake.scenario import ObjectConfig, Scenario, Timing, load_scenario
+from rt_drake.scenario import Scenario, Timing, load_scenario
 from rt_drake.systems.sequencer import UPDATE_PERIOD, Motion
 
 #: m and rad: a rollout slipped if the object moved more on the cup.
@@ -89,18 +89,14 @@ class _Replay:
         return Motion(self._move, {})
 
 
-def rollout_scenario(
-    scenario: Scenario,
-    obj: ObjectConfig,
-    X_WO_start: RigidTransform,
-    q_grasp: np.ndarray,
-) -> Scenario:
-    """``scenario`` with only ``obj``, at ``X_WO_start``, and the arm at the grasp."""
-    moved = dataclasses.replace(obj, start=Transform(X_WO_start))
+def rollout_scenario(trial: Scenario, q_grasp: np.ndarray) -> Scenario:
+    """The ``trial`` scenario (object at its sampled start), the arm at the grasp.
+
+    The attach and detach waits are shortened to :data:`ROLLOUT_WAIT_S`.
+    """
     return dataclasses.replace(
-        scenario,
-        objects=[moved],
-        robot=dataclasses.replace(scenario.robot, home=[float(q) for q in q_grasp]),
+        trial,
+        robot=dataclasses.replace(trial.robot, home=[float(q) for q in q_grasp]),
         timing=Timing(attach_s=ROLLOUT_WAIT_S, detach_s=ROLLOUT_WAIT_S),
     )
 
@@ -157,7 +153,7 @@ def transport_trial(
     result_u: RetimeResult = constrained.retime_path(path, grasp=None)
     plan_s = time.perf_counter() - start
 
-    rollout_world = rollout_scenario(planner_scenario, planned_obj, X_WO_start, q_grasp)
+    rollout_world = rollout_scenario(planner_scenario, q_grasp)
     unconstrained = simulate_move(rollout_world, q_grasp, result_u.trajectory)
     critical, sweep = critical_speed(rollout_world, q_grasp, move_c.trajectory)
     constrained_rollout = sweep[0][1]

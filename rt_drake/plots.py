@@ -18,6 +18,15 @@ def _pyplot():
     return plt
 
 
+def _save(fig, path: Path) -> Path:
+    """Write ``fig`` as a PNG at ``path`` and release it."""
+    plt = _pyplot()
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
 def plot_profiles(trial: dict[str, Any], path: Path) -> Path:
     """s'(s) with and without the grasp constraint, under the velocity bound."""
     plt = _pyplot()
@@ -40,10 +49,7 @@ def plot_profiles(trial: dict[str, Any], path: Path) -> Path:
     ax.set_ylabel("path velocity s' (1/s)")
     ax.set_title(f"path {trial['index']}: time-optimal s'(s)")
     ax.legend(loc="upper right")
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return _save(fig, path)
 
 
 def plot_margins(trial: dict[str, Any], path: Path) -> Path:
@@ -68,10 +74,7 @@ def plot_margins(trial: dict[str, Any], path: Path) -> Path:
     ax.set_ylabel("grasp margin  min (g - F w) / g")
     ax.set_title(f"path {trial['index']}: below 0 the cup cannot hold the object")
     ax.legend(loc="lower right")
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return _save(fig, path)
 
 
 def plot_durations(trials: list[dict[str, Any]], path: Path) -> Path:
@@ -96,10 +99,7 @@ def plot_durations(trials: list[dict[str, Any]], path: Path) -> Path:
     ax.set_ylabel("MOVE duration (s)")
     ax.set_title("durations; x: the object slipped in simulation")
     ax.legend(loc="upper right")
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return _save(fig, path)
 
 
 def transport_table(results: dict[str, Any]) -> str:
