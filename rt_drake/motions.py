@@ -25,6 +25,7 @@ from rt_drake.planning import CyclePlanner, PlannedPath
 from rt_drake.plant import make_arm_plant
 from rt_drake.retime import RetimeResult, retime
 from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming.warm import warm_up
 from rt_drake.scenario import ObjectConfig, Scenario
 from rt_drake.systems.sequencer import Motion
 
@@ -112,6 +113,7 @@ class PlannedMotions:
         self._polytope = (
             cached_wrench_polytope(scenario.cup) if grasp_constraint else None
         )
+        warm_up()  # compile the retimer here, not in the first timed MOVE
         #: The last MOVE's retime result, path and grasp: outputs for reports
         #: and plots, never read back by the planning.
         self.last_move: RetimeResult | None = None

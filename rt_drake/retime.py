@@ -10,14 +10,15 @@ planner's clamped spline) such that, rest to rest,
   :mod:`rt_drake.contact` (paper eqs 1, 6, 20),
 
 by TOPP-RA on a uniform grid with toppra's interpolation discretization and
-seidel LP solver (:mod:`rt_drake.retiming.passes`).
+its seidel LP, compiled (:mod:`rt_drake.retiming.passes`).
 
 Exactness of the grasp rows: the polytope has hundreds of rows (834 for the
 paper's cup) and only a few dozen bound the (u, x) slices along a path. The
 stage LPs get the rows that ray shooting picks along the path
-(:func:`rt_drake.retiming.rows.grasp_candidates`); then every row is
-evaluated at every (u, x) the LPs enforced (both interpolation blocks), and
-any violated row is added and the passes rerun (``repairs``). The returned
+(:func:`rt_drake.retiming.rows.rest_and_candidates`); then every row is
+evaluated at every (u, x) the LPs enforced (both interpolation blocks,
+:func:`rt_drake.retiming.rows.wrench_ratios`), and any violated row is added
+and the passes rerun (``repairs``). The returned
 profile is then admissible for the full constraint and, as TOPP-RA's
 pointwise-maximal profile of a relaxation of it, the very profile TOPP-RA
 computes with all rows (the tests compare with toppra on all rows).
@@ -111,7 +112,7 @@ def retime(
     sd_end: float = 0.0,
     start_time: float = 0.0,
     context: Context | None = None,
-    engine: str = "lean",
+    engine: str = "compiled",
 ) -> RetimeResult:
     """Retime ``path`` time-optimally under ``limits`` and ``grasp``.
 
@@ -127,7 +128,7 @@ def retime(
         sd_end: Path velocity ds/dt at the end (1/s; 0 = rest).
         start_time: Time (s) at which the trajectory starts.
         context: Scratch context of ``plant``.
-        engine: "lean" or "toppra" (see :mod:`rt_drake.retiming.passes`).
+        engine: "compiled" or "toppra" (see :mod:`rt_drake.retiming.passes`).
 
     Raises:
         RetimeInputError: malformed path, limits or grid.
@@ -154,7 +155,7 @@ def retime(
             dq, ddq, np.zeros_like(dq), box, np.tile(limits.acceleration, 2)
         ),
     ]
-    tau = wrench = None
+    tau = wrench = normals = None
     if limits.torque is not None:
         held = grasp.held if grasp is not None else None
         tau = path_torque_coefficients(plant, q, dq, ddq, held, context)
@@ -162,19 +163,21 @@ def retime(
         fixed.append(AffineConstraint(*tau, box, np.tile(limits.torque, 2)))
     if grasp is not None:
         wrench = path_wrench_coefficients(plant, grasp.held, q, dq, ddq, context)
-        slack = R.grasp_rest_slack(wrench.c, grasp.F, grasp.g)
-        check_grasp_at_rest(s, slack, wrench.c, grasp)
-        rows = R.grasp_candidates(wrench.a, wrench.b, slack, grasp.F, x_cap)
+        normals = R.normalised_rows(grasp.F, grasp.g)
+        rest, rows = R.rest_and_candidates(*wrench, normals, x_cap)
+        check_grasp_at_rest(s, rest, wrench.c, grasp)
     else:
         rows = np.zeros(0, dtype=int)
-    # toppra's seidel wrapper does not need the path; its TOPPRA class does.
-    path_for_toppra = toppra_path(path) if engine == "toppra" else None
-    solution, rows, repairs = _solve_exact(
-        fixed, grasp, wrench, rows, path_for_toppra, s, sd_start, sd_end, engine
+    # The compiled passes do not need the path; toppra's TOPPRA class does.
+    toppra_spline = toppra_path(path) if engine == "toppra" else None
+    solution, rows, repairs, ratio = _solve_exact(
+        fixed, grasp, wrench, normals, rows, toppra_spline, s, sd_start, sd_end, engine
     )
     trajectory = TimedPath(spline, s, solution.x, start_time)
     u = (solution.x[1:] - solution.x[:-1]) / (2.0 * ds)
-    margins = _margins(limits, dq, ddq, solution.x, u, tau, wrench, grasp)
+    margins = _margins(limits, dq, ddq, solution.x, u, tau)
+    if grasp is not None:
+        margins["grasp"] = 1.0 - ratio
     return RetimeResult(
         trajectory=trajectory,
         duration=trajectory.duration,
@@ -193,14 +196,21 @@ def _solve_exact(
     fixed: list,
     grasp: GraspConstraint | None,
     wrench: PathCoefficients | None,
+    normals: np.ndarray | None,
     rows: np.ndarray,
     spline: toppra.SplineInterpolator | None,
     s: np.ndarray,
     sd_start: float,
     sd_end: float,
     engine: str,
-) -> tuple[Reachability, np.ndarray, int]:
-    """TOPP-RA with the selected grasp rows, adding missed rows until none."""
+) -> tuple[Reachability, np.ndarray, int, np.ndarray | None]:
+    """TOPP-RA with the selected grasp rows, adding missed rows until none.
+
+    Returns:
+        The passes' solution, the rows used, the repairs and, with a grasp,
+        ``max_k F_k w / g_k`` (G,) at each grid point (the acceleration of
+        the segment that starts there; the last point takes the last one).
+    """
     repairs = 0
     while True:
         constraints = list(fixed)
@@ -220,15 +230,36 @@ def _solve_exact(
                 s=where,
             )
         if grasp is None:
-            return solution, rows, repairs
-        violated = R.grasp_violations(
-            *wrench, grasp.F, grasp.g, solution.u, solution.x, np.diff(s), ROW_TOLERANCE
+            return solution, rows, repairs, None
+        ratio, violated = R.wrench_ratios(
+            _enforced_wrenches(wrench, solution, np.diff(s)),
+            normals,
+            grasp.g,
+            ROW_TOLERANCE,
         )
         missed = np.setdiff1d(violated, rows) if violated.size else violated
         if not missed.size:
-            return solution, rows, repairs
+            return solution, rows, repairs, ratio[: len(s)]
         rows = np.union1d(rows, missed)
         repairs += 1
+
+
+def _enforced_wrenches(
+    wrench: PathCoefficients, solution: Reachability, ds: np.ndarray
+) -> np.ndarray:
+    """The (2N+1, 6) wrenches ``w = a u + b x + c`` the stage LPs enforced.
+
+    Stage i (i < N) enforced ``s_i`` at ``(u_i, x_i)`` (rows 0..N-1) and
+    ``s_{i+1}`` at ``(u_i, x_i + 2 ds_i u_i)`` (rows N+1..2N). Row N is the
+    end point at ``(u_{N-1}, x_N)``, for its margin.
+    """
+    a, b, c = wrench
+    x, u = solution.x, solution.u
+    u_at = np.append(u, u[-1])[:, None]
+    x_next = (x[:-1] + 2.0 * ds * u)[:, None]
+    here = a * u_at + b * x[:, None] + c
+    following = a[1:] * u[:, None] + b[1:] * x_next + c[1:]
+    return np.vstack([here, following])
 
 
 def _grid(gridpoints: int | np.ndarray) -> np.ndarray:
@@ -258,10 +289,11 @@ def _margins(
     x: np.ndarray,
     u: np.ndarray,
     tau: PathCoefficients | None,
-    wrench: PathCoefficients | None,
-    grasp: GraspConstraint | None,
 ) -> dict[str, np.ndarray]:
-    """Relative slack of each constraint at the grid points (see RetimeResult)."""
+    """Relative slack of the joint constraints at the grid points.
+
+    See RetimeResult; the grasp's comes from the exactness check.
+    """
     u = np.append(u, u[-1])[:, None]
     xc = x[:, None]
     out = {
@@ -272,10 +304,6 @@ def _margins(
     if tau is not None:
         torque = tau.a * u + tau.b * xc + tau.c
         out["torque"] = 1.0 - np.max(np.abs(torque) / limits.torque, axis=1)
-    if wrench is not None:
-        w = wrench.a * u + wrench.b * xc + wrench.c
-        ratio = R.row_products(w, grasp.F / grasp.g[:, None])  # float32: a report
-        out["grasp"] = 1.0 - ratio.max(axis=1).astype(np.float64)
     return out
 
 

@@ -160,15 +160,20 @@ def test_row_selection_is_exact(plant, limits, grasps, object_name, monkeypatch)
     ours = retime(plant, path, limits, grasps[object_name], grid)
     assert ours.grasp_rows < len(grasps[object_name].g) // 5
     np.testing.assert_allclose(ours.sd, reference, rtol=1e-6, atol=1e-9)
-    monkeypatch.setattr(rows, "grasp_candidates", lambda *args, **kw: np.array([0]))
+    select = rows.rest_and_candidates
+    monkeypatch.setattr(
+        rows,
+        "rest_and_candidates",
+        lambda *args, **kw: (select(*args, **kw)[0], np.array([0])),
+    )
     starved = retime(plant, path, limits, grasps[object_name], grid)
     assert starved.repairs >= 1
     np.testing.assert_allclose(starved.sd, reference, rtol=1e-6, atol=1e-9)
 
 
-def test_lean_passes_equal_toppra_algorithm(plant, limits, grasps):
+def test_compiled_passes_equal_toppra_algorithm(plant, limits, grasps):
     path = np.array(PATHS["back"])
-    lean = retime(plant, path, limits, grasps["notebook"], engine="lean")
+    lean = retime(plant, path, limits, grasps["notebook"], engine="compiled")
     stock = retime(plant, path, limits, grasps["notebook"], engine="toppra")
     np.testing.assert_allclose(lean.sd, stock.sd, rtol=1e-9, atol=1e-12)
 

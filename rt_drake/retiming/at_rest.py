@@ -14,26 +14,26 @@ from rt_drake.retiming.limits import GraspConstraint
 
 
 def check_grasp_at_rest(
-    s: np.ndarray, slack: np.ndarray, c: np.ndarray, grasp: GraspConstraint
+    s: np.ndarray, rest: np.ndarray, c: np.ndarray, grasp: GraspConstraint
 ) -> None:
     """Raise if the object cannot be held at rest at some grid point.
 
     Args:
         s: (G,) grid.
-        slack: (G, R) ``g - F c(s)``, the grasp rows' slack at rest.
+        rest: (G,) ``max_k F_k c(s) / g_k``; held at rest iff < 1.
         c: (G, 6) the wrench at rest, ``[p x (-m g_C); -m g_C]``.
         grasp: The grasp (for the message).
     """
-    worst = slack.min(axis=1)
-    if np.all(worst > 0.0):
+    if np.all(rest < 1.0):
         return
-    i = int(np.flatnonzero(worst <= 0.0)[0])
+    i = int(np.flatnonzero(~(rest < 1.0))[0])
+    excess = float(np.max(grasp.F @ c[i] - grasp.g))
     g_C = -c[i, 3:] / grasp.held.mass
     tilt = np.degrees(np.arccos(np.clip(g_C[2] / np.linalg.norm(g_C), -1.0, 1.0)))
     raise GraspUnstableAtRestError(
         f"object slips even at rest at s = {s[i]:.3f}: gravity alone exceeds the "
         f"grasp constraint ({grasp.describe()}, cup axis {tilt:.0f} deg from "
-        f"pointing down; worst row exceeded by {-worst[i]:.3g} N or N m)",
+        f"pointing down; worst row exceeded by {excess:.3g} N or N m)",
         s=float(s[i]),
     )
 

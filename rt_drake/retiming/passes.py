@@ -1,39 +1,43 @@
-"""TOPP-RA's reachability passes (toppra 0.6.10) over its Cython seidel LP.
+"""TOPP-RA's reachability passes (toppra 0.6.10) with precomputed constraints.
 
-Constraints are toppra ``LinearConstraint`` objects with precomputed
-coefficients: :class:`AffineConstraint` is ``F (a_i u + b_i x + c_i) <= g``
-with one constant F, g (``identical``) and a, b, c given per grid point,
-converted to the interpolation discretization by toppra's
-``canlinear_colloc_to_interpolate``; :class:`XBound` carries ``0 <= x <=
-x_max(s_i)`` (the joint velocity limits). toppra's ``seidelWrapper`` solves
-each stage's 2-variable LP.
+Constraints carry precomputed coefficients: :class:`AffineConstraint` is
+``F (a_i u + b_i x + c_i) <= g`` with one constant F, g and a, b, c given per
+grid point; :class:`XBound` carries ``0 <= x <= x_max(s_i)`` (the joint
+velocity limits). Both are toppra ``LinearConstraint`` objects, so toppra
+itself can run them.
 
 :func:`reachability` runs the algorithm of ``toppra.algorithm.TOPPRA``
 (``compute_parameterization``): the backward pass of controllable sets K_i,
 then the greedy forward pass with toppra's numerical safeguards (x_{i+1}
 reduced by 1e-8 or 0.01 % and clamped into K_{i+1}; a failed step retried
-with x_i reduced). ``engine="toppra"`` calls toppra's class itself;
-``engine="lean"`` runs the same steps without its per-stage Python
-bookkeeping (about 3x faster here), without the LP for min K_i while K_{i+1}
-contains 0 ((u, x) = (0, 0) is then admissible at stage i: the retimer
-checked that object and arm can be held at rest at every grid point, so
-min K_i = 0), and retries an LP that seidel reports infeasible once from a
-cold start (see :func:`_lean`; toppra's class fails such paths).
+with x_i reduced), on the interpolation discretization.
+
+- ``engine="compiled"`` (default): the constraints become per-stage rows of
+  2-variable LPs in one numpy pass and :func:`rt_drake.retiming.seidel.passes`
+  runs both passes compiled (numba), with toppra's seidel LP transcribed. It
+  skips the LP for min K_i while K_{i+1} contains 0 ((u, x) = (0, 0) is then
+  admissible at stage i: the retimer checked that object and arm can be held
+  at rest at every grid point, so min K_i = 0), and retries an LP found
+  infeasible once without its warm start (toppra 0.6.10's warm start can
+  report a feasible LP infeasible, and its TOPPRA class then fails the path).
+- ``engine="toppra"``: toppra's own ``TOPPRA`` class with its seidel wrapper
+  (the reference).
 """
 
 from __future__ import annotations
 
-import math
-from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
 import toppra
 from toppra.algorithm import TOPPRA
-from toppra.constants import MAX_TRIES, SMALL, TINY
 from toppra.constraint import DiscretizationType, LinearConstraint
 from toppra.constraint.linear_constraint import canlinear_colloc_to_interpolate
-from toppra.solverwrapper.cy_seidel_solverwrapper import seidelWrapper
+
+from rt_drake.retiming import seidel
+
+#: toppra's box on (u, x) at every stage (cy_seidel_solverwrapper VAR_MIN/MAX).
+VAR_BOUND = 1e8
 
 
 class AffineConstraint(LinearConstraint):
@@ -50,11 +54,14 @@ class AffineConstraint(LinearConstraint):
         super().__init__()
         self.discretization_type = DiscretizationType.Interpolation
         self.identical = True
-        self._coefficients = (a, b, c, F, g)
+        # Writable C-contiguous float64: the array type the kernels compile for.
+        self.coefficients = tuple(
+            np.require(v, np.float64, ["C", "W"]) for v in (a, b, c, F, g)
+        )
 
     def compute_constraint_params(self, path, gridpoints, *args, **kwargs):  # noqa: D102
         return canlinear_colloc_to_interpolate(
-            *self._coefficients, None, None, np.asarray(gridpoints), identical=True
+            *self.coefficients, None, None, np.asarray(gridpoints), identical=True
         )
 
 
@@ -63,10 +70,10 @@ class XBound(LinearConstraint):
 
     def __init__(self, x_bound: np.ndarray) -> None:
         super().__init__()
-        self._x_bound = x_bound
+        self.x_bound = np.require(x_bound, np.float64, ["C", "W"])
 
     def compute_constraint_params(self, path, gridpoints, *args, **kwargs):  # noqa: D102
-        return None, None, None, None, None, None, self._x_bound
+        return None, None, None, None, None, None, self.x_bound
 
 
 class Reachability(NamedTuple):
@@ -92,7 +99,7 @@ def reachability(
     gridpoints: np.ndarray,
     sd_start: float = 0.0,
     sd_end: float = 0.0,
-    engine: str = "lean",
+    engine: str = "compiled",
 ) -> Reachability:
     """Run TOPP-RA (see the module docstring).
 
@@ -102,7 +109,7 @@ def reachability(
         gridpoints: (N+1,) grid s_i.
         sd_start: Path velocity at s = 0 (1/s).
         sd_end: Path velocity at s = 1 (1/s).
-        engine: "lean" or "toppra".
+        engine: "compiled" or "toppra".
     """
     if engine == "toppra":
         algorithm = TOPPRA(constraints, path, gridpoints, solver_wrapper="seidel")
@@ -113,88 +120,54 @@ def reachability(
             bad = np.flatnonzero(np.isnan(K).any(axis=1))
             return Reachability(None, None, K, int(bad.max()) if bad.size else 0)
         return Reachability(sd**2, sdd, K, None)
-    if engine != "lean":
-        raise ValueError(f"engine must be 'lean' or 'toppra', got {engine!r}")
-    return _lean(
-        lambda: seidelWrapper(constraints, path, gridpoints, solve_lp1d=True),
-        np.diff(gridpoints),
-        sd_start,
-        sd_end,
+    if engine != "compiled":
+        raise ValueError(f"engine must be 'compiled' or 'toppra', got {engine!r}")
+    ds = np.diff(gridpoints)
+    x, u, K, failed = seidel.passes(
+        *stage_rows(constraints, ds), ds, float(sd_start), float(sd_end)
     )
+    if failed >= 0:
+        return Reachability(None, None, K, int(failed))
+    return Reachability(x, u, K, None)
 
 
-def _lean(
-    make: Callable[[], seidelWrapper], ds: np.ndarray, sd_start: float, sd_end: float
-) -> Reachability:
-    """Run the TOPPRA passes (module docstring) on a fresh seidel wrapper.
+def stage_rows(
+    constraints: list[LinearConstraint], ds: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Rows ``A u + B x + C <= 0`` and boxes of every stage's LP.
 
-    toppra's seidel LP warm-starts from the rows active in the previous LP;
-    with nearly degenerate rows (e.g. at a path end, where q'(s) = 0) that
-    start can make it report a feasible LP infeasible (toppra's own TOPPRA
-    class then fails the path). An LP that comes back NaN is therefore solved
-    once more on a new wrapper (a cold start) before it counts as infeasible.
+    Returns:
+        A, B, C: (N+1, R); rows 0, 1 are left for the next controllable set
+            and the last stage's rows are inactive (0 u + 0 x - 1 <= 0).
+        lo, hi: (N+1, 2) boxes on (u, x): toppra's +-1e8 and the x bounds.
     """
-    solve = make().solve_stagewise_optim
-
-    def cold(*args) -> list[float]:
-        nonlocal solve
-        solve = make().solve_stagewise_optim
-        return solve(*args)
-
     stages = len(ds)
-    nan = math.nan
-    g_up = np.array([1e-9, -1.0])
-    g_down = -g_up
-    low, high = [0.0] * (stages + 1), [0.0] * (stages + 1)
-    low[stages] = high[stages] = sd_end**2
-    for i in range(stages - 1, -1, -1):
-        low_next, high_next = low[i + 1], high[i + 1]
-        upper = solve(i, None, g_up, nan, nan, low_next, high_next)[1]
-        if upper != upper:  # NaN
-            upper = cold(i, None, g_up, nan, nan, low_next, high_next)[1]
-        lower = 0.0
-        if low_next > 0.0:
-            lower = solve(i, None, g_down, nan, nan, low_next, high_next)[1]
-            if lower != lower:
-                lower = cold(i, None, g_down, nan, nan, low_next, high_next)[1]
-        if upper != upper or lower != lower:
-            K = np.column_stack([low, high])
-            K[: i + 1] = nan
-            return Reachability(None, None, K, i)
-        low[i], high[i] = (0.0 if 0.0 > lower else lower), upper  # max(lower, 0)
-    K = np.column_stack([low, high])
-    x = [0.0] * (stages + 1)
-    x[0] = sd_start**2
-    if x[0] + SMALL < low[0] or high[0] + SMALL < x[0]:
-        return Reachability(None, None, K, 0)
-    u = [0.0] * stages
-    g_forward = np.array([0.0, -1.0])
-    two_ds = (2.0 * ds).tolist()
-    i = tries = 0
-    while i < stages:
-        x_i, low_next, high_next = x[i], low[i + 1], high[i + 1]
-        g_forward[0] = -two_ds[i]
-        step = solve(i, None, g_forward, x_i, x_i, low_next, high_next)[0]
-        if step != step and tries == 0:
-            step = cold(i, None, g_forward, x_i, x_i, low_next, high_next)[0]
-        if step != step:
-            if tries == MAX_TRIES:
-                return Reachability(None, None, K, i)
-            x[i] = max(x_i - TINY, 0.999 * x_i)
-            tries += 1
-            continue
-        tries = 0
-        u[i] = step
-        x_next = x_i + two_ds[i] * step
-        # The builtins' semantics (first argument on ties), without their calls:
-        # x_next = max(x_next - TINY, 0.9999 x_next), clamped into K_{i+1}.
-        reduced = x_next - TINY
-        x_next = 0.9999 * x_next
-        x_next = x_next if x_next > reduced else reduced
-        x_next = x_next if x_next > low_next else low_next
-        x[i + 1] = x_next if x_next < high_next else high_next
-        i += 1
-    return Reachability(np.array(x), np.array(u), K, None)
+    width = 2 + sum(
+        2 * len(c.coefficients[4])
+        for c in constraints
+        if isinstance(c, AffineConstraint)
+    )
+    A = np.zeros((stages + 1, width))
+    B = np.zeros((stages + 1, width))
+    C = np.full((stages + 1, width), -1.0)
+    lo = np.full((stages + 1, 2), -VAR_BOUND)
+    hi = np.full((stages + 1, 2), VAR_BOUND)
+    column = 2
+    for constraint in constraints:
+        if isinstance(constraint, XBound):
+            np.maximum(lo[:, 1], constraint.x_bound[:, 0], out=lo[:, 1])
+            np.minimum(hi[:, 1], constraint.x_bound[:, 1], out=hi[:, 1])
+        elif isinstance(constraint, AffineConstraint):
+            column = seidel.project(*constraint.coefficients, ds, A, B, C, column)
+        else:
+            raise TypeError(f"unsupported constraint {type(constraint).__name__}")
+    return A, B, C, lo, hi
 
 
-__all__ = ["AffineConstraint", "Reachability", "XBound", "reachability"]
+__all__ = [
+    "AffineConstraint",
+    "Reachability",
+    "XBound",
+    "reachability",
+    "stage_rows",
+]

@@ -6,142 +6,192 @@ with ``alpha = F a``, ``beta = F b`` and ``delta = g - F c`` (the slack at
 rest, > 0). Of the polytope's hundreds of rows only a few dozen bound these
 2-D slices anywhere along a path.
 
-:func:`grasp_candidates` selects them by ray shooting at every
-``stride``-th grid point (float32, a selection and not a proof): from rest
-(0, 0) along +x to ``x_top``, then from (0, h x_top) along +u and -u for h in
-:data:`RAY_HEIGHTS`. The first row hit along a ray from a point where every
-slack ``r_k`` is positive is the one maximising ``(alpha_k d_u + beta_k d_x)
-/ r_k``. The union over grid points is handed to the stage LPs at every grid
-point.
+Both functions run compiled (numba) in float64 over the normalised rows
+``n_k = F_k / g_k`` (so row k reads ``n_k w <= 1``):
 
-:func:`grasp_violations` then evaluates every row at every (u, x) the stage
-LPs chose, both interpolation blocks, so that rows the selection missed are
-found (the retimer adds them and solves again).
+- :func:`rest_and_candidates` checks every row at rest at every grid point
+  (``n_k c_i < 1``) and selects rows by ray shooting at every ``stride``-th
+  grid point: from rest (0, 0) along +x to ``x_top`` (capped by the velocity
+  bound), then from (0, h x_top) along +u and -u for h in
+  :data:`RAY_HEIGHTS`. From a point where every row's slack ``r_k`` is
+  positive, the first row hit along a direction ``(d_u, d_x)`` is the one
+  maximising ``(alpha_k d_u + beta_k d_x) / r_k``. The union over grid points
+  is handed to the stage LPs at every grid point. A selection, not a proof:
+- :func:`wrench_ratios` evaluates every row at every wrench the stage LPs
+  enforced; rows the selection missed are found there (the retimer adds them
+  and solves again).
 """
 
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
 #: Heights, as fractions of the height x_top reached from rest along +x, of
 #: the +u and -u rays.
-RAY_HEIGHTS = (0.0, 0.5, 0.9)
+RAY_HEIGHTS = np.array([0.0, 0.5, 0.9])
 
 #: Grid stride of the ray shooting (the selection is shared by all points).
 RAY_STRIDE = 2
 
-#: Float32 screening margin of :func:`grasp_violations` (relative).
-SCREEN = 1e-5
+
+def normalised_rows(F: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """``(F / g)ᵀ`` as a (6, R) C-contiguous array (row k reads ``n_k w <= 1``)."""
+    return np.ascontiguousarray((F / np.asarray(g)[:, None]).T, dtype=np.float64)
 
 
-def grasp_rest_slack(c: np.ndarray, F: np.ndarray, g: np.ndarray) -> np.ndarray:
-    """Slack ``g - F c`` (G, R) of every grasp row with the robot at rest.
-
-    Float32, then float64 for every grid point with a slack within float32
-    rounding of zero (so the sign of each slack is exact).
-    """
-    slack = row_products(c, F)
-    np.subtract(g.astype(np.float32), slack, out=slack)
-    margin = SCREEN * (1.0 + g.max() + np.abs(c).sum(axis=1))
-    unsure = np.flatnonzero(slack.min(axis=1) <= margin)
-    if unsure.size:
-        slack = slack.astype(np.float64)
-        slack[unsure] = g - np.einsum("gj,kj->gk", c[unsure], F)
-    return slack
-
-
-def grasp_candidates(
-    a: np.ndarray,
-    b: np.ndarray,
-    rest_slack: np.ndarray,
-    F: np.ndarray,
-    x_cap: np.ndarray,
-    stride: int = RAY_STRIDE,
-) -> np.ndarray:
-    """Return the sorted indices of the grasp rows selected by ray shooting.
-
-    Args:
-        a: (G, 6) wrench coefficients of u.
-        b: (G, 6) wrench coefficients of x.
-        rest_slack: (G, R) ``g - F c``, all > 0.
-        F: (R, 6) grasp rows.
-        x_cap: (G,) velocity bound on x (caps x_top).
-        stride: Shoot at every ``stride``-th grid point.
-    """
-    alpha, beta = np.split(row_products(np.vstack([a[::stride], b[::stride]]), F), 2)
-    slack = np.ascontiguousarray(rest_slack[::stride], dtype=np.float32)
-    points = np.arange(len(slack))
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        ratio = np.divide(beta, slack)  # one (G / stride, R) buffer, reused
-        top = ratio.argmax(axis=1)
-        x_top = np.minimum(
-            slack[points, top] / beta[points, top], x_cap[::stride].astype(np.float32)
-        )
-        lift = np.multiply(beta, x_top[:, None], out=beta)
-        hits = [top]
-        for height in RAY_HEIGHTS:
-            if height:  # alpha / (slack - height lift)
-                np.multiply(lift, np.float32(height), out=ratio)
-                np.subtract(slack, ratio, out=ratio)
-                np.divide(alpha, ratio, out=ratio)
-            else:
-                np.divide(alpha, slack, out=ratio)
-            hits += [ratio.argmax(axis=1), ratio.argmin(axis=1)]
-    return np.unique(np.concatenate(hits))
-
-
-def grasp_violations(
+def rest_and_candidates(
     a: np.ndarray,
     b: np.ndarray,
     c: np.ndarray,
-    F: np.ndarray,
-    g: np.ndarray,
-    u: np.ndarray,
-    x: np.ndarray,
-    ds: np.ndarray,
-    tol: float,
-) -> np.ndarray:
-    """Indices of the grasp rows violated where the stage LPs enforced them.
+    normals: np.ndarray,
+    x_cap: np.ndarray,
+    stride: int = RAY_STRIDE,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Check the grasp at rest and select rows by ray shooting.
 
-    Stage i (i < N) enforced ``s_i`` at ``(u_i, x_i)`` and ``s_{i+1}`` at
-    ``(u_i, x_i + 2 ds_i u_i)``. Each of the 2N wrenches is screened against
-    every row of F in float32, keeping the rows within ``SCREEN (1 + max g +
-    max |w|_1)`` of their bound (well above float32 rounding), and the kept
-    pairs are evaluated exactly in float64.
+    Args:
+        a: (G, 6) wrench per unit u (``w = a u + b x + c``).
+        b: (G, 6) wrench per unit x.
+        c: (G, 6) wrench at rest.
+        normals: (6, R) from :func:`normalised_rows`.
+        x_cap: (G,) velocity bound on x (caps x_top).
+        stride: Shoot at every ``stride``-th grid point.
 
     Returns:
-        Sorted rows with ``F_k w - g_k > tol`` (N or N m) at some stage.
+        rest: (G,) ``max_k n_k c_i``; the object is held at rest at ``s_i``
+            iff it is < 1.
+        rows: Sorted indices of the selected rows (none if some rest >= 1).
     """
-    x_next = x[:-1] + 2.0 * ds * u
-    w_here = a[:-1] * u[:, None] + b[:-1] * x[:-1, None] + c[:-1]
-    w_next = a[1:] * u[:, None] + b[1:] * x_next[:, None] + c[1:]
-    wrenches = np.vstack([w_here, w_next])  # (2N, 6)
-    # One margin for all wrenches (the largest): a comparison with a row
-    # vector, with no (2N, R) temporary for the slack.
-    margin = SCREEN * (1.0 + g.max() + np.abs(wrenches).sum(axis=1).max())
-    near = np.flatnonzero(row_products(wrenches, F) > (g - margin).astype(np.float32))
-    column, row = np.divmod(near, F.shape[0])  # (np.nonzero is slow in 2-D)
-    excess = np.einsum("ij,ij->i", F[row], wrenches[column]) - g[row]
-    return np.unique(row[excess > tol])
-
-
-def row_products(vectors: np.ndarray, F: np.ndarray) -> np.ndarray:
-    """``vectors @ F.T`` in float32 by einsum, (M, 6) x (R, 6) -> (M, R).
-
-    einsum's own loop, not BLAS: on a busy 2-core machine OpenBLAS's threads
-    made this product 10 to 50 times slower (CPU and wall time).
-    """
-    return np.einsum(
-        "mj,jr->mr", vectors.astype(np.float32), np.ascontiguousarray(F.T, np.float32)
+    rest = np.empty(len(c))
+    selected = np.zeros(normals.shape[1], dtype=np.bool_)
+    _rest_and_rays(
+        *(np.require(v, np.float64, ["C", "W"]) for v in (a, b, c)),
+        normals,
+        np.require(x_cap, np.float64, ["C", "W"]),
+        int(stride),
+        RAY_HEIGHTS,
+        rest,
+        selected,
     )
+    return rest, np.flatnonzero(selected)
+
+
+def wrench_ratios(
+    wrenches: np.ndarray,
+    normals: np.ndarray,
+    g: np.ndarray,
+    tol: float,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Evaluate every grasp row at every wrench.
+
+    Args:
+        wrenches: (M, 6) wrenches on the object (N m, N).
+        normals: (6, R) from :func:`normalised_rows`.
+        g: (R,) the rows' offsets.
+        tol: Excess (N or N m) above which a row counts as violated.
+
+    Returns:
+        ratio: (M,) ``max_k n_k w`` (<= 1: the wrench is in the polytope).
+        violated: Sorted rows with ``g_k (n_k w - 1) > tol`` at some wrench.
+    """
+    ratio = np.empty(len(wrenches))
+    violated = np.zeros(len(g), dtype=np.bool_)
+    _ratios(
+        np.require(wrenches, np.float64, ["C", "W"]),
+        normals,
+        np.require(g, np.float64, ["C", "W"]),
+        float(tol),
+        ratio,
+        violated,
+    )
+    return ratio, np.flatnonzero(violated)
+
+
+@njit(cache=True)
+def _products(n, w0, w1, w2, w3, w4, w5, out):
+    """``out[k] = n[:, k] . w`` for every row k."""
+    for k in range(n.shape[1]):
+        out[k] = (
+            n[0, k] * w0
+            + n[1, k] * w1
+            + n[2, k] * w2
+            + n[3, k] * w3
+            + n[4, k] * w4
+            + n[5, k] * w5
+        )
+
+
+@njit(cache=True)
+def _ratios(wrenches, n, g, tol, ratio, violated):
+    values = np.empty(n.shape[1])
+    for i in range(wrenches.shape[0]):
+        w = wrenches[i]
+        _products(n, w[0], w[1], w[2], w[3], w[4], w[5], values)
+        best = -np.inf
+        for k in range(values.shape[0]):
+            v = values[k]
+            if v > best:
+                best = v
+            if g[k] * (v - 1.0) > tol:
+                violated[k] = True
+        ratio[i] = best
+
+
+@njit(cache=True)
+def _first_hit(alpha, beta, slack, d_u, d_x):
+    """Row maximising ``(alpha d_u + beta d_x) / slack`` (-1: none is hit)."""
+    best, hit = 0.0, -1
+    for k in range(slack.shape[0]):
+        value = (alpha[k] * d_u + beta[k] * d_x) / slack[k]
+        if value > best:
+            best, hit = value, k
+    return hit
+
+
+@njit(cache=True)
+def _rest_and_rays(a, b, c, n, x_cap, stride, heights, rest, selected):
+    rows = n.shape[1]
+    slack = np.empty(rows)
+    alpha = np.empty(rows)
+    beta = np.empty(rows)
+    shifted = np.empty(rows)
+    held = True
+    for i in range(c.shape[0]):
+        _products(n, c[i, 0], c[i, 1], c[i, 2], c[i, 3], c[i, 4], c[i, 5], slack)
+        worst = -np.inf
+        for k in range(rows):
+            if slack[k] > worst:
+                worst = slack[k]
+            slack[k] = 1.0 - slack[k]
+        rest[i] = worst
+        held = held and worst < 1.0
+        if not held or i % stride:
+            continue
+        _products(n, a[i, 0], a[i, 1], a[i, 2], a[i, 3], a[i, 4], a[i, 5], alpha)
+        _products(n, b[i, 0], b[i, 1], b[i, 2], b[i, 3], b[i, 4], b[i, 5], beta)
+        top = _first_hit(alpha, beta, slack, 0.0, 1.0)
+        x_top = x_cap[i]
+        if top >= 0:
+            selected[top] = True
+            x_top = min(x_top, slack[top] / beta[top])
+        for h in heights:
+            if h > 0.0 and not np.isfinite(x_top):
+                continue  # no row bounds +x here (nor the velocity)
+            for k in range(rows):
+                shifted[k] = slack[k] - h * x_top * beta[k] if h > 0.0 else slack[k]
+            for direction in (1.0, -1.0):
+                hit = _first_hit(alpha, beta, shifted, direction, 0.0)
+                if hit >= 0:
+                    selected[hit] = True
+    if not held:
+        selected[:] = False
 
 
 __all__ = [
     "RAY_HEIGHTS",
     "RAY_STRIDE",
-    "SCREEN",
-    "grasp_candidates",
-    "grasp_rest_slack",
-    "grasp_violations",
-    "row_products",
+    "normalised_rows",
+    "rest_and_candidates",
+    "wrench_ratios",
 ]

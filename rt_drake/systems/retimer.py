@@ -17,6 +17,7 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import BasicVector, Context, LeafSystem, State
 
 from rt_drake.retime import GraspConstraint, JointLimits, RetimeResult, retime
+from rt_drake.retiming.warm import warm_up
 
 _request_ids = itertools.count(1)
 
@@ -89,6 +90,7 @@ class Retimer(LeafSystem):
         n = plant.num_positions()
         if self._q_initial.shape != (n,):
             raise ValueError(f"{self._q_initial.shape=} but {n=} positions")
+        warm_up()  # compile the retimer's kernels now, not in the first event
         self._request_port = self.DeclareAbstractInputPort(
             "request", AbstractValue.Make(None)
         )

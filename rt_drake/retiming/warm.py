@@ -1,0 +1,37 @@
+"""Compile the retimer's numba kernels before anything is timed.
+
+numba compiles a kernel at its first call (about 7 s for all of them on the
+2-core benchmark machine) and caches the machine code beside the module, so
+later processes only load it (about 0.3 s). :func:`warm_up` makes that first
+call on a three-point problem with the argument types the retimer uses, so
+that the first real retime of a process (e.g. the first MOVE of a simulated
+cycle, whose planning time Table II reports) costs what the others cost.
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from rt_drake.retiming import rows
+from rt_drake.retiming.passes import AffineConstraint, XBound, reachability
+
+
+@functools.cache
+def warm_up() -> None:
+    """Compile (or load from the cache) every kernel once per process."""
+    grid = np.linspace(0.0, 1.0, 3)
+    ones, zeros = np.ones((3, 1)), np.zeros((3, 1))
+    # -1 <= u + x <= 1 and 0 <= x <= 1 at every grid point.
+    band = AffineConstraint(ones, ones, zeros, np.array([[1.0], [-1.0]]), np.ones(2))
+    x_bound = XBound(np.column_stack([np.zeros(3), np.ones(3)]))
+    reachability([x_bound, band], None, grid)
+    F = np.vstack([np.eye(6), -np.eye(6)])
+    normals = rows.normalised_rows(F, np.ones(12))
+    wrench = np.full((3, 6), 0.1)
+    rows.rest_and_candidates(wrench, wrench, 0.0 * wrench, normals, grid + 1.0)
+    rows.wrench_ratios(wrench, normals, np.ones(12), 1e-9)
+
+
+__all__ = ["warm_up"]
