@@ -37,6 +37,7 @@ Jacobian, one bias and one pose per grid point; the rest is numpy.
 from __future__ import annotations
 
 import dataclasses
+import weakref
 from typing import NamedTuple
 
 import numpy as np
@@ -258,24 +259,64 @@ def _path_kinematics(
     set_state = plant.SetPositionsAndVelocities
     jacobian = plant.CalcJacobianSpatialVelocity
     bias = plant.CalcBiasSpatialAcceleration
-    rotation = frame.CalcRotationMatrixInWorld
+    base = _vertical_base_joint(plant, context)
+    rotation = frame.CalcRotationMatrixInWorld if base is None else None
     J, A_bias, R_WC, M, Cv, tau_g = [], [], [], [], [], []
     for state in np.hstack([q, dq]):
         set_state(context, state)
         J.append(jacobian(context, kV, frame, p, world, frame))
         A_bias.append(bias(context, kV, frame, p, world, frame))
-        R_WC.append(rotation(context))
+        if rotation is not None:
+            R_WC.append(rotation(context))
         if dynamics:
             M.append(plant.CalcMassMatrix(context))
             Cv.append(plant.CalcBiasTerm(context))
             tau_g.append(plant.CalcGravityGeneralizedForces(context))
     J = np.array(J)
     A_bias = np.array([A.get_coeffs() for A in A_bias])
-    R_WC = np.array([R.matrix() for R in R_WC])
     M, Cv, tau_g = (np.array(x) if dynamics else None for x in (M, Cv, tau_g))
-    g_W = plant.gravity_field().gravity_vector()
-    g_C = np.einsum("nji,j->ni", R_WC, g_W)
+    if base is None:
+        R_WC = np.array([R.matrix() for R in R_WC])
+        g_C = np.einsum("nji,j->ni", R_WC, plant.gravity_field().gravity_vector())
+    else:
+        index, g_along_axis = base
+        g_C = g_along_axis * J[:, :3, index]
     return _Kinematics(J, A_bias, g_C, M, Cv, tau_g)
+
+
+_BASE_JOINTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _vertical_base_joint(
+    plant: MultibodyPlant, context: Context
+) -> tuple[int, float] | None:
+    """A revolute joint on a body welded to the world, its axis along gravity.
+
+    Its axis ``k_W`` is fixed in W and the angular part of its Jacobian
+    column, expressed in C, is ``R_CW k_W``; with ``g_W = (g_W . k_W) k_W``,
+    gravity in C is ``g_C = (g_W . k_W) J_w[:, k]``, which saves a rotation
+    query per grid point (most arms have such a base joint). Found once per
+    plant.
+
+    Returns:
+        (velocity index of the joint, ``g_W . k_W`` in m/s^2), or None.
+    """
+    if plant in _BASE_JOINTS:
+        return _BASE_JOINTS[plant]
+    g_W = plant.gravity_field().gravity_vector()
+    fixed = {body.index() for body in plant.GetBodiesWeldedTo(plant.world_body())}
+    found = None
+    for index in plant.GetJointIndices():
+        joint = plant.get_joint(index)
+        if joint.type_name() != "revolute" or joint.parent_body().index() not in fixed:
+            continue
+        R_WF = joint.frame_on_parent().CalcRotationMatrixInWorld(context)
+        k_W = R_WF.multiply(joint.revolute_axis())
+        if np.linalg.norm(np.cross(k_W, g_W)) <= 1e-12 * (1.0 + np.linalg.norm(g_W)):
+            found = joint.velocity_start(), float(g_W @ k_W)
+            break
+    _BASE_JOINTS[plant] = found
+    return found
 
 
 def _wrench_coefficients(

@@ -220,3 +220,28 @@ def test_plant_with_free_bodies_is_rejected(scenario, held):
     plant.Finalize()
     with pytest.raises(ValueError, match="only the path's joints"):
         path_wrench_coefficients(plant, held, HOME, HOME, HOME)
+
+
+def test_gravity_from_the_base_joint_equals_the_cup_rotation(plant, held):
+    """g_C from the vertical base joint's Jacobian column equals R_CW g_W.
+
+    The shipped arm has such a joint (joint 1); without it the coefficients
+    come from Drake's rotation of the cup frame, and both must agree.
+    """
+    from rt_drake import dynamics
+
+    spline = _path()
+    s = np.linspace(0.0, 1.0, 25)
+    args = (plant, held, spline(s), spline(s, 1), spline(s, 2))
+    assert dynamics._vertical_base_joint(plant, plant.CreateDefaultContext()) == (
+        0,
+        pytest.approx(-9.81),
+    )
+    fast = path_wrench_coefficients(*args)
+    dynamics._BASE_JOINTS[plant] = None  # as for an arm without one
+    try:
+        rotated = path_wrench_coefficients(*args)
+    finally:
+        del dynamics._BASE_JOINTS[plant]
+    for ours, reference in zip(fast, rotated, strict=True):
+        np.testing.assert_allclose(ours, reference, rtol=1e-12, atol=1e-12)

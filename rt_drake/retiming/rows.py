@@ -125,28 +125,56 @@ def _products(n, w0, w1, w2, w3, w4, w5, out):
 @njit(cache=True)
 def _ratios(wrenches, n, g, tol, ratio, violated):
     values = np.empty(n.shape[1])
+    g_min = g.min()
     for i in range(wrenches.shape[0]):
         w = wrenches[i]
         _products(n, w[0], w[1], w[2], w[3], w[4], w[5], values)
         best = -np.inf
         for k in range(values.shape[0]):
-            v = values[k]
-            if v > best:
-                best = v
-            if g[k] * (v - 1.0) > tol:
-                violated[k] = True
+            if values[k] > best:
+                best = values[k]
         ratio[i] = best
+        if g_min * (best - 1.0) <= 0.0:
+            continue  # no row exceeds its bound at all
+        for k in range(values.shape[0]):
+            if g[k] * (values[k] - 1.0) > tol:
+                violated[k] = True
 
 
 @njit(cache=True)
-def _first_hit(alpha, beta, slack, d_u, d_x):
-    """Row maximising ``(alpha d_u + beta d_x) / slack`` (-1: none is hit)."""
-    best, hit = 0.0, -1
-    for k in range(slack.shape[0]):
-        value = (alpha[k] * d_u + beta[k] * d_x) / slack[k]
-        if value > best:
-            best, hit = value, k
+def _argmax_positive(values, sign):
+    """First k maximising ``sign values[k]`` among the positive ones (else -1)."""
+    hit, best = -1, 0.0
+    for k in range(values.shape[0]):
+        if sign * values[k] > best:
+            hit, best = k, sign * values[k]
     return hit
+
+
+@njit(cache=True)
+def _side_hits(alpha, beta, slack, lifts, selected):
+    """Mark the rows maximising and minimising ``alpha / (slack - lift beta)``.
+
+    One pass over the rows for every lift (rays along +u and -u from (0,
+    lift)); only positive maxima count (-1: that ray hits nothing).
+    """
+    count = lifts.shape[0]
+    plus = np.full(count, -1)
+    minus = np.full(count, -1)
+    best_plus = np.zeros(count)
+    best_minus = np.zeros(count)
+    for k in range(alpha.shape[0]):
+        for j in range(count):
+            value = alpha[k] / (slack[k] - lifts[j] * beta[k])
+            if value > best_plus[j]:
+                plus[j], best_plus[j] = k, value
+            if -value > best_minus[j]:
+                minus[j], best_minus[j] = k, -value
+    for j in range(count):
+        if plus[j] >= 0:
+            selected[plus[j]] = True
+        if minus[j] >= 0:
+            selected[minus[j]] = True
 
 
 @njit(cache=True)
@@ -155,7 +183,7 @@ def _rest_and_rays(a, b, c, n, x_cap, stride, heights, rest, selected):
     slack = np.empty(rows)
     alpha = np.empty(rows)
     beta = np.empty(rows)
-    shifted = np.empty(rows)
+    ratio = np.empty(rows)
     held = True
     for i in range(c.shape[0]):
         _products(n, c[i, 0], c[i, 1], c[i, 2], c[i, 3], c[i, 4], c[i, 5], slack)
@@ -170,20 +198,19 @@ def _rest_and_rays(a, b, c, n, x_cap, stride, heights, rest, selected):
             continue
         _products(n, a[i, 0], a[i, 1], a[i, 2], a[i, 3], a[i, 4], a[i, 5], alpha)
         _products(n, b[i, 0], b[i, 1], b[i, 2], b[i, 3], b[i, 4], b[i, 5], beta)
-        top = _first_hit(alpha, beta, slack, 0.0, 1.0)
+        # Along +x from rest: the first row hit maximises beta / slack.
+        for k in range(rows):
+            ratio[k] = beta[k] / slack[k]
+        top = _argmax_positive(ratio, 1.0)
         x_top = x_cap[i]
         if top >= 0:
             selected[top] = True
             x_top = min(x_top, slack[top] / beta[top])
-        for h in heights:
-            if h > 0.0 and not np.isfinite(x_top):
-                continue  # no row bounds +x here (nor the velocity)
-            for k in range(rows):
-                shifted[k] = slack[k] - h * x_top * beta[k] if h > 0.0 else slack[k]
-            for direction in (1.0, -1.0):
-                hit = _first_hit(alpha, beta, shifted, direction, 0.0)
-                if hit >= 0:
-                    selected[hit] = True
+        # Along +-u from (0, h x_top): alpha / shifted slack, max and min.
+        if np.isfinite(x_top):
+            _side_hits(alpha, beta, slack, heights * x_top, selected)
+        else:  # nothing bounds +x here (no row, no velocity limit)
+            _side_hits(alpha, beta, slack, np.zeros(1), selected)
     if not held:
         selected[:] = False
 
