@@ -322,17 +322,24 @@ def _vertical_base_joint(
 def _wrench_coefficients(
     held: HeldObject, kin: _Kinematics, dq: np.ndarray, ddq: np.ndarray
 ) -> PathCoefficients:
-    """Newton-Euler (module docstring) split into its u, x and constant terms."""
+    """Newton-Euler (module docstring) split into its u, x and constant terms.
+
+    Linear in the acceleration ``A = [alpha; a]`` of Scm: ``w = L A`` with
+    ``L = [[I, m [p]x], [0, m 1]]``, plus the gyroscopic torque in b and the
+    gravity wrench ``c = -m [[p]x; 1] g_C``.
+    """
     m, p, inertia = held.mass, held.p_CoScm_C, held.I_Scm_C
-    A_u = _matvec(kin.J, dq)  # [alpha; a] per unit u
-    A_x = _matvec(kin.J, ddq) + kin.bias  # [alpha; a] per unit x
+    p_cross = np.array([[0.0, -p[2], p[1]], [p[2], 0.0, -p[0]], [-p[1], p[0], 0.0]])
+    L = np.zeros((6, 6))
+    L[:3, :3], L[:3, 3:], L[3:, 3:] = inertia, m * p_cross, m * np.eye(3)
+    A = np.matmul(kin.J, np.stack([dq, ddq], axis=2))  # (N, 6, 2)
+    A_u = A[:, :, 0]  # [alpha; a] per unit u
+    A_x = A[:, :, 1] + kin.bias  # [alpha; a] per unit x
     omega1 = A_u[:, :3]  # omega = omega1 sqrt(x)
-    f_u, f_x, f_c = m * A_u[:, 3:], m * A_x[:, 3:], -m * kin.g_C
-    gyro = _cross(omega1, omega1 @ inertia.T)
+    b = A_x @ L.T
+    b[:, :3] += _cross(omega1, omega1 @ inertia.T)
     return PathCoefficients(
-        a=np.hstack([A_u[:, :3] @ inertia.T + _cross(p, f_u), f_u]),
-        b=np.hstack([A_x[:, :3] @ inertia.T + gyro + _cross(p, f_x), f_x]),
-        c=np.hstack([_cross(p, f_c), f_c]),
+        a=A_u @ L.T, b=b, c=kin.g_C @ (-m * np.vstack([p_cross, np.eye(3)])).T
     )
 
 

@@ -40,8 +40,6 @@ def _solve(a, b, c, v, low, high, active=None):
         high,
         active,
         np.zeros(rows, np.int64),
-        np.zeros(rows + 4),
-        np.zeros(rows + 4),
     )
 
 

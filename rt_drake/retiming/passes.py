@@ -55,9 +55,7 @@ class AffineConstraint(LinearConstraint):
         self.discretization_type = DiscretizationType.Interpolation
         self.identical = True
         # Writable C-contiguous float64: the array type the kernels compile for.
-        self.coefficients = tuple(
-            np.require(v, np.float64, ["C", "W"]) for v in (a, b, c, F, g)
-        )
+        self.coefficients = tuple(seidel.kernel_array(v) for v in (a, b, c, F, g))
 
     def compute_constraint_params(self, path, gridpoints, *args, **kwargs):  # noqa: D102
         return canlinear_colloc_to_interpolate(
@@ -70,7 +68,7 @@ class XBound(LinearConstraint):
 
     def __init__(self, x_bound: np.ndarray) -> None:
         super().__init__()
-        self.x_bound = np.require(x_bound, np.float64, ["C", "W"])
+        self.x_bound = seidel.kernel_array(x_bound)
 
     def compute_constraint_params(self, path, gridpoints, *args, **kwargs):  # noqa: D102
         return None, None, None, None, None, None, self.x_bound

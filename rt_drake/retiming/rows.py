@@ -27,6 +27,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from rt_drake.retiming.seidel import kernel_array
+
 #: Heights, as fractions of the height x_top reached from rest along +x, of
 #: the +u and -u rays.
 RAY_HEIGHTS = np.array([0.0, 0.5, 0.9])
@@ -66,9 +68,9 @@ def rest_and_candidates(
     rest = np.empty(len(c))
     selected = np.zeros(normals.shape[1], dtype=np.bool_)
     _rest_and_rays(
-        *(np.require(v, np.float64, ["C", "W"]) for v in (a, b, c)),
+        *(kernel_array(v) for v in (a, b, c)),
         normals,
-        np.require(x_cap, np.float64, ["C", "W"]),
+        kernel_array(x_cap),
         int(stride),
         RAY_HEIGHTS,
         rest,
@@ -98,9 +100,9 @@ def wrench_ratios(
     ratio = np.empty(len(wrenches))
     violated = np.zeros(len(g), dtype=np.bool_)
     _ratios(
-        np.require(wrenches, np.float64, ["C", "W"]),
+        kernel_array(wrenches),
         normals,
-        np.require(g, np.float64, ["C", "W"]),
+        kernel_array(g),
         float(tol),
         ratio,
         violated,

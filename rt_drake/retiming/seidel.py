@@ -38,6 +38,16 @@ PASS_SMALL = 1e-5
 MAX_TRIES = 10
 
 
+def kernel_array(values) -> np.ndarray:
+    """``values`` as a writable C-contiguous float64 array (copied if needed).
+
+    The one array type the kernels are compiled for (numba compiles again for
+    read-only or non-contiguous arrays); cheaper than ``np.require``.
+    """
+    array = np.ascontiguousarray(values, dtype=np.float64)
+    return array if array.flags.writeable else array.copy()
+
+
 @njit(cache=True)
 def lp1d(v0, a, b, count, low, high):  # noqa: D417
     """Maximise v0 t s.t. ``a[j] t + b[j] <= 0`` (j < count), low <= t <= high.
@@ -66,12 +76,12 @@ def lp1d(v0, a, b, count, low, high):  # noqa: D417
 
 
 @njit(cache=True)
-def lp2d(v0, v1, a, b, c, low, high, active, order, a_1d, b_1d):  # noqa: D417
+def lp2d(v0, v1, a, b, c, low, high, active, order):  # noqa: D417
     """Maximise ``v0 z0 + v1 z1`` s.t. ``a z0 + b z1 + c <= 0``, low <= z <= high.
 
     ``active`` (2 ints) holds the rows active at the last optimum of this
     objective; they are tried first and overwritten with the new ones.
-    ``order``, ``a_1d`` and ``b_1d`` are scratch buffers (len(a), len(a) + 4).
+    ``order`` is a scratch buffer of len(a) ints.
 
     Returns:
         (feasible, z0, z1).
@@ -102,6 +112,9 @@ def lp2d(v0, v1, a, b, c, low, high, active, order, a_1d, b_1d):  # noqa: D417
         p0 = -a[i] * c[i] / norm2
         p1 = -b[i] * c[i] / norm2
         d0, d1 = -b[i], a[i]
+        # The 1-D LP in t over the earlier rows and the box (toppra's lp1d
+        # on rows a_1d = +-1, b_1d = value / denom, written out).
+        t_min, t_max, hit_min, hit_max = -LP_INF, LP_INF, -1, -2
         for j in range(k + 4):
             if j == k:
                 aj, bj, cj = -1.0, 0.0, low[0]
@@ -117,19 +130,22 @@ def lp2d(v0, v1, a, b, c, low, high, active, order, a_1d, b_1d):  # noqa: D417
             denom = d0 * aj + d1 * bj
             value = cj + p1 * bj + p0 * aj
             if denom > LP_TINY:
-                a_1d[j] = 1.0
-                b_1d[j] = value / denom
+                t = -value / denom
+                if t < t_max:
+                    t_max, hit_max = t, j
             elif denom < -LP_TINY:
-                a_1d[j] = -1.0
-                b_1d[j] = -value / denom
-            else:
-                if value > LP_SMALL:
-                    return False, math.nan, math.nan
-                a_1d[j] = 0.0
-                b_1d[j] = -1.0
-        feasible, t, hit = lp1d(d0 * v0 + d1 * v1, a_1d, b_1d, k + 4, -LP_INF, LP_INF)
-        if not feasible:
+                t = -value / denom
+                if t > t_min:
+                    t_min, hit_min = t, j
+            elif value > LP_SMALL:
+                return False, math.nan, math.nan
+        if t_min > t_max:
             return False, math.nan, math.nan
+        v_1d = d0 * v0 + d1 * v1
+        if abs(v_1d) < LP_TINY or v_1d < 0.0:
+            t, hit = t_min, hit_min
+        else:
+            t, hit = t_max, hit_max
         z0 = p0 + t * d0
         z1 = p1 + t * d1
         if hit < 0:  # unbounded along the line: toppra calls this infeasible
@@ -143,9 +159,9 @@ def lp2d(v0, v1, a, b, c, low, high, active, order, a_1d, b_1d):  # noqa: D417
 @njit(cache=True)
 def _stage_lp(i, v0, v1, A, B, C, lo, hi, ds, nxt_lo, nxt_hi, ws):
     """The stage LP of toppra's ``solve_stagewise_optim`` (2-D, x free)."""
-    active, order, a_1d, b_1d = ws
+    active, order = ws
     _set_next(i, A, B, C, ds, nxt_lo, nxt_hi)
-    return lp2d(v0, v1, A[i], B[i], C[i], lo[i], hi[i], active, order, a_1d, b_1d)
+    return lp2d(v0, v1, A[i], B[i], C[i], lo[i], hi[i], active, order)
 
 
 @njit(cache=True)
@@ -174,8 +190,6 @@ def passes(A, B, C, lo, hi, ds, sd_start, sd_end):  # noqa: D417
     x = np.zeros(stages + 1)
     u = np.zeros(stages)
     order = np.zeros(rows, np.int64)
-    a_1d = np.zeros(rows + 4)
-    b_1d = np.zeros(rows + 4)
     up = np.zeros(2, np.int64)
     down = np.zeros(2, np.int64)
     bx = np.zeros(rows)
@@ -185,25 +199,25 @@ def passes(A, B, C, lo, hi, ds, sd_start, sd_end):  # noqa: D417
         # max x (toppra's g = (1e-9, -1): the tiny weight on u breaks ties)
         ok, _, upper = _stage_lp(
             i, -1e-9, 1.0, A, B, C, lo, hi, ds, nxt_lo, nxt_hi,
-            (up, order, a_1d, b_1d),
+            (up, order),
         )  # fmt: skip
         if not ok:  # retry from a cold start (no warm-start rows)
             up[0] = up[1] = -1
             ok, _, upper = _stage_lp(
                 i, -1e-9, 1.0, A, B, C, lo, hi, ds, nxt_lo, nxt_hi,
-                (up, order, a_1d, b_1d),
+                (up, order),
             )  # fmt: skip
         lower = 0.0
         if ok and nxt_lo > 0.0:
             ok, _, lower = _stage_lp(
                 i, 1e-9, -1.0, A, B, C, lo, hi, ds, nxt_lo, nxt_hi,
-                (down, order, a_1d, b_1d),
+                (down, order),
             )  # fmt: skip
             if not ok:
                 down[0] = down[1] = -1
                 ok, _, lower = _stage_lp(
                     i, 1e-9, -1.0, A, B, C, lo, hi, ds, nxt_lo, nxt_hi,
-                    (down, order, a_1d, b_1d),
+                    (down, order),
                 )  # fmt: skip
         if not ok:
             K[: i + 1] = math.nan
@@ -243,8 +257,9 @@ def project(a, b, c, F, g, ds, A, B, C, column):  # noqa: D417
 
     Stage i < N gets, from ``column`` on, the k rows at s_i, ``(F a_i) u +
     (F b_i) x + F c_i - g <= 0``, then the k rows at s_{i+1} with ``x_{i+1} =
-    x + 2 ds_i u``: ``F (a_{i+1} + 2 ds_i b_{i+1}) u + (F b_{i+1}) x + F
-    c_{i+1} - g <= 0`` (toppra's ``canlinear_colloc_to_interpolate``).
+    x + 2 ds_i u``: ``(F a_{i+1} + 2 ds_i F b_{i+1}) u + (F b_{i+1}) x + F
+    c_{i+1} - g <= 0`` (toppra's ``canlinear_colloc_to_interpolate``, with
+    the products at each grid point computed once).
 
     Args:
         a, b, c: (N+1, m) coefficients; F: (k, m); g: (k,); ds: (N,).
@@ -254,22 +269,23 @@ def project(a, b, c, F, g, ds, A, B, C, column):  # noqa: D417
         The next free column, ``column + 2 k``.
     """
     k, m = F.shape
+    points = a.shape[0]
+    here = np.empty((3, points, k))  # F a_i, F b_i, F c_i - g at every s_i
+    for i in range(points):
+        for r in range(k):
+            sum_a = sum_b = sum_c = 0.0
+            for j in range(m):
+                sum_a += a[i, j] * F[r, j]
+                sum_b += b[i, j] * F[r, j]
+                sum_c += c[i, j] * F[r, j]
+            here[0, i, r], here[1, i, r], here[2, i, r] = sum_a, sum_b, sum_c - g[r]
     for i in range(ds.shape[0]):
         step = 2.0 * ds[i]
         for r in range(k):
-            here_a = here_b = here_c = next_a = next_b = next_c = 0.0
-            for j in range(m):
-                f = F[r, j]
-                here_a += a[i, j] * f
-                here_b += b[i, j] * f
-                here_c += c[i, j] * f
-                next_a += (a[i + 1, j] + step * b[i + 1, j]) * f
-                next_b += b[i + 1, j] * f
-                next_c += c[i + 1, j] * f
-            A[i, column + r] = here_a
-            B[i, column + r] = here_b
-            C[i, column + r] = here_c - g[r]
-            A[i, column + k + r] = next_a
-            B[i, column + k + r] = next_b
-            C[i, column + k + r] = next_c - g[r]
+            A[i, column + r] = here[0, i, r]
+            B[i, column + r] = here[1, i, r]
+            C[i, column + r] = here[2, i, r]
+            A[i, column + k + r] = here[0, i + 1, r] + step * here[1, i + 1, r]
+            B[i, column + k + r] = here[1, i + 1, r]
+            C[i, column + k + r] = here[2, i + 1, r]
     return column + 2 * k
