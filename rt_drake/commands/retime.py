@@ -132,9 +132,11 @@ def run(args: argparse.Namespace) -> int:
         sd=result.sd,
     )
     constraint = "joint limits only" if grasp is None else "grasp constraint"
+    # A binding constraint is at 0 to the LP's tolerance (about -1e-12): no "-0.000".
+    margin = round(float(result.margin.min()), 3) + 0.0
     print(
         f"{obj.name}: {len(waypoints)} waypoints retimed to {result.duration:.3f} s "
         f"({constraint}, {args.gridpoints} grid points, min margin "
-        f"{result.margin.min():.3f}); wrote {args.out}"
+        f"{margin:.3f}); wrote {args.out}"
     )
     return 0
