@@ -31,7 +31,9 @@ A_bias(q, q') x``. Hence the wrench is affine in (u, x) (paper eq. 1)::
 with ``c`` the gravity term ``[p x (-m g_C); -m g_C]``, ``a`` the inertial
 term of ``J q'`` and ``b`` that of ``J q'' + A_bias(q, q')`` plus the
 gyroscopic term ``omega1 x (I omega1)`` with ``omega1 = J_w q'``. One
-Jacobian, one bias and one pose per grid point; the rest is numpy.
+Jacobian and one bias per grid point (and the cup's rotation, unless a base
+joint's axis is along gravity: :func:`_vertical_base_joint`); the rest is
+numpy.
 """
 
 from __future__ import annotations
@@ -284,6 +286,8 @@ def _path_kinematics(
     return _Kinematics(J, A_bias, g_C, M, Cv, tau_g)
 
 
+#: Per plant: (velocity index, axis k_W) of each revolute joint on a body
+#: welded to the world (its axis is fixed in W).
 _BASE_JOINTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
@@ -295,28 +299,31 @@ def _vertical_base_joint(
     Its axis ``k_W`` is fixed in W and the angular part of its Jacobian
     column, expressed in C, is ``R_CW k_W``; with ``g_W = (g_W . k_W) k_W``,
     gravity in C is ``g_C = (g_W . k_W) J_w[:, k]``, which saves a rotation
-    query per grid point (most arms have such a base joint). Found once per
-    plant.
+    query per grid point (most arms have such a base joint). The joints and
+    their axes are found once per plant (with the joint frames' poses in
+    ``context``); gravity is read at every call.
 
     Returns:
         (velocity index of the joint, ``g_W . k_W`` in m/s^2), or None.
     """
-    if plant in _BASE_JOINTS:
-        return _BASE_JOINTS[plant]
-    g_W = plant.gravity_field().gravity_vector()
-    fixed = {body.index() for body in plant.GetBodiesWeldedTo(plant.world_body())}
-    found = None
-    for index in plant.GetJointIndices():
-        joint = plant.get_joint(index)
-        if joint.type_name() != "revolute" or joint.parent_body().index() not in fixed:
-            continue
-        R_WF = joint.frame_on_parent().CalcRotationMatrixInWorld(context)
-        k_W = R_WF.multiply(joint.revolute_axis())
-        if np.linalg.norm(np.cross(k_W, g_W)) <= 1e-12 * (1.0 + np.linalg.norm(g_W)):
-            found = joint.velocity_start(), float(g_W @ k_W)
-            break
-    _BASE_JOINTS[plant] = found
-    return found
+    if plant not in _BASE_JOINTS:
+        fixed = {body.index() for body in plant.GetBodiesWeldedTo(plant.world_body())}
+        joints = []
+        for index in plant.GetJointIndices():
+            joint = plant.get_joint(index)
+            if joint.type_name() == "revolute" and joint.parent_body().index() in fixed:
+                R_WF = joint.frame_on_parent().CalcRotationMatrixInWorld(context)
+                k_W = R_WF.multiply(joint.revolute_axis())
+                joints.append((joint.velocity_start(), tuple(k_W.tolist())))
+        _BASE_JOINTS[plant] = joints
+    gx, gy, gz = plant.gravity_field().gravity_vector().tolist()
+    scale = 1e-12 * (1.0 + abs(gx) + abs(gy) + abs(gz))
+    for velocity_index, (kx, ky, kz) in _BASE_JOINTS[plant]:
+        # k_W x g_W = 0: the axis is along gravity (scalar arithmetic: cheap).
+        cross = (ky * gz - kz * gy, kz * gx - kx * gz, kx * gy - ky * gx)
+        if max(abs(v) for v in cross) <= scale:
+            return velocity_index, kx * gx + ky * gy + kz * gz
+    return None
 
 
 def _wrench_coefficients(

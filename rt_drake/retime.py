@@ -18,10 +18,10 @@ stage LPs get the rows that ray shooting picks along the path
 (:func:`rt_drake.retiming.rows.rest_and_candidates`); then every row is
 evaluated at every (u, x) the LPs enforced (both interpolation blocks,
 :func:`rt_drake.retiming.rows.wrench_ratios`), and any violated row is added
-and the passes rerun (``repairs``). The returned
-profile is then admissible for the full constraint and, as TOPP-RA's
-pointwise-maximal profile of a relaxation of it, the very profile TOPP-RA
-computes with all rows (the tests compare with toppra on all rows).
+and the passes rerun (``repairs``). The returned profile is then admissible
+for the full constraint and, as TOPP-RA's pointwise-maximal profile of a
+relaxation of it, the very profile TOPP-RA computes with all rows (the tests
+compare with toppra on all rows).
 
 The robot must be able to stop anywhere on the path: the object must be held
 by gravity's wrench alone (``F c(s) < g``) and the arm's gravity torques must

@@ -238,10 +238,18 @@ def test_gravity_from_the_base_joint_equals_the_cup_rotation(plant, held):
         pytest.approx(-9.81),
     )
     fast = path_wrench_coefficients(*args)
-    dynamics._BASE_JOINTS[plant] = None  # as for an arm without one
+    dynamics._BASE_JOINTS[plant] = []  # as for an arm without one
     try:
         rotated = path_wrench_coefficients(*args)
     finally:
         del dynamics._BASE_JOINTS[plant]
     for ours, reference in zip(fast, rotated, strict=True):
         np.testing.assert_allclose(ours, reference, rtol=1e-12, atol=1e-12)
+    gravity = plant.mutable_gravity_field()
+    g_W = gravity.gravity_vector()
+    gravity.set_gravity_vector([1.0, 0.0, -9.81])  # tilted: no base joint fits
+    try:
+        context = plant.CreateDefaultContext()
+        assert dynamics._vertical_base_joint(plant, context) is None
+    finally:
+        gravity.set_gravity_vector(g_W)

@@ -12,9 +12,10 @@ then the greedy forward pass with toppra's numerical safeguards (x_{i+1}
 reduced by 1e-8 or 0.01 % and clamped into K_{i+1}; a failed step retried
 with x_i reduced), on the interpolation discretization.
 
-- ``engine="compiled"`` (default): the constraints become per-stage rows of
-  2-variable LPs in one numpy pass and :func:`rt_drake.retiming.seidel.passes`
-  runs both passes compiled (numba), with toppra's seidel LP transcribed. It
+- ``engine="compiled"`` (default): :func:`stage_rows` projects the
+  constraints to the rows of every stage's 2-variable LP and
+  :func:`rt_drake.retiming.seidel.passes` runs both passes compiled (numba),
+  with toppra's seidel LP transcribed. It
   skips the LP for min K_i while K_{i+1} contains 0 ((u, x) = (0, 0) is then
   admissible at stage i: the retimer checked that object and arm can be held
   at rest at every grid point, so min K_i = 0), and retries an LP found

@@ -26,16 +26,15 @@ import math
 
 import numpy as np
 from numba import njit
+from toppra.constants import MAX_TRIES
+from toppra.constants import SMALL as PASS_SMALL  # the passes' safeguards
+from toppra.constants import TINY as PASS_TINY
 
 #: Tolerances of toppra's seidel solver (cy_seidel_solverwrapper.pyx).
 LP_TINY = 1e-10
 LP_SMALL = 1e-8
 #: Bound of the 1-D subproblems' variable (never active).
 LP_INF = 1e10
-#: toppra.constants: the forward pass's safeguards.
-PASS_TINY = 1e-8
-PASS_SMALL = 1e-5
-MAX_TRIES = 10
 
 
 def kernel_array(values) -> np.ndarray:
