@@ -173,9 +173,11 @@ def test_row_selection_is_exact(plant, limits, grasps, object_name, monkeypatch)
 
 def test_compiled_passes_equal_toppra_algorithm(plant, limits, grasps):
     path = np.array(PATHS["back"])
-    lean = retime(plant, path, limits, grasps["notebook"], engine="compiled")
+    compiled = retime(plant, path, limits, grasps["notebook"], engine="compiled")
     stock = retime(plant, path, limits, grasps["notebook"], engine="toppra")
-    np.testing.assert_allclose(lean.sd, stock.sd, rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(compiled.sd, stock.sd, rtol=1e-9, atol=1e-12)
+    with pytest.raises(ValueError, match="engine must be 'compiled' or 'toppra'"):
+        retime(plant, path, limits, engine="lean")
 
 
 def test_trajectory_is_the_retimed_motion(plant, limits, grasps):
