@@ -20,31 +20,7 @@ import dataclasses
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-
-def chord_knots(waypoints: np.ndarray) -> np.ndarray:
-    """Return the normalised cumulative chord-length knots of ``waypoints``.
-
-    Args:
-        waypoints: (N, n) joint positions (rad), N >= 2, no two consecutive
-            waypoints equal.
-
-    Returns:
-        (N,) knots, ``s_0 = 0``, ``s_{N-1} = 1``, strictly increasing.
-
-    Raises:
-        ValueError: fewer than two waypoints, or two consecutive ones equal
-            (zero chord: the knots would not increase).
-    """
-    waypoints = np.asarray(waypoints, dtype=float)
-    if waypoints.ndim != 2 or waypoints.shape[0] < 2:
-        raise ValueError(f"need (N >= 2, n) waypoints, got {waypoints.shape=}")
-    chords = np.linalg.norm(np.diff(waypoints, axis=0), axis=1)
-    if np.any(chords <= 0.0):
-        index = int(np.flatnonzero(chords <= 0.0)[0])
-        raise ValueError(f"waypoints {index} and {index + 1} are equal: zero chord")
-    knots = np.concatenate([[0.0], np.cumsum(chords)]) / chords.sum()
-    knots[-1] = 1.0
-    return knots
+from rt_drake.retiming.path import chord_knots
 
 
 def drop_repeated(waypoints: np.ndarray, tolerance: float = 1e-9) -> np.ndarray:

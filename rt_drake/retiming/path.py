@@ -19,6 +19,37 @@ from scipy.interpolate import CubicSpline
 from rt_drake.retiming.errors import RetimeInputError
 
 
+def chord_knots(waypoints: np.ndarray) -> np.ndarray:
+    """Return the normalised cumulative chord-length knots of ``waypoints``.
+
+    ``s_i = L_i / L_{N-1}`` with ``L_i = sum_{k<i} ||q_{k+1} - q_k||_2`` (rad):
+    the convention the planner and the retimer share.
+
+    Args:
+        waypoints: (N, n) joint positions (rad), N >= 2, no two consecutive
+            waypoints equal.
+
+    Returns:
+        (N,) knots, ``s_0 = 0``, ``s_{N-1} = 1``, strictly increasing.
+
+    Raises:
+        RetimeInputError (a ValueError): fewer than two waypoints, or two
+            consecutive ones equal (zero chord: the knots would not increase).
+    """
+    waypoints = np.asarray(waypoints, dtype=float)
+    if waypoints.ndim != 2 or waypoints.shape[0] < 2:
+        raise RetimeInputError(f"need (N >= 2, n) waypoints, got {waypoints.shape=}")
+    chords = np.linalg.norm(np.diff(waypoints, axis=0), axis=1)
+    if np.any(chords <= 0.0):
+        index = int(np.flatnonzero(chords <= 0.0)[0])
+        raise RetimeInputError(
+            f"waypoints {index} and {index + 1} are equal: zero chord"
+        )
+    knots = np.concatenate([[0.0], np.cumsum(chords)]) / chords.sum()
+    knots[-1] = 1.0
+    return knots
+
+
 def path_waypoints_and_knots(path: Any) -> tuple[np.ndarray, np.ndarray]:
     """Return ``(waypoints (K, n), knots (K,))`` of a path or raw waypoints.
 
@@ -42,12 +73,7 @@ def path_waypoints_and_knots(path: Any) -> tuple[np.ndarray, np.ndarray]:
         row = int(np.flatnonzero(~np.all(np.isfinite(waypoints), axis=1))[0])
         raise RetimeInputError(f"waypoint {row} is not finite: {waypoints[row]}")
     if knots is None:
-        chords = np.linalg.norm(np.diff(waypoints, axis=0), axis=1)
-        if np.any(chords <= 0.0):
-            i = int(np.flatnonzero(chords <= 0.0)[0])
-            raise RetimeInputError(f"waypoints {i} and {i + 1} are equal")
-        knots = np.concatenate([[0.0], np.cumsum(chords)]) / chords.sum()
-        knots[-1] = 1.0
+        knots = chord_knots(waypoints)
     if knots.shape != (waypoints.shape[0],) or not np.all(np.diff(knots) > 0.0):
         raise RetimeInputError(f"knots must increase strictly, got {knots}")
     if knots[0] != 0.0 or knots[-1] != 1.0:
@@ -89,4 +115,10 @@ def drake_path(path: Any) -> PiecewisePolynomial:
     return PiecewisePolynomial.CubicHermite(knots, waypoints.T, spline(knots, 1).T)
 
 
-__all__ = ["drake_path", "path_spline", "path_waypoints_and_knots", "toppra_path"]
+__all__ = [
+    "chord_knots",
+    "drake_path",
+    "path_spline",
+    "path_waypoints_and_knots",
+    "toppra_path",
+]
