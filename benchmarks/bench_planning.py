@@ -9,7 +9,8 @@ objects of ``stack_four_objects.yaml`` follow, in stacking order.
 Each query is planned ``--repeats`` times (the planner is deterministic, so
 the paths are identical) and its fastest time kept: on a shared machine that
 filters out time stolen by other processes. Reported: median (min, max) over
-queries, and the MOVE stages' medians.
+queries, and the MOVE stages' medians. Last, how long a failing query takes
+to raise its typed error against the planner's budget (an unreachable object).
 
 Run: ``python benchmarks/bench_planning.py [--queries N] [--seed S] [--repeats R]``.
 """
@@ -28,7 +29,13 @@ try:
 except ImportError:  # a source checkout without `pip install -e .`
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from rt_drake.planning import CyclePlanner, sample_transports  # noqa: E402
+from pydrake.math import RigidTransform  # noqa: E402
+
+from rt_drake.planning import (  # noqa: E402
+    CyclePlanner,
+    UnreachablePoseError,
+    sample_transports,
+)
 from rt_drake.resources import scenarios_dir  # noqa: E402
 from rt_drake.scenario import load_scenario  # noqa: E402
 
@@ -40,7 +47,7 @@ def plan_cycle(planner, name, q_start, X_goal=None) -> list:
     """APPROACH, REACH, MOVE plans of one object."""
     approach = planner.plan_approach(q_start, name)
     reach = planner.plan_reach(approach.q_goal, name)
-    return [approach, reach, planner.plan_move(reach.q_goal, name, X_goal)]
+    return [approach, reach, planner.plan_move(reach.q_goal, name, X_goal, reach)]
 
 
 def fastest(plans_per_repeat: list[list]) -> list:
@@ -93,6 +100,24 @@ def report(title: str, timings: list[list]) -> None:
     print(f"  MOVE stage medians (ms): {stages}")
 
 
+def bench_failure(repeats: int) -> None:
+    """Wall time to raise UnreachablePoseError for an object out of reach."""
+    scenario = load_scenario(scenarios_dir() / "random_transport.yaml")
+    planner = CyclePlanner(scenario, seed=0)
+    planner.set_object_pose("notebook", RigidTransform([1.5, 0.0, 0.0]))
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        try:
+            planner.plan_approach(planner.q_home, "notebook")
+        except UnreachablePoseError:
+            times.append(time.perf_counter() - start)
+    print(
+        f"unreachable object: UnreachablePoseError after {1e3 * min(times):.0f} ms "
+        f"(fastest of {len(times)}; budget {1e3 * planner.budget_s:.0f} ms)"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--queries", type=int, default=20)
@@ -108,6 +133,7 @@ def main() -> None:
         f"stack_four_objects.yaml, 4 objects (fastest of {args.repeats})",
         bench_stack(args.seed, args.repeats),
     )
+    bench_failure(args.repeats)
     print(f"(benchmark wall time {time.perf_counter() - start:.1f} s)")
 
 

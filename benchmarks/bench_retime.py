@@ -6,7 +6,7 @@ Every method retimes the same paths (lift out of the bin, swing joint 1 by
 0.6 to 1.8 rad, set down; the notebook held by the scenario's cup) and is
 timed including its dynamics evaluation:
 
-- ``rt_drake.retime``: ours (precomputed coefficients, row selection with
+- ``rt_drake.retiming``: ours (precomputed coefficients, row selection with
   exactness check, toppra's seidel LP, lean passes);
 - the same with ``engine="toppra"`` (toppra's own TOPPRA class);
 - toppra with precomputed coefficients and all rows of one constant F;
@@ -50,7 +50,7 @@ from rt_drake.plant import (
     make_arm_plant,
 )
 from rt_drake.resources import scenarios_dir  # noqa: E402
-from rt_drake.retime import GraspConstraint, JointLimits, retime  # noqa: E402
+from rt_drake.retiming import GraspConstraint, JointLimits, retime  # noqa: E402
 from rt_drake.retiming.passes import AffineConstraint  # noqa: E402
 from rt_drake.retiming.path import drake_path, path_waypoints_and_knots  # noqa: E402
 from rt_drake.scenario import load_scenario  # noqa: E402
@@ -145,7 +145,7 @@ def drake_frame_limit(plant, path, limits, grasp, grid, context):
 
 
 METHODS = {
-    "rt_drake.retime (ours)": ours,
+    "rt_drake.retiming (ours)": ours,
     "ours, toppra's TOPPRA loop": ours_toppra_loop,
     "toppra, precomputed, all rows": toppra_all_rows,
     "paper: SecondOrderConstraint + ID callback": paper_way,

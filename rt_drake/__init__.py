@@ -1,9 +1,155 @@
 """rt_drake: critically fast suction-cup pick-and-place on Drake.
 
-The package is layered so that data flows one way:
+The public API: import what you need from here, e.g.
+``from rt_drake import retime, JointLimits, GraspConstraint, HeldObject``.
+Names load on first use (PEP 562), so ``import rt_drake`` and the Drake-free
+:mod:`rt_drake.contact` stay light. Data flows one way through the layers:
 scenario -> plant -> (IK, planner) -> path -> (dynamics + grasp constraint)
 -> retimer -> trajectory -> diagram simulation -> report.
-The pure maths (``rt_drake.contact``) imports no Drake.
+
+- grasp stability (numpy, scipy, cdd; no Drake): ``CupParameters``,
+  ``WrenchPolytope``, ``contact_wrench_polytope``, ``cached_wrench_polytope``,
+  ``is_realizable``, ``is_realizable_lp``;
+- dynamics: ``HeldObject``, ``object_wrench``, ``make_arm_plant``;
+- retiming: ``retime``, ``RetimeResult``, ``JointLimits``,
+  ``GraspConstraint``, ``check_trajectory``, ``TrajectoryCheck``,
+  ``save_trajectory``, ``load_trajectory``, ``sample_trajectory``;
+- planning: ``CyclePlanner``, ``PlannedPath``, ``GeometricPath``;
+- simulation: ``MakeStation``, ``run_cycle``, ``OnlineMotions``;
+- scenarios: ``load_scenario``, ``Scenario``; phases: ``Phase``;
+- errors: ``RtDrakeError`` (the base of every error rt_drake raises on
+  purpose), ``InputError``, ``ScenarioError``, ``RetimeError``,
+  ``PlanningError``.
 """
 
-__version__ = "0.1.0"
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING
+
+from rt_drake._version import __version__
+
+if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
+    from rt_drake.contact import (
+        CupParameters,
+        WrenchPolytope,
+        cached_wrench_polytope,
+        contact_wrench_polytope,
+        is_realizable,
+        is_realizable_lp,
+    )
+    from rt_drake.dynamics import HeldObject, object_wrench
+    from rt_drake.errors import InputError, RtDrakeError, ScenarioError
+    from rt_drake.phase import Phase
+    from rt_drake.planning import (
+        CyclePlanner,
+        GeometricPath,
+        PlannedPath,
+        PlanningError,
+    )
+    from rt_drake.plant import make_arm_plant
+    from rt_drake.retiming import (
+        GraspConstraint,
+        JointLimits,
+        RetimeError,
+        RetimeResult,
+        SavedTrajectory,
+        TrajectoryCheck,
+        check_trajectory,
+        load_trajectory,
+        path_waypoints_and_knots,
+        retime,
+        sample_trajectory,
+        save_trajectory,
+    )
+    from rt_drake.scenario import Scenario, load_scenario
+    from rt_drake.simulation import MakeStation, OnlineMotions, run_cycle
+
+#: Public name -> module defining it, imported on first access.
+_LAZY: dict[str, str] = {
+    "CupParameters": "rt_drake.contact",
+    "WrenchPolytope": "rt_drake.contact",
+    "cached_wrench_polytope": "rt_drake.contact",
+    "contact_wrench_polytope": "rt_drake.contact",
+    "is_realizable": "rt_drake.contact",
+    "is_realizable_lp": "rt_drake.contact",
+    "HeldObject": "rt_drake.dynamics",
+    "object_wrench": "rt_drake.dynamics",
+    "InputError": "rt_drake.errors",
+    "RtDrakeError": "rt_drake.errors",
+    "ScenarioError": "rt_drake.errors",
+    "Phase": "rt_drake.phase",
+    "CyclePlanner": "rt_drake.planning",
+    "GeometricPath": "rt_drake.planning",
+    "PlannedPath": "rt_drake.planning",
+    "PlanningError": "rt_drake.planning",
+    "make_arm_plant": "rt_drake.plant",
+    "GraspConstraint": "rt_drake.retiming",
+    "JointLimits": "rt_drake.retiming",
+    "RetimeError": "rt_drake.retiming",
+    "RetimeResult": "rt_drake.retiming",
+    "SavedTrajectory": "rt_drake.retiming",
+    "TrajectoryCheck": "rt_drake.retiming",
+    "check_trajectory": "rt_drake.retiming",
+    "load_trajectory": "rt_drake.retiming",
+    "path_waypoints_and_knots": "rt_drake.retiming",
+    "retime": "rt_drake.retiming",
+    "sample_trajectory": "rt_drake.retiming",
+    "save_trajectory": "rt_drake.retiming",
+    "Scenario": "rt_drake.scenario",
+    "load_scenario": "rt_drake.scenario",
+    "MakeStation": "rt_drake.simulation",
+    "OnlineMotions": "rt_drake.simulation",
+    "run_cycle": "rt_drake.simulation",
+}
+
+__all__ = [
+    "__version__",
+    "CupParameters",
+    "CyclePlanner",
+    "GeometricPath",
+    "GraspConstraint",
+    "HeldObject",
+    "InputError",
+    "JointLimits",
+    "MakeStation",
+    "OnlineMotions",
+    "Phase",
+    "PlannedPath",
+    "PlanningError",
+    "RetimeError",
+    "RetimeResult",
+    "RtDrakeError",
+    "SavedTrajectory",
+    "Scenario",
+    "ScenarioError",
+    "TrajectoryCheck",
+    "WrenchPolytope",
+    "cached_wrench_polytope",
+    "check_trajectory",
+    "contact_wrench_polytope",
+    "is_realizable",
+    "is_realizable_lp",
+    "load_scenario",
+    "load_trajectory",
+    "make_arm_plant",
+    "object_wrench",
+    "path_waypoints_and_knots",
+    "retime",
+    "run_cycle",
+    "sample_trajectory",
+    "save_trajectory",
+]
+
+
+def __getattr__(name: str) -> object:
+    """Import the module defining ``name`` on first access (PEP 562)."""
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(_LAZY[name]), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

@@ -39,15 +39,15 @@ numpy.
 from __future__ import annotations
 
 import dataclasses
-import weakref
 from typing import NamedTuple
 
 import numpy as np
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
-from pydrake.multibody.tree import JacobianWrtVariable, MultibodyForces
+from pydrake.multibody.tree import BodyIndex, JacobianWrtVariable, MultibodyForces
 from pydrake.systems.framework import Context
 
+from rt_drake.errors import InputError
 from rt_drake.plant import CUP_FRAME, OBJECT_BODY, make_parser
 from rt_drake.scenario import ObjectConfig
 
@@ -70,13 +70,13 @@ class HeldObject:
         p = np.asarray(self.p_CoScm_C, dtype=float).reshape(-1)
         inertia = np.asarray(self.I_Scm_C, dtype=float)
         if not (np.isfinite(self.mass) and self.mass > 0):
-            raise ValueError(f"object mass must be > 0 kg, got {self.mass!r}")
+            raise InputError(f"object mass must be > 0 kg, got {self.mass!r}")
         if p.shape != (3,) or not np.all(np.isfinite(p)):
-            raise ValueError(f"p_CoScm_C must be 3 finite numbers, got {p!r}")
+            raise InputError(f"p_CoScm_C must be 3 finite numbers, got {p!r}")
         if inertia.shape != (3, 3) or not np.all(np.isfinite(inertia)):
-            raise ValueError(f"I_Scm_C must be a finite 3x3 matrix, got {inertia!r}")
+            raise InputError(f"I_Scm_C must be a finite 3x3 matrix, got {inertia!r}")
         if not np.allclose(inertia, inertia.T, atol=1e-12):
-            raise ValueError("I_Scm_C must be symmetric")
+            raise InputError("I_Scm_C must be symmetric")
         object.__setattr__(self, "mass", float(self.mass))
         object.__setattr__(self, "p_CoScm_C", p)
         object.__setattr__(self, "I_Scm_C", inertia)
@@ -160,6 +160,7 @@ def path_torque_coefficients(
     q, dq, ddq = _as_rows(q, dq, ddq)
     p = np.zeros(3) if held is None else held.p_CoScm_C
     kin = _path_kinematics(plant, p, q, dq, ddq, context, dynamics=True)
+    assert kin.M is not None and kin.Cv is not None and kin.tau_g is not None
     a = _matvec(kin.M, dq)
     b = _matvec(kin.M, ddq) + kin.Cv
     c = -kin.tau_g
@@ -247,12 +248,12 @@ def _path_kinematics(
     """Evaluate Drake at each (q, dq): the only per-point Python loop."""
     n = plant.num_positions()
     if plant.num_velocities() != n or q.shape[1:] != (n,):
-        raise ValueError(
+        raise InputError(
             f"{q.shape=} but {plant.num_positions()=} and {plant.num_velocities()=}:"
             " the plant must hold only the path's joints (objects welded or left out)"
         )
     if not (q.shape == dq.shape == ddq.shape):
-        raise ValueError(f"{q.shape=}, {dq.shape=}, {ddq.shape=} must be equal")
+        raise InputError(f"{q.shape=}, {dq.shape=}, {ddq.shape=} must be equal")
     context = context or plant.CreateDefaultContext()
     frame = plant.GetFrameByName(CUP_FRAME)
     world = plant.world_frame()
@@ -261,24 +262,24 @@ def _path_kinematics(
     set_state = plant.SetPositionsAndVelocities
     jacobian = plant.CalcJacobianSpatialVelocity
     bias = plant.CalcBiasSpatialAcceleration
-    base = _vertical_base_joint(plant, context)
+    base = _vertical_base_joint(plant, context, frame.body().index())
     rotation = frame.CalcRotationMatrixInWorld if base is None else None
-    J, A_bias, R_WC, M, Cv, tau_g = [], [], [], [], [], []
+    Js, biases, rotations, Ms, Cvs, gravities = [], [], [], [], [], []
     for state in np.hstack([q, dq]):
         set_state(context, state)
-        J.append(jacobian(context, kV, frame, p, world, frame))
-        A_bias.append(bias(context, kV, frame, p, world, frame))
+        Js.append(jacobian(context, kV, frame, p, world, frame))
+        biases.append(bias(context, kV, frame, p, world, frame))
         if rotation is not None:
-            R_WC.append(rotation(context))
+            rotations.append(rotation(context))
         if dynamics:
-            M.append(plant.CalcMassMatrix(context))
-            Cv.append(plant.CalcBiasTerm(context))
-            tau_g.append(plant.CalcGravityGeneralizedForces(context))
-    J = np.array(J)
-    A_bias = np.array([A.get_coeffs() for A in A_bias])
-    M, Cv, tau_g = (np.array(x) if dynamics else None for x in (M, Cv, tau_g))
+            Ms.append(plant.CalcMassMatrix(context))
+            Cvs.append(plant.CalcBiasTerm(context))
+            gravities.append(plant.CalcGravityGeneralizedForces(context))
+    J = np.array(Js)
+    A_bias = np.array([A.get_coeffs() for A in biases])
+    M, Cv, tau_g = (np.array(x) if dynamics else None for x in (Ms, Cvs, gravities))
     if base is None:
-        R_WC = np.array([R.matrix() for R in R_WC])
+        R_WC = np.array([R.matrix() for R in rotations])
         g_C = np.einsum("nji,j->ni", R_WC, plant.gravity_field().gravity_vector())
     else:
         index, g_along_axis = base
@@ -286,43 +287,39 @@ def _path_kinematics(
     return _Kinematics(J, A_bias, g_C, M, Cv, tau_g)
 
 
-#: Per plant: (velocity index, axis k_W) of each revolute joint on a body
-#: welded to the world (its axis is fixed in W).
-_BASE_JOINTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
-
-
 def _vertical_base_joint(
-    plant: MultibodyPlant, context: Context
+    plant: MultibodyPlant, context: Context, cup_body: BodyIndex
 ) -> tuple[int, float] | None:
-    """A revolute joint on a body welded to the world, its axis along gravity.
+    """A joint of the cup's chain, welded to the world, its axis along gravity.
 
-    Its axis ``k_W`` is fixed in W and the angular part of its Jacobian
-    column, expressed in C, is ``R_CW k_W``; with ``g_W = (g_W . k_W) k_W``,
-    gravity in C is ``g_C = (g_W . k_W) J_w[:, k]``, which saves a rotation
-    query per grid point (most arms have such a base joint). The joints and
-    their axes are found once per plant (with the joint frames' poses in
-    ``context``); gravity is read at every call.
+    A revolute joint whose parent body is welded to the world has its axis
+    ``k_W`` fixed in W, and the angular part of its Jacobian column for the
+    cup, expressed in C, is ``R_CW k_W``, provided the joint moves the cup
+    body (it lies on the cup's kinematic chain; a joint of another arm or of
+    a turntable in the same plant has a zero column for the cup). With
+    ``g_W = (g_W . k_W) k_W``, gravity in C is ``g_C = (g_W . k_W) J_w[:, k]``,
+    which saves a rotation query per grid point (most arms have such a base
+    joint). Found at every call (tens of microseconds), with the joint frames'
+    poses in ``context``.
 
     Returns:
         (velocity index of the joint, ``g_W . k_W`` in m/s^2), or None.
     """
-    if plant not in _BASE_JOINTS:
-        fixed = {body.index() for body in plant.GetBodiesWeldedTo(plant.world_body())}
-        joints = []
-        for index in plant.GetJointIndices():
-            joint = plant.get_joint(index)
-            if joint.type_name() == "revolute" and joint.parent_body().index() in fixed:
-                R_WF = joint.frame_on_parent().CalcRotationMatrixInWorld(context)
-                k_W = R_WF.multiply(joint.revolute_axis())
-                joints.append((joint.velocity_start(), tuple(k_W.tolist())))
-        _BASE_JOINTS[plant] = joints
     gx, gy, gz = plant.gravity_field().gravity_vector().tolist()
     scale = 1e-12 * (1.0 + abs(gx) + abs(gy) + abs(gz))
-    for velocity_index, (kx, ky, kz) in _BASE_JOINTS[plant]:
+    fixed = {body.index() for body in plant.GetBodiesWeldedTo(plant.world_body())}
+    for index in plant.GetJointIndices():
+        joint = plant.get_joint(index)
+        if joint.type_name() != "revolute" or joint.parent_body().index() not in fixed:
+            continue
+        R_WF = joint.frame_on_parent().CalcRotationMatrixInWorld(context)
+        kx, ky, kz = R_WF.multiply(joint.revolute_axis()).tolist()
         # k_W x g_W = 0: the axis is along gravity (scalar arithmetic: cheap).
         cross = (ky * gz - kz * gy, kz * gx - kx * gz, kx * gy - ky * gx)
-        if max(abs(v) for v in cross) <= scale:
-            return velocity_index, kx * gx + ky * gy + kz * gz
+        if max(abs(v) for v in cross) > scale:
+            continue
+        if cup_body in plant.GetBodiesKinematicallyAffectedBy([index]):
+            return joint.velocity_start(), kx * gx + ky * gy + kz * gz
     return None
 
 

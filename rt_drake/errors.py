@@ -1,8 +1,18 @@
-"""Typed errors of rt_drake.
+"""The one exception hierarchy of rt_drake.
 
-Every error a user can cause by bad input derives from :class:`RtDrakeError`
-(or is a plain ``ValueError`` raised by the Drake-free maths). The CLI turns
-either into one line on stderr and exit code 2.
+Every error rt_drake raises on purpose derives from :class:`RtDrakeError`:
+
+- :class:`InputError` (also a ``ValueError``): an argument, file or value
+  is malformed or out of range; :class:`ScenarioError` for scenario files.
+- ``RetimeError`` (:mod:`rt_drake.retiming`), ``PlanningError``
+  (:mod:`rt_drake.planning`), ``CycleTimeout`` (:mod:`rt_drake.simulation`):
+  the input is well formed but the task cannot be done (the object slips
+  even at rest, no collision-free path, ...).
+
+The CLI catches :class:`RtDrakeError` alone and exits with code 2 and one
+line; any other exception is a bug and shows its traceback. Messages name
+the problem (file, key, value, where on the path) and never a CLI flag.
+This module imports nothing, so the Drake-free layers can use it.
 """
 
 
@@ -10,8 +20,15 @@ class RtDrakeError(Exception):
     """Base class of the errors rt_drake raises on purpose."""
 
 
-class ScenarioError(RtDrakeError, ValueError):
+class InputError(RtDrakeError, ValueError):
+    """An argument, file or value given to rt_drake is malformed."""
+
+
+class ScenarioError(InputError):
     """A scenario file is missing, malformed, or names something unknown.
 
     The message names the file, the key and the offending value.
     """
+
+
+__all__ = ["InputError", "RtDrakeError", "ScenarioError"]

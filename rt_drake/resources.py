@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from rt_drake.errors import ScenarioError
+
 _PACKAGE_DIR = Path(__file__).resolve().parent
 
 
@@ -44,4 +46,4 @@ def resolve_scenario_path(name: str | Path) -> Path:
     ):
         if candidate.is_file():
             return candidate
-    raise FileNotFoundError(f"scenario file '{name}' does not exist")
+    raise ScenarioError(f"scenario file '{name}' does not exist")

@@ -13,7 +13,7 @@ from pydrake.solvers import Solve
 from pydrake.trajectories import PiecewisePolynomial
 
 from rt_drake.plant import CUP_FRAME, make_arm_plant
-from rt_drake.systems.sequencer import Motion
+from rt_drake.simulation import Motion
 
 
 def min_jerk(
@@ -101,20 +101,17 @@ class IkMotions:
 
     def approach(self, q_start, obj):
         q = self.ik(self.raised(self.grasp(obj), obj.approach_offset), q_start)
-        return Motion(min_jerk([q_start, q], [self._approach_s]), {"plan": 0.0})
+        return Motion(min_jerk([q_start, q], [self._approach_s]))
 
     def reach(self, q_start, obj):
         q = self.ik(self.grasp(obj), q_start)
-        return Motion(min_jerk([q_start, q], [self._reach_s]), {"plan": 0.0})
+        return Motion(min_jerk([q_start, q], [self._reach_s]))
 
-    def move(self, q_start, obj):
+    def move(self, q_start, obj, reach=None):
         q_up = self.ik(self.raised(self.grasp(obj), obj.approach_offset), q_start)
         X_goal = self.grasp(obj, "goal")
         q_above = self.ik_first(
             [self.raised(X_goal, obj.approach_offset), self.raised(X_goal, 0.06)], q_up
         )
         q_goal = self.ik(X_goal, q_above)
-        return Motion(
-            min_jerk([q_start, q_up, q_above, q_goal], list(self._move_s)),
-            {"plan": 0.0, "retime": 0.0},
-        )
+        return Motion(min_jerk([q_start, q_up, q_above, q_goal], list(self._move_s)))

@@ -222,34 +222,39 @@ def test_plant_with_free_bodies_is_rejected(scenario, held):
         path_wrench_coefficients(plant, held, HOME, HOME, HOME)
 
 
-def test_gravity_from_the_base_joint_equals_the_cup_rotation(plant, held):
-    """g_C from the vertical base joint's Jacobian column equals R_CW g_W.
+def test_gravity_term_is_the_cup_rotation_of_g(plant, held):
+    """c(s) = -m [[p]x; 1] R_CW g_W, with R_WC from Drake's frame pose.
 
-    The shipped arm has such a joint (joint 1); without it the coefficients
-    come from Drake's rotation of the cup frame, and both must agree.
+    The shipped arm's joint 1 is vertical, so the coefficients read gravity
+    in C from its Jacobian column; with a tilted gravity no joint fits and
+    they take the cup's rotation. Both must equal the reference.
     """
     from rt_drake import dynamics
 
     spline = _path()
     s = np.linspace(0.0, 1.0, 25)
-    args = (plant, held, spline(s), spline(s, 1), spline(s, 2))
-    assert dynamics._vertical_base_joint(plant, plant.CreateDefaultContext()) == (
+    q = spline(s)
+    context = plant.CreateDefaultContext()
+    frame = plant.GetFrameByName(CUP_FRAME)
+    assert dynamics._vertical_base_joint(plant, context, frame.body().index()) == (
         0,
         pytest.approx(-9.81),
     )
-    fast = path_wrench_coefficients(*args)
-    dynamics._BASE_JOINTS[plant] = []  # as for an arm without one
-    try:
-        rotated = path_wrench_coefficients(*args)
-    finally:
-        del dynamics._BASE_JOINTS[plant]
-    for ours, reference in zip(fast, rotated, strict=True):
-        np.testing.assert_allclose(ours, reference, rtol=1e-12, atol=1e-12)
     gravity = plant.mutable_gravity_field()
-    g_W = gravity.gravity_vector()
-    gravity.set_gravity_vector([1.0, 0.0, -9.81])  # tilted: no base joint fits
+    g_original = gravity.gravity_vector()
+    p = held.p_CoScm_C
     try:
-        context = plant.CreateDefaultContext()
-        assert dynamics._vertical_base_joint(plant, context) is None
+        for g_W in (g_original, np.array([1.0, 0.0, -9.81])):
+            gravity.set_gravity_vector(g_W)
+            c = path_wrench_coefficients(plant, held, q, spline(s, 1), spline(s, 2)).c
+            for qi, ci in zip(q, c, strict=True):
+                plant.SetPositions(context, qi)
+                R_WC = frame.CalcRotationMatrixInWorld(context).matrix()
+                g_C = R_WC.T @ g_W
+                expected = -held.mass * np.hstack([np.cross(p, g_C), g_C])
+                np.testing.assert_allclose(ci, expected, rtol=1e-12, atol=1e-12)
+        assert (
+            dynamics._vertical_base_joint(plant, context, frame.body().index()) is None
+        )
     finally:
-        gravity.set_gravity_vector(g_W)
+        gravity.set_gravity_vector(g_original)

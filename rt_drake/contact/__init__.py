@@ -17,8 +17,29 @@ use of its names.
 """
 
 import importlib
+from typing import TYPE_CHECKING
 
 from rt_drake.contact.cup import CupParameters, grasp_matrices, suction_wrench
+
+if TYPE_CHECKING:  # the lazy names below, for type checkers
+    from rt_drake.contact.approximation import (
+        GuidedApproximation,
+        guided_approximation,
+    )
+    from rt_drake.contact.cache import (
+        cache_path,
+        cached_wrench_polytope,
+        default_cache_dir,
+        load_polytope,
+        save_polytope,
+    )
+    from rt_drake.contact.lp import is_realizable_lp, lp_residual
+    from rt_drake.contact.samplers import object_wrench_sampler
+    from rt_drake.contact.wrench_polytope import (
+        WrenchPolytope,
+        contact_wrench_polytope,
+        is_realizable,
+    )
 
 #: Public name -> submodule defining it, imported on first access.
 _LAZY = {
@@ -37,7 +58,24 @@ _LAZY = {
     "is_realizable": "wrench_polytope",
 }
 
-__all__ = ["CupParameters", "grasp_matrices", "suction_wrench", *_LAZY]
+__all__ = [
+    "CupParameters",
+    "GuidedApproximation",
+    "WrenchPolytope",
+    "cache_path",
+    "cached_wrench_polytope",
+    "contact_wrench_polytope",
+    "default_cache_dir",
+    "grasp_matrices",
+    "guided_approximation",
+    "is_realizable",
+    "is_realizable_lp",
+    "load_polytope",
+    "lp_residual",
+    "object_wrench_sampler",
+    "save_polytope",
+    "suction_wrench",
+]
 
 
 def __getattr__(name: str) -> object:

@@ -25,6 +25,7 @@ import numpy as np
 from scipy.spatial import ConvexHull
 
 from rt_drake.contact.wrench_polytope import WrenchPolytope, wrench_scale
+from rt_drake.errors import InputError
 
 
 @dataclasses.dataclass(frozen=True)
@@ -109,21 +110,21 @@ def guided_approximation(
         ValueError: On bad arguments, or when no guiding sample lies in W_c.
     """
     if isinstance(max_vertices, bool) or not isinstance(max_vertices, int):
-        raise ValueError(f"max_vertices must be an integer, got {max_vertices!r}")
+        raise InputError(f"max_vertices must be an integer, got {max_vertices!r}")
     if max_vertices < 7:
-        raise ValueError(f"max_vertices must be >= 7 (a 6-simplex), got {max_vertices}")
+        raise InputError(f"max_vertices must be >= 7 (a 6-simplex), got {max_vertices}")
     if callable(guiding_samples):
         guiding_samples = guiding_samples(sample_count)
     wrenches = np.asarray(guiding_samples, dtype=float)
     if wrenches.ndim != 2 or wrenches.shape[1] != 6 or len(wrenches) == 0:
-        raise ValueError(
+        raise InputError(
             f"guiding samples must be (N, 6) wrenches, got {wrenches.shape}"
         )
     if not np.all(np.isfinite(wrenches)):
-        raise ValueError("guiding samples contain NaN or inf")
+        raise InputError("guiding samples contain NaN or inf")
     inside = polytope.contains(wrenches, tol=0.0)
     if not inside.any():
-        raise ValueError(f"none of the {len(wrenches)} guiding samples lies in W_c")
+        raise InputError(f"none of the {len(wrenches)} guiding samples lies in W_c")
     scale = wrench_scale(polytope.cup)
     samples, vertices = wrenches[inside] * scale, polytope.vertices * scale
     atol = tol * max(1.0, float(np.abs(vertices).max()))

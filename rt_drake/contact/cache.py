@@ -16,6 +16,7 @@ import os
 import tempfile
 import zipfile
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -47,9 +48,7 @@ def cache_path(cup: CupParameters, directory: Path | None = None) -> Path:
     return directory / f"wrench_polytope_{cache_key(cup)}.npz"
 
 
-def save_polytope(
-    path: Path, polytope: WrenchPolytope, **extra: np.ndarray | float
-) -> None:
+def save_polytope(path: Path, polytope: WrenchPolytope, **extra: Any) -> None:
     """Write ``polytope`` (and any ``extra`` arrays) to ``path`` atomically."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)

@@ -25,9 +25,11 @@ So a wrench is realizable (paper eqs 8-9, Assumption 1) when
 # the dataclass field types, which must be real types, not strings.
 import dataclasses
 import math
-from typing import Self
+from typing import Any, Self
 
 import numpy as np
+
+from rt_drake.errors import InputError
 
 
 @dataclasses.dataclass
@@ -58,28 +60,26 @@ class CupParameters:
         for name in ("points", "sides"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-                raise ValueError(f"cup {name} must be an integer, got {value!r}")
+                raise InputError(f"cup {name} must be an integer, got {value!r}")
             if value < 3:
-                raise ValueError(f"cup {name} must be >= 3, got {value!r}")
+                raise InputError(f"cup {name} must be >= 3, got {value!r}")
         for name in ("radius", "friction", "suction_force", "max_normal_force"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(
                 value, (int, float, np.integer, np.floating)
             ):
-                raise ValueError(f"cup {name} must be a number, got {value!r}")
+                raise InputError(f"cup {name} must be a number, got {value!r}")
             if not math.isfinite(value):
-                raise ValueError(f"cup {name} must be finite, got {value!r}")
+                raise InputError(f"cup {name} must be finite, got {value!r}")
         for name in ("radius", "suction_force", "max_normal_force"):
             value = getattr(self, name)
             if value <= 0.0:
-                raise ValueError(f"cup {name} must be > 0, got {value!r}")
+                raise InputError(f"cup {name} must be > 0, got {value!r}")
         if self.friction < 0.0:
-            raise ValueError(f"cup friction must be >= 0, got {self.friction!r}")
+            raise InputError(f"cup friction must be >= 0, got {self.friction!r}")
 
     @classmethod
-    def from_vacuum(
-        cls, pressure_pa: float, area_m2: float, **fields: float | int
-    ) -> Self:
+    def from_vacuum(cls, pressure_pa: float, area_m2: float, **fields: Any) -> Self:
         """Return a cup whose suction force is ``P A`` (N).
 
         Args:
@@ -89,9 +89,9 @@ class CupParameters:
         """
         for name, value in (("pressure_pa", pressure_pa), ("area_m2", area_m2)):
             if not (isinstance(value, (int, float)) and math.isfinite(value)):
-                raise ValueError(f"{name} must be a finite number, got {value!r}")
+                raise InputError(f"{name} must be a finite number, got {value!r}")
             if value <= 0.0:
-                raise ValueError(f"{name} must be > 0, got {value!r}")
+                raise InputError(f"{name} must be > 0, got {value!r}")
         return cls(suction_force=float(pressure_pa) * float(area_m2), **fields)
 
     def as_dict(self) -> dict[str, float | int]:

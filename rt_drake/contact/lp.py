@@ -26,6 +26,7 @@ from rt_drake.contact.cup import (
     grasp_matrices,
     suction_wrench,
 )
+from rt_drake.errors import InputError
 
 _HIGHS_OPTIONS = {
     "primal_feasibility_tolerance": 1e-10,
@@ -45,7 +46,7 @@ def lp_residual(wrenches: np.ndarray, cup: CupParameters) -> np.ndarray:
     """
     wrenches = np.asarray(wrenches, dtype=float)
     if wrenches.shape[-1:] != (6,):
-        raise ValueError(f"{wrenches.shape=}: need (..., 6) wrenches")
+        raise InputError(f"{wrenches.shape=}: need (..., 6) wrenches")
     m = cup.points
     G = np.hstack(list(grasp_matrices(cup)))  # (6, 3m)
     A, _ = friction_halfspaces(cup)

@@ -122,10 +122,10 @@ def _candidate_normals(
     plus = np.ones(len(normals), dtype=bool)
     minus = plus.copy()
     rows = np.arange(len(normals))
-    for column, (s, q) in enumerate(group):
+    for item, (s, q) in enumerate(group):
         # The normal is orthogonal to the item, so its vertices share one value.
         values = normals @ summands[s].local.T
-        value = values[rows, summands[s].options[q][1][choice[:, column]]]
+        value = values[rows, summands[s].options[q][1][choice[:, item]]]
         plus &= value >= values.max(axis=1) - atol
         minus &= value <= values.min(axis=1) + atol
     return np.vstack([normals[plus], -normals[minus]])
@@ -215,16 +215,16 @@ def _vertex_tuples(
         raise ValueError(f"{m} summands of {base} vertices: too many to encode")
     starts = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
     weights = base ** np.arange(m, dtype=np.int64)
-    codes = []
+    pieces = []
     for row in seeds:
         code = np.zeros(1, dtype=np.int64)
         for s in range(m):
             local = np.flatnonzero(row[starts[s] : starts[s + 1]])
             code = np.add.outer(code, local * weights[s]).ravel()
-        codes.append(code)
-    codes = np.unique(np.concatenate(codes))
+        pieces.append(code)
+    codes = np.unique(np.concatenate(pieces))
 
-    def rotate(tuples: np.ndarray) -> np.ndarray:
+    def rotate(tuples: np.ndarray, perms: list[np.ndarray]) -> np.ndarray:
         return np.roll(
             np.column_stack([p[t] for p, t in zip(perms, tuples.T, strict=True)]), 1, 1
         )
@@ -232,7 +232,7 @@ def _vertex_tuples(
     if perms is not None:  # test one tuple per rotation orbit
         tuples, lowest = _decode(codes, base, m), codes
         for _ in range(m - 1):
-            tuples = rotate(tuples)
+            tuples = rotate(tuples, perms)
             lowest = np.minimum(lowest, _codes(tuples, base))
         codes = np.unique(lowest)
     tuples = _decode(codes, base, m)
@@ -250,7 +250,7 @@ def _vertex_tuples(
     if perms is not None:
         images = [tuples]
         for _ in range(m - 1):
-            images.append(rotate(images[-1]))
+            images.append(rotate(images[-1], perms))
         tuples = _decode(np.unique(_codes(np.vstack(images), base)), base, m)
     return tuples
 

@@ -21,6 +21,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from rt_drake.errors import InputError
+
 #: Gravity in the world frame, m/s^2.
 GRAVITY_W = np.array([0.0, 0.0, -9.81])
 
@@ -56,12 +58,12 @@ def object_wrench_sampler(
         seed: Seed of the sampler's random generator.
     """
     if not (np.isfinite(mass) and mass > 0.0):
-        raise ValueError(f"sampler mass must be > 0 kg, got {mass!r}")
+        raise InputError(f"sampler mass must be > 0 kg, got {mass!r}")
     if not (np.isfinite(max_acceleration) and max_acceleration >= 0.0):
-        raise ValueError(f"max_acceleration must be >= 0, got {max_acceleration!r}")
+        raise InputError(f"max_acceleration must be >= 0, got {max_acceleration!r}")
     p = np.asarray(p_CoOcm_C, dtype=float)
     if p.shape != (3,) or not np.all(np.isfinite(p)):
-        raise ValueError(f"p_CoOcm_C must be 3 finite numbers, got {p_CoOcm_C!r}")
+        raise InputError(f"p_CoOcm_C must be 3 finite numbers, got {p_CoOcm_C!r}")
     rng = np.random.default_rng(seed)
     down = np.diag([1.0, -1.0, -1.0])  # R_WC of a cup facing straight down
 

@@ -30,6 +30,7 @@ from rt_drake.contact.cup import (
     suction_wrench,
 )
 from rt_drake.contact.minkowski import minkowski_sum
+from rt_drake.errors import InputError
 
 
 @dataclasses.dataclass(frozen=True)
@@ -70,7 +71,7 @@ def is_realizable(
     """
     wrenches = np.asarray(wrenches, dtype=float)
     if wrenches.shape[-1:] != (F.shape[1],):
-        raise ValueError(f"{wrenches.shape=} but {F.shape=}: need (..., 6) wrenches")
+        raise InputError(f"{wrenches.shape=} but {F.shape=}: need (..., 6) wrenches")
     return np.all(wrenches @ F.T <= g + tol, axis=-1)
 
 

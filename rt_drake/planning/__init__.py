@@ -7,11 +7,11 @@
 - :mod:`.path`: the clamped C2 spline handed to the retimer.
 - :mod:`.dense_check`, :mod:`.bounds`, :mod:`.kinematics`: the spline's
   dense check, certified by clearance; :mod:`.smooth`: its refinement.
-- :mod:`.connect`, :mod:`.cycle`: the phases APPROACH, REACH, MOVE.
+- :mod:`.connect`, :mod:`.cycle_planner`: the phases APPROACH, REACH, MOVE.
 - :mod:`.transport`: random transport queries (the paper's Table I).
 """
 
-from rt_drake.planning.cycle import CyclePlanner
+from rt_drake.planning.cycle_planner import CyclePlanner
 from rt_drake.planning.errors import (
     GoalInCollisionError,
     NoPathError,

@@ -164,15 +164,19 @@ def displacement_radii(
         body_index = b
         while body_index in inboard_joint:
             joint = inboard_joint[body_index]
-            origin_bound += np.linalg.norm(
-                joint.frame_on_child().GetFixedPoseInBodyFrame().translation()
+            origin_bound += float(
+                np.linalg.norm(
+                    joint.frame_on_child().GetFixedPoseInBodyFrame().translation()
+                )
             )
             if joint.index() in joints and joint.num_positions() > 0:
                 row = joints.index(joint.index())
                 radii[row, column] = origin_bound + rho[column]
                 outboard[row, column] = True
-            origin_bound += np.linalg.norm(
-                joint.frame_on_parent().GetFixedPoseInBodyFrame().translation()
+            origin_bound += float(
+                np.linalg.norm(
+                    joint.frame_on_parent().GetFixedPoseInBodyFrame().translation()
+                )
             )
             body_index = joint.parent_body().index()
     return radii, outboard

@@ -22,6 +22,7 @@ import time
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 
+from rt_drake.phase import Phase
 from rt_drake.planning.errors import NoPathError
 from rt_drake.planning.ik import CupIk
 from rt_drake.planning.result import PlannedPath, Stopwatch
@@ -42,14 +43,14 @@ class Attempt:
     """One planning call: what it is for, its stopwatch, deadline and RNG.
 
     Attributes:
-        phase, name: for error messages (``"MOVE notebook: ..."``).
+        phase, name: the phase and object (for messages, ``"MOVE notebook: ..."``).
         budget_s: the call's time budget (s); deadline: its end
             (``time.perf_counter()`` clock).
         seed: the planner's seed (for messages); rng: the call's generator.
         watch: stage timings.
     """
 
-    phase: str
+    phase: Phase
     name: str
     budget_s: float
     seed: int
@@ -69,14 +70,28 @@ def describe(scene: PlanningScene, q: np.ndarray, which: str) -> str:
     return f"{which} configuration in collision ({pairs})"
 
 
+@dataclasses.dataclass(frozen=True)
+class IkLine:
+    """The outcome of :func:`ik_line`.
+
+    Attributes:
+        chain: (K + 1, n) configurations from q_start along the line (rad),
+            or None if a pose on the line was unreachable.
+        unreached_m: m left to the line's end at the first unreachable pose
+            (0 when ``chain`` is complete).
+    """
+
+    chain: np.ndarray | None
+    unreached_m: float = 0.0
+
+
 def ik_line(
     ik: CupIk, q_start: np.ndarray, X_start: RigidTransform, X_goal: RigidTransform
-) -> np.ndarray | float:
+) -> IkLine:
     """IK every ``LINE_STEP`` along the cup line X_start -> X_goal (slerped).
 
     Each solve is seeded and costed by the previous solution, so the chain
-    stays on q_start's branch. Returns the (K + 1, n) chain from q_start, or
-    the distance (m) left to X_goal at the first unreachable pose.
+    stays on q_start's branch.
     """
     length = np.linalg.norm(X_goal.translation() - X_start.translation())
     steps = max(1, int(np.ceil(length / LINE_STEP)))
@@ -88,9 +103,9 @@ def ik_line(
         p = (1 - t) * X_start.translation() + t * X_goal.translation()
         q = ik.solve(RigidTransform(R, p), chain[-1], chain[-1])
         if q is None:
-            return float((1 - t) * length)
+            return IkLine(None, float((1 - t) * length))
         chain.append(q)
-    return np.array(chain)
+    return IkLine(np.array(chain))
 
 
 def connect(
@@ -115,8 +130,8 @@ def connect(
         piece = None
         if line is not None and not scene.edge_free(q_a, q_b):
             with watch("ik"):
-                chain = ik_line(ik, q_a, *line)
-            if not isinstance(chain, float):
+                chain = ik_line(ik, q_a, *line).chain
+            if chain is not None:
                 if np.linalg.norm(chain[-1] - q_b) < 1e-3:
                     chain[-1] = q_b
                 else:
@@ -192,6 +207,7 @@ def finish(
         finally:
             scene.checker.set_edge_step_size(step)
         polyline = np.vstack([points[:k], piece, points[k + 2 :]])
+    assert fit.check.q is not None and fit.check.s is not None  # failed: where
     raise NoPathError(
         attempt.phase,
         attempt.name,
@@ -209,6 +225,7 @@ def _planned(attempt: Attempt, path, polyline, X_OC) -> PlannedPath:
 
 __all__ = [
     "Attempt",
+    "IkLine",
     "LINE_STEP",
     "MAX_REPAIRS",
     "OPTIMISTIC_ROUNDS",

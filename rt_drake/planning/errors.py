@@ -7,22 +7,23 @@ cell::top_plate)``.
 from __future__ import annotations
 
 from rt_drake.errors import RtDrakeError
+from rt_drake.phase import Phase
 
 
 class PlanningError(RtDrakeError):
     """A phase of the cycle could not be planned.
 
     Attributes:
-        phase: ``"APPROACH"``, ``"REACH"`` or ``"MOVE"`` (or another label).
+        phase: The phase (APPROACH, REACH or MOVE).
         object: name of the object the phase is for.
         detail: what went wrong.
     """
 
-    def __init__(self, phase: str, obj: str, detail: str) -> None:
+    def __init__(self, phase: Phase, obj: str, detail: str) -> None:
         self.phase = phase
         self.object = obj
         self.detail = detail
-        super().__init__(f"{phase} {obj}: {detail}")
+        super().__init__(f"{phase.label} {obj}: {detail}")
 
 
 class UnreachablePoseError(PlanningError):

@@ -8,6 +8,7 @@ import time
 import numpy as np
 from pydrake.math import RigidTransform
 
+from rt_drake.phase import Phase
 from rt_drake.planning.path import GeometricPath
 
 
@@ -85,7 +86,7 @@ class PlannedPath:
     """A planned phase, ready for the retimer.
 
     Attributes:
-        phase: ``"APPROACH"``, ``"REACH"``, ``"MOVE"`` (or ``"PATH"``).
+        phase: APPROACH, REACH or MOVE.
         object: the object the phase is for.
         path: the collision-free spline q(s), s in [0, 1].
         polyline: the joint-space waypoints (rad) the spline was first fitted
@@ -95,14 +96,19 @@ class PlannedPath:
         X_OC: the grasp used (pose of the cup frame C in the object frame O),
             the scenario's or its yaw flip about z_C.
         timing: wall time of each stage.
+        descent: REACH only: the IK chain of the straight descent (rad, one
+            configuration per ``LINE_STEP`` from the approach pose to the
+            grasp), which a MOVE from the same grasp may lift along in
+            reverse; None otherwise.
     """
 
-    phase: str
+    phase: Phase
     object: str
     path: GeometricPath
     polyline: np.ndarray
     X_OC: RigidTransform
     timing: PlanTiming
+    descent: np.ndarray | None = None
 
     @property
     def q_start(self) -> np.ndarray:

@@ -149,7 +149,7 @@ class PlanningScene:
         self._groups[group] = key
         if X_WO is None:
             return
-        shapes = object_geometries(model)
+        shapes = list(object_geometries(model))
         if allowance_normal_O is not None:
             shapes = [shrink_face(p, allowance_normal_O, allowance) for p in shapes]
         self._add(group, name, self.plant.world_frame(), shapes, X_WO)

@@ -66,6 +66,7 @@ def fit_spline(
         check_s += time.perf_counter() - middle
         if check.ok or rounds == max_rounds:
             break
+        assert check.s is not None  # a failed check says where
         if check.reason == "collision":
             k = _interval(path.knots, check.s)
             middle = time.perf_counter()

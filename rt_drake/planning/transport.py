@@ -17,7 +17,7 @@ from rt_drake.scenario import Region, Scenario
 def sample_pose(region: Region, rng: np.random.Generator) -> RigidTransform:
     """X_WO uniform in the region's box and yaw range."""
     p = rng.uniform(region.lower, region.upper)
-    yaw = np.radians(rng.uniform(*region.yaw_deg))
+    yaw = np.radians(rng.uniform(region.yaw_deg[0], region.yaw_deg[1]))
     return RigidTransform(RotationMatrix.MakeZRotation(yaw), p)
 
 

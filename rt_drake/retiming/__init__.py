@@ -1,14 +1,73 @@
-"""Internals of :func:`rt_drake.retime.retime` (TOPP-RA under grasp stability).
+"""Time-optimal retiming under joint limits and grasp stability (paper III).
 
-- :mod:`.path`: the joint path ``q(s)`` in the planner's spline convention.
+The public face of TOPP-RA in rt_drake; everything else in this package is
+internal:
+
+- :mod:`.solve`: :func:`retime` and :class:`RetimeResult`.
 - :mod:`.limits`: joint limits and the grasp constraint ``F w <= g``.
+- :mod:`.path`: the joint path ``q(s)`` in the planner's spline convention.
 - :mod:`.at_rest`: the object and the arm must be holdable at rest.
 - :mod:`.rows`: which grasp rows the stage LPs get, and the exactness check
   (compiled).
 - :mod:`.passes`: TOPP-RA's passes on precomputed constraints.
 - :mod:`.seidel`: toppra's seidel LP and the passes, compiled with numba.
 - :mod:`.warm`: compiles the kernels before anything is timed.
-- :mod:`.timed_path`: the retimed trajectory as a Drake ``Trajectory``.
+- :mod:`.timed_path`: the retimed trajectory as a Drake ``Trajectory``;
+  :mod:`.time_scaled`: a trajectory played faster.
 - :mod:`.check`: dense (1 kHz) verification of a timed trajectory.
+- :mod:`.trajectory_file`: the ``.npz`` trajectory format.
 - :mod:`.errors`: typed errors and statuses.
 """
+
+from rt_drake.retiming.check import (
+    DEFAULT_TOLERANCE,
+    Excess,
+    TrajectoryCheck,
+    check_trajectory,
+)
+from rt_drake.retiming.errors import (
+    GraspUnstableAtRestError,
+    PathNotControllableError,
+    RetimeError,
+    RetimeInputError,
+    RetimeStatus,
+    TorqueLimitAtRestError,
+)
+from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming.path import chord_knots, path_waypoints_and_knots
+from rt_drake.retiming.solve import RetimeResult, retime
+from rt_drake.retiming.time_scaled import TimeScaled
+from rt_drake.retiming.timed_path import TimedPath
+from rt_drake.retiming.trajectory_file import (
+    SavedTrajectory,
+    load_trajectory,
+    sample_trajectory,
+    save_trajectory,
+)
+from rt_drake.retiming.warm import warm_up
+
+__all__ = [
+    "DEFAULT_TOLERANCE",
+    "Excess",
+    "GraspConstraint",
+    "GraspUnstableAtRestError",
+    "JointLimits",
+    "PathNotControllableError",
+    "RetimeError",
+    "RetimeInputError",
+    "RetimeResult",
+    "RetimeStatus",
+    "SavedTrajectory",
+    "TimeScaled",
+    "TimedPath",
+    "TorqueLimitAtRestError",
+    "TrajectoryCheck",
+    "check_trajectory",
+    "chord_knots",
+    "load_trajectory",
+    "path_waypoints_and_knots",
+    "retime",
+    "sample_trajectory",
+    "save_trajectory",
+    "warm_up",
+]

@@ -36,6 +36,7 @@ from toppra.constraint import DiscretizationType, LinearConstraint
 from toppra.constraint.linear_constraint import canlinear_colloc_to_interpolate
 
 from rt_drake.retiming import seidel
+from rt_drake.retiming.errors import RetimeInputError
 
 #: toppra's box on (u, x) at every stage (cy_seidel_solverwrapper VAR_MIN/MAX).
 VAR_BOUND = 1e8
@@ -120,7 +121,7 @@ def reachability(
             return Reachability(None, None, K, int(bad.max()) if bad.size else 0)
         return Reachability(sd**2, sdd, K, None)
     if engine != "compiled":
-        raise ValueError(f"engine must be 'compiled' or 'toppra', got {engine!r}")
+        raise RetimeInputError(f"engine must be 'compiled' or 'toppra', got {engine!r}")
     ds = np.diff(gridpoints)
     x, u, K, failed = seidel.passes(
         *stage_rows(constraints, ds), ds, float(sd_start), float(sd_end)

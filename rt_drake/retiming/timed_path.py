@@ -21,6 +21,8 @@ import numpy as np
 from pydrake.trajectories import Trajectory
 from scipy.interpolate import CubicSpline
 
+from rt_drake.retiming.errors import RetimeInputError
+
 #: Highest derivative order the trajectory evaluates.
 MAX_ORDER = 3
 
@@ -48,13 +50,15 @@ class TimedPath(Trajectory):
         s = np.asarray(gridpoints, dtype=float)
         x = np.maximum(np.asarray(x, dtype=float), 0.0)
         if s.ndim != 1 or x.shape != s.shape or s.size < 2:
-            raise ValueError(f"{s.shape=} and {x.shape=} must be equal (N+1,)")
+            raise RetimeInputError(f"{s.shape=} and {x.shape=} must be equal (N+1,)")
         sd = np.sqrt(x)
         if np.any(sd[:-1] + sd[1:] <= 0.0):
             i = int(np.flatnonzero(sd[:-1] + sd[1:] <= 0.0)[0])
-            raise ValueError(f"s' is zero at both ends of segment {i}: never ends")
+            raise RetimeInputError(
+                f"s' is zero at both ends of segment {i}: never ends"
+            )
         if not 0 <= derivative_order <= MAX_ORDER:
-            raise ValueError(f"derivative order must be 0..{MAX_ORDER}")
+            raise RetimeInputError(f"derivative order must be 0..{MAX_ORDER}")
         ds = np.diff(s)
         self._spline = spline
         self._s, self._sd = s, sd
@@ -74,7 +78,7 @@ class TimedPath(Trajectory):
         """``end_time() - start_time()``, s."""
         return float(self._t[-1] - self._t[0])
 
-    def sample(self, times: np.ndarray, order: int = 2) -> list[np.ndarray]:
+    def sample(self, times: float | np.ndarray, order: int = 2) -> list[np.ndarray]:
         """Return ``[q, q', ..., q^(order)]`` at each time, each (M, n).
 
         Vectorised; ``order`` counts from this trajectory's own order.
@@ -82,7 +86,7 @@ class TimedPath(Trajectory):
         times = np.atleast_1d(np.asarray(times, dtype=float))
         total = self._order + order
         if total > MAX_ORDER:
-            raise ValueError(f"derivatives above order {MAX_ORDER} not provided")
+            raise RetimeInputError(f"derivatives above order {MAX_ORDER} not provided")
         t0, t1 = self._t[0], self._t[-1]
         inside = (times >= t0) & (times <= t1)
         t = np.clip(times, t0, t1)
@@ -138,7 +142,7 @@ class TimedPath(Trajectory):
         Trajectory.__init__(copy)
         copy.__dict__.update(self.__dict__)
         if not 0 <= order <= MAX_ORDER:
-            raise ValueError(f"derivatives above order {MAX_ORDER} not provided")
+            raise RetimeInputError(f"derivatives above order {MAX_ORDER} not provided")
         copy._order = order
         return copy
 

@@ -1,1 +1,0 @@
-"""Subcommands of ``rt-drake``: one module each, exposing ``register(subparsers)``."""

@@ -1,0 +1,47 @@
+"""The paper's experiments in simulation, and their reports.
+
+- :mod:`.rollout`: play one MOVE in the cycle's physics and measure slip.
+- :mod:`.transport`: Table I, random transports with and without the grasp
+  constraint; :mod:`.transport_report` and :mod:`.plots` write its report.
+- :mod:`.cycle_report`: Table II, the cycle's timing breakdown.
+"""
+
+from rt_drake.experiments.cycle_report import (
+    cycle_report,
+    table_markdown,
+    write_report,
+)
+from rt_drake.experiments.rollout import (
+    SLIP_ROTATION,
+    SLIP_TRANSLATION,
+    SPEED_FACTORS,
+    Rollout,
+    critical_speed,
+    simulate_move,
+)
+from rt_drake.experiments.transport import (
+    run_transport_experiment,
+    summarize,
+    transport_trial,
+)
+from rt_drake.experiments.transport_report import (
+    transport_table,
+    write_transport_report,
+)
+
+__all__ = [
+    "SLIP_ROTATION",
+    "SLIP_TRANSLATION",
+    "SPEED_FACTORS",
+    "Rollout",
+    "critical_speed",
+    "cycle_report",
+    "run_transport_experiment",
+    "simulate_move",
+    "summarize",
+    "table_markdown",
+    "transport_table",
+    "transport_trial",
+    "write_report",
+    "write_transport_report",
+]

@@ -1,0 +1,105 @@
+"""Plots of the transport experiment (matplotlib, Agg backend).
+
+matplotlib is imported inside the functions, so importing rt_drake stays light.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _save(fig, path: Path) -> Path:
+    """Write ``fig`` as a PNG at ``path`` and release it."""
+    plt = _pyplot()
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+def plot_profiles(trial: dict[str, Any], path: Path) -> Path:
+    """s'(s) with and without the grasp constraint, under the velocity bound."""
+    plt = _pyplot()
+    p = trial["profiles"]
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.fill_between(
+        p["s"],
+        0,
+        p["sd_velocity_limit"],
+        color="0.9",
+        label="joint velocity limits allow",
+    )
+    ax.plot(p["s"], p["sd_unconstrained"], color="tab:red", label="joint limits only")
+    ax.plot(
+        p["s"], p["sd_constrained"], color="tab:green", label="with grasp constraint"
+    )
+    top = max(max(p["sd_unconstrained"]), max(p["sd_constrained"]))
+    ax.set_ylim(0, 1.3 * top)
+    ax.set_xlabel("path parameter s")
+    ax.set_ylabel("path velocity s' (1/s)")
+    ax.set_title(f"path {trial['index']}: time-optimal s'(s)")
+    ax.legend(loc="upper right")
+    return _save(fig, path)
+
+
+def plot_margins(trial: dict[str, Any], path: Path) -> Path:
+    """Grasp-constraint margin min (g - F w)/g over time, both retimings."""
+    plt = _pyplot()
+    p = trial["profiles"]
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.axhline(0.0, color="k", linewidth=0.8)
+    ax.plot(
+        p["t_unconstrained"],
+        p["margin_unconstrained"],
+        color="tab:red",
+        label="joint limits only",
+    )
+    ax.plot(
+        p["t_constrained"],
+        p["margin_constrained"],
+        color="tab:green",
+        label="with grasp constraint",
+    )
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("grasp margin  min (g - F w) / g")
+    ax.set_title(f"path {trial['index']}: below 0 the cup cannot hold the object")
+    ax.legend(loc="lower right")
+    return _save(fig, path)
+
+
+def plot_durations(trials: list[dict[str, Any]], path: Path) -> Path:
+    """Duration of each path with and without the constraint; x marks a slip."""
+    import numpy as np
+
+    plt = _pyplot()
+    index = np.arange(len(trials))
+    fig, ax = plt.subplots(figsize=(max(6, 0.45 * len(trials) + 2), 4))
+    width = 0.4
+    for offset, key, color, label in (
+        (-width / 2, "unconstrained", "tab:red", "joint limits only"),
+        (width / 2, "constrained", "tab:green", "with grasp constraint"),
+    ):
+        durations = [t[f"duration_{key}_s"] for t in trials]
+        ax.bar(index + offset, durations, width, color=color, label=label)
+        for i, t in enumerate(trials):
+            if not t[f"success_{key}"]:
+                ax.plot(i + offset, durations[i] + 0.03, "kx")
+    ax.set_xticks(index)
+    ax.set_xlabel("path")
+    ax.set_ylabel("MOVE duration (s)")
+    ax.set_title("durations; x: the object slipped in simulation")
+    ax.legend(loc="upper right")
+    return _save(fig, path)
+
+
+__all__ = ["plot_durations", "plot_margins", "plot_profiles"]

@@ -1,0 +1,124 @@
+"""Play a MOVE in the physics of the cycle and measure how the object slips.
+
+A rollout runs the cycle's Diagram (the station and sequencer of ``rt-drake
+run``) for one object: the arm starts at the grasp, the valve is on for the
+attach wait, then the MOVE runs. It succeeds when, during the MOVE, the
+object moves less than :data:`SLIP_TRANSLATION` and turns less than
+:data:`SLIP_ROTATION` relative to the cup. :func:`critical_speed` plays a
+MOVE faster and faster until it slips (the paper saw slip at 120-140 %).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Sequence
+
+import numpy as np
+from pydrake.trajectories import PiecewisePolynomial, Trajectory
+
+from rt_drake.retiming import TimeScaled
+from rt_drake.scenario import ObjectConfig, Scenario, Timing
+from rt_drake.simulation import UPDATE_PERIOD, Motion, run_cycle
+
+#: m and rad: a rollout slipped if the object moved more on the cup.
+SLIP_TRANSLATION = 5e-3
+SLIP_ROTATION = math.radians(3.0)
+#: Speed factors of the sweep, in order; the first one that slips is critical.
+SPEED_FACTORS = (1.0, 1.1, 1.2, 1.3, 1.4, 1.6, 1.8, 2.0, 2.5, 3.0)
+#: s, the attach and detach waits of a rollout (shorter than a cycle's 1 s).
+ROLLOUT_WAIT_S = 0.3
+
+
+@dataclasses.dataclass(frozen=True)
+class Rollout:
+    """One simulated MOVE: its slip (m, rad) and whether it stayed put."""
+
+    slip_translation: float
+    slip_rotation: float
+
+    @property
+    def success(self) -> bool:
+        """Slip under 5 mm and 3 deg."""
+        return (
+            self.slip_translation < SLIP_TRANSLATION
+            and self.slip_rotation < SLIP_ROTATION
+        )
+
+    def as_dict(self) -> dict[str, float]:
+        """``max_translation_mm``, ``max_rotation_deg``."""
+        return {
+            "max_translation_mm": 1e3 * self.slip_translation,
+            "max_rotation_deg": math.degrees(self.slip_rotation),
+        }
+
+
+class _Replay:
+    """A MotionSource that stands at the grasp, then plays a given MOVE."""
+
+    def __init__(self, q_grasp: np.ndarray, move: Trajectory) -> None:
+        self._hold = PiecewisePolynomial.ZeroOrderHold(
+            [0.0, UPDATE_PERIOD], np.column_stack([q_grasp, q_grasp])
+        )
+        self._move = move
+
+    def approach(self, q_start: np.ndarray, obj: ObjectConfig) -> Motion:  # noqa: D102
+        return Motion(self._hold)
+
+    def reach(self, q_start: np.ndarray, obj: ObjectConfig) -> Motion:  # noqa: D102
+        return Motion(self._hold)
+
+    def move(  # noqa: D102
+        self, q_start: np.ndarray, obj: ObjectConfig, reach: Motion | None
+    ) -> Motion:
+        return Motion(self._move)
+
+
+def rollout_scenario(trial: Scenario, q_grasp: np.ndarray) -> Scenario:
+    """The ``trial`` scenario (object at its sampled start), the arm at the grasp.
+
+    The attach and detach waits are shortened to :data:`ROLLOUT_WAIT_S`.
+    """
+    return dataclasses.replace(
+        trial,
+        robot=dataclasses.replace(trial.robot, home=[float(q) for q in q_grasp]),
+        timing=Timing(attach_s=ROLLOUT_WAIT_S, detach_s=ROLLOUT_WAIT_S),
+    )
+
+
+def simulate_move(
+    scenario: Scenario, q_grasp: np.ndarray, move: Trajectory, speed: float = 1.0
+) -> Rollout:
+    """Play ``move`` (``speed`` times faster) in the cycle's physics; measure slip."""
+    trajectory = move if speed == 1.0 else TimeScaled(move, speed)
+    result = run_cycle(scenario, _Replay(q_grasp, trajectory), max_sim_time=30.0)
+    (record,) = result.records
+    return Rollout(record.max_slip_translation, record.max_slip_rotation)
+
+
+def critical_speed(
+    scenario: Scenario,
+    q_grasp: np.ndarray,
+    move: Trajectory,
+    factors: Sequence[float] = SPEED_FACTORS,
+) -> tuple[float | None, list[tuple[float, Rollout]]]:
+    """The first factor of ``factors`` at which the object slips (None: never)."""
+    sweep: list[tuple[float, Rollout]] = []
+    for factor in factors:
+        rollout = simulate_move(scenario, q_grasp, move, factor)
+        sweep.append((factor, rollout))
+        if not rollout.success:
+            return factor, sweep
+    return None, sweep
+
+
+__all__ = [
+    "ROLLOUT_WAIT_S",
+    "SLIP_ROTATION",
+    "SLIP_TRANSLATION",
+    "SPEED_FACTORS",
+    "Rollout",
+    "critical_speed",
+    "rollout_scenario",
+    "simulate_move",
+]

@@ -1,0 +1,222 @@
+"""The paper's Table I experiment, in simulation (Section V-A).
+
+For each of n random transports of one object (start pose in the bin region,
+goal on the destination region, both sampled from the scenario's
+``random_transport``): plan the MOVE path, retime it with and without the
+grasp constraint, and play each in the physics of the cycle
+(:mod:`.rollout`). Then play the constrained MOVE faster and faster to find
+the speed at which the object starts to slip.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from concurrent.futures import ProcessPoolExecutor
+from multiprocessing import get_context
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from pydrake.common.schema import Transform
+from pydrake.math import RigidTransform
+
+from rt_drake.errors import InputError, ScenarioError
+from rt_drake.experiments.rollout import (
+    SPEED_FACTORS,
+    critical_speed,
+    rollout_scenario,
+    simulate_move,
+)
+from rt_drake.planning import GeometricPath, sample_transports
+from rt_drake.retiming import GraspConstraint, RetimeResult
+from rt_drake.scenario import Scenario, load_scenario
+from rt_drake.simulation import OnlineMotions
+
+
+def transport_trial(
+    scenario: Scenario,
+    object_name: str,
+    index: int,
+    X_WO_start: RigidTransform,
+    X_WO_goal: RigidTransform,
+    seed: int,
+) -> dict[str, Any]:
+    """Plan, retime (with and without the constraint) and simulate one transport."""
+    obj = scenario.object(object_name)
+    planner_scenario = dataclasses.replace(
+        scenario,
+        objects=[
+            dataclasses.replace(
+                obj, start=Transform(X_WO_start), goal=Transform(X_WO_goal)
+            )
+        ],
+    )
+    constrained = OnlineMotions(
+        planner_scenario, grasp_constraint=True, seed=seed + index
+    )
+    planned_obj = planner_scenario.objects[0]
+    approach = constrained.approach(constrained.q_home, planned_obj)
+    reach = constrained.reach(approach.q_end, planned_obj)
+    q_grasp = reach.q_end
+    start = time.perf_counter()
+    move_c = constrained.move(q_grasp, planned_obj, reach)
+    assert move_c.planned is not None and move_c.retimed is not None
+    assert move_c.grasp is not None
+    path = move_c.planned.path
+    result_c = move_c.retimed
+    result_u = constrained.retime_path(path, grasp=None)
+    plan_s = time.perf_counter() - start
+
+    rollout_world = rollout_scenario(planner_scenario, q_grasp)
+    unconstrained = simulate_move(rollout_world, q_grasp, result_u.trajectory)
+    critical, sweep = critical_speed(rollout_world, q_grasp, move_c.trajectory)
+    constrained_rollout = sweep[0][1]
+    d_u, d_c = result_u.duration, result_c.duration
+    return {
+        "index": index,
+        "start": _pose_list(X_WO_start),
+        "goal": _pose_list(X_WO_goal),
+        "duration_unconstrained_s": d_u,
+        "duration_constrained_s": d_c,
+        "time_extension_pct": 100.0 * (d_c - d_u) / d_c,
+        "success_unconstrained": unconstrained.success,
+        "success_constrained": constrained_rollout.success,
+        "slip_unconstrained": unconstrained.as_dict(),
+        "slip_constrained": constrained_rollout.as_dict(),
+        "critical_speed_factor": critical,
+        "speed_sweep": [
+            {"factor": f, **r.as_dict(), "success": r.success} for f, r in sweep
+        ],
+        "plan_and_retime_s": plan_s,
+        "profiles": _profiles(constrained, path, move_c.grasp, result_c, result_u),
+    }
+
+
+def _pose_list(X: RigidTransform) -> list[float]:
+    """[x, y, z, yaw_deg]."""
+    yaw = math.degrees(
+        math.atan2(X.rotation().matrix()[1, 0], X.rotation().matrix()[0, 0])
+    )
+    return [*map(float, X.translation()), yaw]
+
+
+def _profiles(
+    motions: OnlineMotions,
+    path: GeometricPath,
+    grasp: GraspConstraint,
+    constrained: RetimeResult,
+    unconstrained: RetimeResult,
+) -> dict[str, list[float]]:
+    """s'(s), its velocity-limit bound, and the grasp margin over time, for plots."""
+    return {
+        "s": constrained.gridpoints.tolist(),
+        "sd_constrained": constrained.sd.tolist(),
+        "sd_unconstrained": unconstrained.sd.tolist(),
+        "sd_velocity_limit": motions.velocity_bound(
+            path, constrained.gridpoints
+        ).tolist(),
+        "t_constrained": constrained.trajectory.times.tolist(),
+        "t_unconstrained": unconstrained.trajectory.times.tolist(),
+        "margin_constrained": motions.grasp_margin(path, constrained, grasp).tolist(),
+        "margin_unconstrained": motions.grasp_margin(
+            path, unconstrained, grasp
+        ).tolist(),
+    }
+
+
+def _trial_job(args: tuple) -> dict[str, Any]:
+    """One trial in a worker: scenarios do not pickle, so it is loaded again."""
+    path, object_name, index, X_start, X_goal, seed = args
+    scenario = load_scenario(path)
+    return transport_trial(
+        scenario,
+        object_name,
+        index,
+        RigidTransform(X_start),
+        RigidTransform(X_goal),
+        seed,
+    )
+
+
+def run_transport_experiment(
+    scenario_path: str | Path,
+    n: int = 20,
+    seed: int = 0,
+    object_name: str | None = None,
+    workers: int = 1,
+) -> dict[str, Any]:
+    """Run n trials (in ``workers`` processes); return results and a summary.
+
+    Raises:
+        InputError: fewer than one trial or one worker.
+        ScenarioError: the scenario has no ``random_transport`` section or
+            no such object.
+    """
+    scenario = load_scenario(scenario_path)
+    if n < 1:
+        raise InputError(f"number of trials must be >= 1, got {n}")
+    if workers < 1:
+        raise InputError(f"number of worker processes must be >= 1, got {workers}")
+    transport = scenario.random_transport
+    if transport is None:
+        raise ScenarioError(
+            f"{scenario_path}: the scenario has no 'random_transport' section"
+        )
+    name = object_name or transport.object
+    scenario.object(name)
+    pairs = sample_transports(scenario, n, seed)
+    jobs = [
+        (str(scenario_path), name, i, X_s.GetAsMatrix4(), X_g.GetAsMatrix4(), seed)
+        for i, (X_s, X_g) in enumerate(pairs)
+    ]
+    if workers == 1:
+        trials = [_trial_job(job) for job in jobs]
+    else:
+        with ProcessPoolExecutor(workers, mp_context=get_context("spawn")) as pool:
+            trials = list(pool.map(_trial_job, jobs))
+    return {
+        "object": name,
+        "seed": seed,
+        "n": n,
+        "trials": trials,
+        "summary": summarize(trials),
+    }
+
+
+def summarize(trials: list[dict[str, Any]]) -> dict[str, Any]:
+    """Counts of successes, duration and extension statistics, critical speeds."""
+    critical = [t["critical_speed_factor"] for t in trials]
+    finite = [c for c in critical if c is not None]
+    return {
+        "n": len(trials),
+        "success_constrained": sum(t["success_constrained"] for t in trials),
+        "success_unconstrained": sum(t["success_unconstrained"] for t in trials),
+        "duration_constrained_s": _stats([t["duration_constrained_s"] for t in trials]),
+        "duration_unconstrained_s": _stats(
+            [t["duration_unconstrained_s"] for t in trials]
+        ),
+        "time_extension_pct": _stats([t["time_extension_pct"] for t in trials]),
+        "critical_speed_factor_median": float(np.median(finite))
+        if len(finite) == len(critical)
+        else None,
+        "critical_speed_factor_min": min(finite) if finite else None,
+        "never_slipped_up_to": None
+        if len(finite) == len(critical)
+        else SPEED_FACTORS[-1],
+        "critical_speed_factors": critical,
+    }
+
+
+def _stats(values: list[float]) -> dict[str, float]:
+    array = np.asarray(values, dtype=float)
+    return {
+        "min": float(array.min()),
+        "median": float(np.median(array)),
+        "mean": float(array.mean()),
+        "max": float(array.max()),
+    }
+
+
+__all__ = ["run_transport_experiment", "summarize", "transport_trial"]

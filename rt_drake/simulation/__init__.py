@@ -1,0 +1,52 @@
+"""The simulated cell: a Drake Diagram that runs the pick-and-place cycle.
+
+- :mod:`.station`: ``MakeStation(scenario) -> Station``, the cell's Diagram.
+- :mod:`.suction`: the vacuum force (``SuctionCup`` LeafSystem).
+- :mod:`.sequencer`: APPROACH .. DETACH per object (``Sequencer`` LeafSystem).
+- :mod:`.motion`: what the sequencer asks for (``Motion``, ``MotionSource``).
+- :mod:`.online_motions`: the planner plus retimer as the online motion
+  source (``OnlineMotions``).
+- :mod:`.retimer_system`: the retimer as a LeafSystem (``Retimer``).
+- :mod:`.cycle_runner`: station + sequencer, simulated to the end
+  (``run_cycle``).
+"""
+
+from rt_drake.simulation.cycle_runner import (
+    CycleResult,
+    CycleTimeout,
+    build_cycle,
+    run_cycle,
+)
+from rt_drake.simulation.motion import Motion, MotionSource, PlanTimes
+from rt_drake.simulation.online_motions import OnlineMotions, held_object
+from rt_drake.simulation.retimer_system import Retimer, RetimeRequest
+from rt_drake.simulation.sequencer import (
+    UPDATE_PERIOD,
+    ObjectRecord,
+    Sequencer,
+    pose_difference,
+)
+from rt_drake.simulation.station import MakeStation, Station, StationOptions
+from rt_drake.simulation.suction import SuctionCup
+
+__all__ = [
+    "UPDATE_PERIOD",
+    "CycleResult",
+    "CycleTimeout",
+    "MakeStation",
+    "Motion",
+    "MotionSource",
+    "ObjectRecord",
+    "OnlineMotions",
+    "PlanTimes",
+    "RetimeRequest",
+    "Retimer",
+    "Sequencer",
+    "Station",
+    "StationOptions",
+    "SuctionCup",
+    "build_cycle",
+    "held_object",
+    "pose_difference",
+    "run_cycle",
+]

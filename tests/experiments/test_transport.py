@@ -1,0 +1,119 @@
+"""``rt-drake experiment``: the constraint keeps objects on; without it they slip."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from rt_drake.cli import main
+
+#: Whole-cycle simulations: tens of seconds (still run by CI).
+pytestmark = pytest.mark.slow
+
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.fixture(scope="module")
+def transport(tmp_path_factory):
+    out = tmp_path_factory.mktemp("transport")
+    assert (
+        main(["experiment", "transport", "--n", "2", "--seed", "0", "--out", str(out)])
+        == 0
+    )
+    return out, json.loads((out / "results.json").read_text())
+
+
+def test_every_constrained_path_holds_and_some_unconstrained_slips(transport):
+    _, results = transport
+    trials = results["trials"]
+    assert len(trials) == 2
+    assert all(t["success_constrained"] for t in trials)
+    assert not all(t["success_unconstrained"] for t in trials)
+    for t in trials:
+        slip = t["slip_constrained"]
+        assert slip["max_translation_mm"] < 5.0 and slip["max_rotation_deg"] < 3.0
+
+
+def test_constraint_costs_time_and_the_trajectory_is_safe_but_near_critical(transport):
+    _, results = transport
+    for t in results["trials"]:
+        assert t["duration_constrained_s"] >= t["duration_unconstrained_s"]
+        expected = (
+            100
+            * (t["duration_constrained_s"] - t["duration_unconstrained_s"])
+            / t["duration_constrained_s"]
+        )
+        assert t["time_extension_pct"] == pytest.approx(expected)
+        sweep = t["speed_sweep"]
+        assert sweep[0]["factor"] == 1.0 and sweep[0]["success"]
+        # Critically fast: played a little faster, the object slips.
+        critical = t["critical_speed_factor"]
+        assert critical is not None and 1.0 < critical <= 1.4
+        slipped = sweep[-1]
+        assert slipped["factor"] == critical
+        assert (
+            slipped["max_translation_mm"] >= 5.0 or slipped["max_rotation_deg"] >= 3.0
+        )
+
+
+def test_summary_counts_what_the_trials_show(transport):
+    _, results = transport
+    summary, trials = results["summary"], results["trials"]
+    assert summary["success_constrained"] == sum(
+        t["success_constrained"] for t in trials
+    )
+    assert summary["success_unconstrained"] == sum(
+        t["success_unconstrained"] for t in trials
+    )
+    assert summary["critical_speed_factors"] == [
+        t["critical_speed_factor"] for t in trials
+    ]
+
+
+def test_report_table_and_plots_are_written(transport):
+    out, results = transport
+    report = (out / "report.md").read_text()
+    for t in results["trials"]:
+        row = f"| {t['index']} | {t['duration_unconstrained_s']:.3f} |"
+        assert row in report
+        assert f"{t['duration_constrained_s']:.3f}" in report
+    for name in ("sd_profiles.png", "grasp_margin.png", "durations.png"):
+        data = (out / name).read_bytes()
+        assert data.startswith(PNG_MAGIC) and len(data) > 10_000, name
+
+
+@pytest.mark.parametrize(
+    "argv,words",
+    [
+        (["--n", "0"], ["--n", "0"]),
+        (["--workers", "0"], ["--workers", "0"]),
+        (["--object", "stapler"], ["stapler"]),
+        (["--scenario", "stack_four_objects"], ["random_transport"]),
+    ],
+)
+def test_bad_input_exits_2_with_one_line(tmp_path, capsys, argv, words):
+    assert main(["experiment", "transport", *argv, "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1
+    assert err.startswith("rt-drake experiment transport: error:")
+    for word in words:
+        assert word in err
+
+
+def test_cycle_experiment_writes_the_breakdown(tmp_path):
+    # The one-object scenario keeps the test short; the default is the
+    # four-object stack of Table II.
+    argv = [
+        "experiment",
+        "cycle",
+        "--scenario",
+        "random_transport",
+        "--out",
+        str(tmp_path),
+    ]
+    assert main(argv) == 0
+    (entry,) = json.loads((tmp_path / "report.json").read_text())["objects"]
+    assert entry["name"] == "notebook" and entry["exec_s"]["move"] > 0
+    assert "| MOVE retime |" in (tmp_path / "report.md").read_text()
+    assert (tmp_path / "replay.html").stat().st_size > 100_000

@@ -1,0 +1,102 @@
+"""rt_drake.retiming.rows: grasp rows at rest, ray-shooting selection, check.
+
+The compiled kernels are compared with plain numpy on the scenario cup's
+exact polytope (834 rows) and random wrench coefficients.
+"""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from rt_drake.contact.cache import cached_wrench_polytope
+from rt_drake.retiming import rows, seidel
+from rt_drake.retiming.warm import warm_up
+
+
+@pytest.fixture(scope="module")
+def polytope(scenario):
+    return cached_wrench_polytope(scenario.cup)
+
+
+def _coefficients(seed: int, points: int = 12):
+    """Random a, b and a gravity-sized c (object of about 0.5 kg)."""
+    rng = np.random.default_rng(seed)
+    a = rng.normal(size=(points, 6)) * [0.05, 0.05, 0.02, 0.5, 0.5, 0.5]
+    b = rng.normal(size=(points, 6)) * [0.05, 0.05, 0.02, 0.5, 0.5, 0.5]
+    c = np.tile([0.0, 0.0, 0.0, 0.0, 0.0, 4.9], (points, 1))
+    c[:, 3:5] += rng.normal(size=(points, 2))
+    return a, b, c, rng.uniform(1.0, 30.0, points)
+
+
+def _first_hits(alpha, beta, slack, x_cap):
+    """The rows ray shooting must find at one point (plain numpy)."""
+    hits = set()
+    with np.errstate(divide="ignore", invalid="ignore"):
+        up = beta / slack
+        x_top = x_cap
+        if up.max() > 0:
+            hits.add(int(up.argmax()))
+            x_top = min(x_cap, 1.0 / up.max())
+        for h in rows.RAY_HEIGHTS:
+            ratio = alpha / (slack - h * x_top * beta)
+            for side in (ratio, -ratio):
+                if side.max() > 0:
+                    hits.add(int(side.argmax()))
+    return hits
+
+
+@settings(max_examples=15, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), stride=st.integers(1, 3))
+def test_rest_and_candidates_equal_numpy(polytope, seed, stride):
+    F, g = polytope.F, polytope.g
+    a, b, c, x_cap = _coefficients(seed)
+    rest, selected = rows.rest_and_candidates(
+        a, b, c, rows.normalised_rows(F, g), x_cap, stride
+    )
+    np.testing.assert_allclose(rest, (c @ F.T / g).max(axis=1), rtol=1e-12)
+    assert np.all(rest < 1.0)
+    expected = set()
+    for i in range(0, len(c), stride):
+        slack = 1.0 - F @ c[i] / g
+        expected |= _first_hits(F @ a[i] / g, F @ b[i] / g, slack, x_cap[i])
+    assert set(selected.tolist()) == expected
+
+
+def test_no_rows_selected_when_the_object_falls_at_rest(polytope):
+    a, b, c, x_cap = _coefficients(0)
+    c[5, 3:] = [50.0, 0.0, 0.0]  # 50 N sideways: beyond any friction
+    rest, selected = rows.rest_and_candidates(
+        a, b, c, rows.normalised_rows(polytope.F, polytope.g), x_cap
+    )
+    assert rest[5] > 1.0 and np.all(np.delete(rest, 5) < 1.0)
+    assert selected.size == 0
+
+
+@settings(max_examples=15, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), scale=st.floats(0.5, 3.0))
+def test_wrench_ratios_equal_numpy(polytope, seed, scale):
+    F, g = polytope.F, polytope.g
+    rng = np.random.default_rng(seed)
+    wrenches = scale * rng.normal(size=(40, 6)) * [0.2, 0.2, 0.1, 3.0, 3.0, 6.0]
+    ratio, violated = rows.wrench_ratios(wrenches, rows.normalised_rows(F, g), g, 1e-9)
+    products = wrenches @ F.T
+    np.testing.assert_allclose(ratio, (products / g).max(axis=1), rtol=1e-12)
+    expected = np.flatnonzero((products - g > 1e-9).any(axis=0))
+    np.testing.assert_array_equal(violated, expected)
+
+
+def test_warm_up_compiles_what_retime_uses(plant, scenario, polytope):
+    """After warm_up a retime with a grasp adds no compiled specialisation."""
+    from rt_drake.dynamics import HeldObject
+    from rt_drake.retiming import GraspConstraint, JointLimits, retime
+
+    kernels = [seidel.passes, seidel.project, rows._ratios, rows._rest_and_rays]
+    warm_up()
+    before = [len(kernel.signatures) for kernel in kernels]
+    held = HeldObject.from_scenario_object(scenario.object("notebook"))
+    grasp = GraspConstraint(held, polytope.F, polytope.g)
+    home = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
+    limits = JointLimits.from_plant(plant, scenario.robot, torque=True)
+    retime(plant, np.array([home, home + 0.3]), limits, grasp)
+    assert [len(kernel.signatures) for kernel in kernels] == before

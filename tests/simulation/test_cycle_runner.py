@@ -1,0 +1,93 @@
+"""``rt-drake run``: the simulated cycle carries the object, and reports it."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from rt_drake.cli import main
+from rt_drake.visualization import meshcat_command_types, meshcat_paths_in_html
+
+#: Whole-cycle simulations: tens of seconds (still run by CI).
+pytestmark = pytest.mark.slow
+
+#: rad; the PD + inverse-dynamics arm follows critically fast motions within this.
+TRACKING_TOLERANCE = 5e-3
+
+
+@pytest.fixture(scope="module")
+def constrained_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("run")
+    # 0.5 ms: the held object's numerical friction creep is ~0.8 mm per MOVE.
+    assert (
+        main(["run", "random_transport", "--out", str(out), "--time-step", "0.0005"])
+        == 0
+    )
+    return out, json.loads((out / "report.json").read_text())
+
+
+def test_report_has_every_field(constrained_run):
+    _, report = constrained_run
+    (entry,) = report["objects"]
+    assert entry["name"] == "notebook"
+    assert set(entry["plan_s"]) == {"approach", "reach", "move", "retime"}
+    assert set(entry["exec_s"]) == {"approach", "reach", "attach", "move", "detach"}
+    assert set(entry["slip"]) == {"max_translation_mm", "max_rotation_deg"}
+    assert set(entry["placement_error"]) == {"translation_mm", "rotation_deg"}
+    assert all(v > 0 for v in entry["plan_s"].values())
+    assert all(v > 0 for v in entry["exec_s"].values())
+    assert entry["total_s"] == pytest.approx(
+        sum(entry["plan_s"].values()) + sum(entry["exec_s"].values())
+    )
+    assert entry["exec_s"]["attach"] == pytest.approx(1.0, abs=0.01)
+
+
+def test_object_lands_on_its_goal_without_slipping(constrained_run):
+    _, report = constrained_run
+    (entry,) = report["objects"]
+    assert entry["placement_error"]["translation_mm"] < 10.0
+    assert entry["placement_error"]["rotation_deg"] < 5.0
+    assert entry["slip"]["max_translation_mm"] < 2.0
+    assert entry["slip"]["max_rotation_deg"] < 2.0
+
+
+def test_arm_tracks_the_commanded_motion(constrained_run):
+    _, report = constrained_run
+    assert report["max_tracking_error_rad"] < TRACKING_TOLERANCE
+
+
+def test_replay_holds_the_recording(constrained_run):
+    out, _ = constrained_run
+    html = (out / "replay.html").read_text()
+    assert meshcat_command_types(html).get("set_animation", 0) == 1
+    paths = meshcat_paths_in_html(html)
+    assert any("/notebook/" in p for p in paths) and any("/vs060/" in p for p in paths)
+    assert "| MOVE retime |" in (out / "report.md").read_text()
+
+
+def test_without_the_grasp_constraint_the_object_slips(tmp_path):
+    assert (
+        main(
+            ["run", "random_transport", "--out", str(tmp_path), "--no-grasp-constraint"]
+        )
+        == 0
+    )
+    (entry,) = json.loads((tmp_path / "report.json").read_text())["objects"]
+    assert entry["slip"]["max_translation_mm"] > 5.0
+
+
+@pytest.mark.parametrize(
+    "argv,words",
+    [
+        (["run", "random_transport", "--speed", "0"], ["--speed", "0"]),
+        (["run", "random_transport", "--time-step", "0.5"], ["--time-step", "0.5"]),
+        (["run", "nowhere.yaml"], ["nowhere.yaml", "does not exist"]),
+    ],
+)
+def test_bad_input_exits_2_with_one_line(tmp_path, capsys, argv, words):
+    assert main([*argv, "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and err.startswith("rt-drake run: error:")
+    for word in words:
+        assert word in err

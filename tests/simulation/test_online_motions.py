@@ -1,0 +1,45 @@
+"""Online motions: planning depends on the picking order, not on call history."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from rt_drake.retiming import TimeScaled
+from rt_drake.simulation import OnlineMotions
+
+
+@pytest.fixture(scope="module")
+def motions(scenario):
+    return OnlineMotions(scenario)
+
+
+def test_replanning_after_a_move_gives_the_same_motion(motions, scenario):
+    first = scenario.objects[0]
+    approach = motions.approach(motions.q_home, first)
+    reach = motions.reach(approach.q_end, first)
+    move = motions.move(reach.q_end, first, reach)
+    # The motion carries its path, retiming and grasp: nothing to read back.
+    assert move.planned is not None and move.retimed is not None
+    assert move.grasp is not None and move.grasp.held.mass > 0
+    np.testing.assert_array_equal(move.planned.path.waypoints[0], reach.q_end)
+    assert move.retimed.duration == pytest.approx(move.duration, rel=1e-12)
+    # A re-run of the cycle (new context) asks again: same scene, same path.
+    again = motions.approach(motions.q_home, first)
+    assert again.duration == pytest.approx(approach.duration, rel=1e-12)
+    np.testing.assert_allclose(again.q_end, approach.q_end, atol=1e-12)
+
+
+def test_time_scaling_scales_every_derivative(motions, scenario):
+    first = scenario.objects[0]
+    motion = motions.approach(motions.q_home, first)
+    factor = 1.4
+    fast = TimeScaled(motion.trajectory, factor)
+    assert fast.end_time() == pytest.approx(motion.trajectory.end_time() / factor)
+    t = 0.3 * fast.end_time()
+    for order in range(3):
+        np.testing.assert_allclose(
+            fast.EvalDerivative(t, order),
+            factor**order * motion.trajectory.EvalDerivative(factor * t, order),
+            atol=1e-12,
+        )
