@@ -34,6 +34,9 @@ class RobotConfig:
 
     Empty limit lists mean "take them from the model" (URDF ``velocity``,
     ``drake:acceleration`` and ``effort``). Units: rad, rad/s, rad/s^2, N m.
+    ``limit_torques``: retime under the torque limits too (inverse dynamics,
+    held object included), for an arm whose maker publishes torque limits
+    rather than acceleration limits (e.g. the UR5e).
     """
 
     model_instance: str = "vs060"
@@ -41,6 +44,7 @@ class RobotConfig:
     velocity_limits: list[float] = dataclasses.field(default_factory=list)
     acceleration_limits: list[float] = dataclasses.field(default_factory=list)
     torque_limits: list[float] = dataclasses.field(default_factory=list)
+    limit_torques: bool = False
 
 
 @dataclasses.dataclass

@@ -67,7 +67,8 @@ class JointLimits:
         Args:
             plant: Finalized plant holding only the path's joints.
             robot: Scenario robot section with optional overrides.
-            torque: Whether to include the torque (effort) limits.
+            torque: Whether to include the torque (effort) limits; they are
+                also included when ``robot.limit_torques`` is set.
         """
         velocity = plant.GetVelocityUpperLimits()
         acceleration = plant.GetAccelerationUpperLimits()
@@ -76,6 +77,7 @@ class JointLimits:
             velocity = robot.velocity_limits or velocity
             acceleration = robot.acceleration_limits or acceleration
             effort = robot.torque_limits or effort
+            torque = torque or robot.limit_torques
         return cls(velocity, acceleration, effort if torque else None)
 
 
