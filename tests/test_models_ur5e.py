@@ -15,16 +15,19 @@ import numpy as np
 import pytest
 from pydrake.multibody.plant import MultibodyPlant
 
-from rt_drake.cycle import run_cycle
-from rt_drake.dynamics import HeldObject
-from rt_drake.motions import PlannedMotions
-from rt_drake.planning import CyclePlanner
+from rt_drake import (
+    CyclePlanner,
+    GraspConstraint,
+    HeldObject,
+    JointLimits,
+    OnlineMotions,
+    check_trajectory,
+    load_scenario,
+    retime,
+    run_cycle,
+)
 from rt_drake.plant import CUP_FRAME, make_arm_plant, make_parser
 from rt_drake.resources import models_dir, scenarios_dir
-from rt_drake.retime import retime
-from rt_drake.retiming.check import check_trajectory
-from rt_drake.retiming.limits import GraspConstraint, JointLimits
-from rt_drake.scenario import load_scenario
 
 # UR's DH table, UR5e: (d, a, alpha) of joints 1..6 (m, rad); theta = q.
 DH = [
@@ -149,7 +152,7 @@ def test_scenario_plans_a_move_and_retimes_it_under_grasp_and_torques(scenario):
     planner = CyclePlanner(scenario, seed=0)
     approach = planner.plan_approach(planner.q_home, "notebook")
     reach = planner.plan_reach(approach.q_goal, "notebook")
-    move = planner.plan_move(reach.q_goal, "notebook")
+    move = planner.plan_move(reach.q_goal, "notebook", reach=reach)
 
     # The MOVE ends with the notebook on its goal, held at its grasp.
     plant = make_arm_plant(scenario)
@@ -186,7 +189,7 @@ def test_limit_torques_switches_the_torque_limits_on(scenario):
 @pytest.mark.slow
 def test_simulated_transport_keeps_the_notebook_on_the_cup(scenario):
     notebook_only = dataclasses.replace(scenario, objects=[scenario.object("notebook")])
-    result = run_cycle(notebook_only, PlannedMotions(notebook_only, seed=0))
+    result = run_cycle(notebook_only, OnlineMotions(notebook_only, seed=0))
     (record,) = result.records
     assert record.max_slip_translation < 2e-3
     assert record.max_slip_rotation < np.radians(2.0)
