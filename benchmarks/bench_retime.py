@@ -66,7 +66,9 @@ def move_paths(count: int) -> list[GeometricPath]:
     """
     paths = []
     for swing in np.linspace(0.6, 1.8, count):
-        lift = HOME + [0.0, -0.25, -0.3, 0.0, 0.55, 0.0]
+        # Joint 5 lifts by 0.45 rad: with 0.55 the spline overshoots joint 5's
+        # limit (95 deg) on the two widest swings, which retime now refuses.
+        lift = HOME + [0.0, -0.25, -0.3, 0.0, 0.45, 0.0]
         waypoints = [
             HOME,
             lift,

@@ -10,7 +10,8 @@ scenario -> plant -> (IK, planner) -> path -> (dynamics + grasp constraint)
 - grasp stability (numpy, scipy, cdd; no Drake): ``CupParameters``,
   ``WrenchPolytope``, ``contact_wrench_polytope``, ``cached_wrench_polytope``,
   ``is_realizable``, ``is_realizable_lp``;
-- dynamics: ``HeldObject``, ``object_wrench``, ``make_arm_plant``;
+- dynamics: ``HeldObject``, ``CupFrame`` (the cup frame of a plant),
+  ``object_wrench``, ``make_arm_plant``;
 - retiming: ``retime``, ``RetimeResult``, ``JointLimits``,
   ``GraspConstraint``, ``check_trajectory``, ``TrajectoryCheck``,
   ``save_trajectory``, ``load_trajectory``, ``sample_trajectory``;
@@ -38,6 +39,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
         is_realizable,
         is_realizable_lp,
     )
+    from rt_drake.cup_frame import CupFrame
     from rt_drake.dynamics import HeldObject, object_wrench
     from rt_drake.errors import InputError, RtDrakeError, ScenarioError
     from rt_drake.phase import Phase
@@ -73,6 +75,7 @@ _LAZY: dict[str, str] = {
     "contact_wrench_polytope": "rt_drake.contact",
     "is_realizable": "rt_drake.contact",
     "is_realizable_lp": "rt_drake.contact",
+    "CupFrame": "rt_drake.cup_frame",
     "HeldObject": "rt_drake.dynamics",
     "object_wrench": "rt_drake.dynamics",
     "InputError": "rt_drake.errors",
@@ -105,6 +108,7 @@ _LAZY: dict[str, str] = {
 
 __all__ = [
     "__version__",
+    "CupFrame",
     "CupParameters",
     "CyclePlanner",
     "GeometricPath",

@@ -3,8 +3,9 @@
 Frames and symbols (monogram notation):
 
 - W: world frame (plant gravity ``g_W``, e.g. (0, 0, -9.81) m/s^2).
-- C: the cup frame :data:`rt_drake.plant.CUP_FRAME`, origin Co at the centre
-  of the contact face, +z out of the cup into the object.
+- C: the cup frame (:class:`rt_drake.cup_frame.CupFrame`; by default the
+  frame ``suction_cup``), origin Co at the centre of the contact face, +z out
+  of the cup into the object.
 - S: the held object, rigidly attached to C; Scm its centre of mass at
   ``p_CoScm_C`` (m), ``I_Scm_C`` its rotational inertia about Scm expressed in
   C (kg m^2), ``m`` its mass (kg).
@@ -32,8 +33,11 @@ with ``c`` the gravity term ``[p x (-m g_C); -m g_C]``, ``a`` the inertial
 term of ``J q'`` and ``b`` that of ``J q'' + A_bias(q, q')`` plus the
 gyroscopic term ``omega1 x (I omega1)`` with ``omega1 = J_w q'``. One
 Jacobian and one bias per grid point (and the cup's rotation, unless a base
-joint's axis is along gravity: :func:`_vertical_base_joint`); the rest is
-numpy.
+joint of the cup's chain has its axis along gravity:
+:func:`rt_drake.cup_frame.vertical_base_joint`); the rest is numpy. Every
+function takes the cup frame as ``cup`` (default: the plant's
+``suction_cup``; build a :class:`~rt_drake.cup_frame.CupFrame` once and pass
+it when calling often).
 """
 
 from __future__ import annotations
@@ -44,11 +48,12 @@ from typing import NamedTuple
 import numpy as np
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
-from pydrake.multibody.tree import BodyIndex, JacobianWrtVariable, MultibodyForces
+from pydrake.multibody.tree import JacobianWrtVariable, MultibodyForces
 from pydrake.systems.framework import Context
 
+from rt_drake.cup_frame import CupFrame, vertical_base_joint
 from rt_drake.errors import InputError
-from rt_drake.plant import CUP_FRAME, OBJECT_BODY, make_parser
+from rt_drake.plant import OBJECT_BODY, make_parser
 from rt_drake.scenario import ObjectConfig
 
 
@@ -126,20 +131,22 @@ def path_wrench_coefficients(
     dq: np.ndarray,
     ddq: np.ndarray,
     context: Context | None = None,
+    cup: CupFrame | None = None,
 ) -> PathCoefficients:
     """Return a, b, c (each (N, 6)) with ``w = a u + b x + c`` on the object.
 
     Args:
         plant: Finalized plant whose positions are the path's joints (objects
-            left out or welded) and which has the frame ``suction_cup``.
+            left out or welded).
         held: The object's inertia in C.
         q: (N, n) path q(s) at the grid points, rad.
         dq: (N, n) q'(s), rad per unit s.
         ddq: (N, n) q''(s), rad per unit s^2.
         context: Scratch context of ``plant`` (made if None).
+        cup: The cup frame C (default: ``suction_cup``).
     """
     q, dq, ddq = _as_rows(q, dq, ddq)
-    kin = _path_kinematics(plant, held.p_CoScm_C, q, dq, ddq, context)
+    kin = _path_kinematics(plant, held.p_CoScm_C, q, dq, ddq, context, cup)
     return _wrench_coefficients(held, kin, dq, ddq)
 
 
@@ -150,6 +157,7 @@ def path_torque_coefficients(
     ddq: np.ndarray,
     held: HeldObject | None = None,
     context: Context | None = None,
+    cup: CupFrame | None = None,
 ) -> PathCoefficients:
     """Return a, b, c (each (N, n)) with joint torques ``tau = a u + b x + c``.
 
@@ -159,7 +167,7 @@ def path_torque_coefficients(
     """
     q, dq, ddq = _as_rows(q, dq, ddq)
     p = np.zeros(3) if held is None else held.p_CoScm_C
-    kin = _path_kinematics(plant, p, q, dq, ddq, context, dynamics=True)
+    kin = _path_kinematics(plant, p, q, dq, ddq, context, cup, dynamics=True)
     assert kin.M is not None and kin.Cv is not None and kin.tau_g is not None
     a = _matvec(kin.M, dq)
     b = _matvec(kin.M, ddq) + kin.Cv
@@ -180,6 +188,7 @@ def object_wrench(
     v: np.ndarray,
     vdot: np.ndarray,
     context: Context | None = None,
+    cup: CupFrame | None = None,
 ) -> np.ndarray:
     """Return the wrenches (N, 6) the cup exerts on the object at N states.
 
@@ -187,7 +196,7 @@ def object_wrench(
     and ``omega = J_w v`` for Scm, then Newton-Euler (module docstring).
     """
     q, v, vdot = _as_rows(q, v, vdot)
-    kin = _path_kinematics(plant, held.p_CoScm_C, q, v, vdot, context)
+    kin = _path_kinematics(plant, held.p_CoScm_C, q, v, vdot, context, cup)
     alpha, acc = np.split(_matvec(kin.J, vdot) + kin.bias, 2, axis=1)
     omega = _matvec(kin.J[:, :3], v)
     f = held.mass * (acc - kin.g_C)
@@ -202,6 +211,7 @@ def joint_torques(
     vdot: np.ndarray,
     held: HeldObject | None = None,
     context: Context | None = None,
+    cup: CupFrame | None = None,
 ) -> np.ndarray:
     """Return joint torques (N, n), N m, at N states by Drake inverse dynamics.
 
@@ -211,9 +221,10 @@ def joint_torques(
     """
     q, v, vdot = _as_rows(q, v, vdot)
     context = context or plant.CreateDefaultContext()
-    w = None if held is None else object_wrench(plant, held, q, v, vdot, context)
+    cup = cup or CupFrame.of(plant)
+    w = None if held is None else object_wrench(plant, held, q, v, vdot, context, cup)
     forces = MultibodyForces(plant)
-    frame, world = plant.GetFrameByName(CUP_FRAME), plant.world_frame()
+    frame, world = cup.frame, plant.world_frame()
     tau = np.empty_like(q)
     for i in range(len(q)):
         plant.SetPositionsAndVelocities(context, np.concatenate([q[i], v[i]]))
@@ -243,6 +254,7 @@ def _path_kinematics(
     dq: np.ndarray,
     ddq: np.ndarray,
     context: Context | None,
+    cup: CupFrame | None,
     dynamics: bool = False,
 ) -> _Kinematics:
     """Evaluate Drake at each (q, dq): the only per-point Python loop."""
@@ -255,14 +267,15 @@ def _path_kinematics(
     if not (q.shape == dq.shape == ddq.shape):
         raise InputError(f"{q.shape=}, {dq.shape=}, {ddq.shape=} must be equal")
     context = context or plant.CreateDefaultContext()
-    frame = plant.GetFrameByName(CUP_FRAME)
+    cup = cup or CupFrame.of(plant)
+    frame = cup.frame
     world = plant.world_frame()
     kV = JacobianWrtVariable.kV
     p = np.asarray(p_CoScm_C, dtype=float)
     set_state = plant.SetPositionsAndVelocities
     jacobian = plant.CalcJacobianSpatialVelocity
     bias = plant.CalcBiasSpatialAcceleration
-    base = _vertical_base_joint(plant, context, frame.body().index())
+    base = vertical_base_joint(plant, cup)
     rotation = frame.CalcRotationMatrixInWorld if base is None else None
     Js, biases, rotations, Ms, Cvs, gravities = [], [], [], [], [], []
     for state in np.hstack([q, dq]):
@@ -285,42 +298,6 @@ def _path_kinematics(
         index, g_along_axis = base
         g_C = g_along_axis * J[:, :3, index]
     return _Kinematics(J, A_bias, g_C, M, Cv, tau_g)
-
-
-def _vertical_base_joint(
-    plant: MultibodyPlant, context: Context, cup_body: BodyIndex
-) -> tuple[int, float] | None:
-    """A joint of the cup's chain, welded to the world, its axis along gravity.
-
-    A revolute joint whose parent body is welded to the world has its axis
-    ``k_W`` fixed in W, and the angular part of its Jacobian column for the
-    cup, expressed in C, is ``R_CW k_W``, provided the joint moves the cup
-    body (it lies on the cup's kinematic chain; a joint of another arm or of
-    a turntable in the same plant has a zero column for the cup). With
-    ``g_W = (g_W . k_W) k_W``, gravity in C is ``g_C = (g_W . k_W) J_w[:, k]``,
-    which saves a rotation query per grid point (most arms have such a base
-    joint). Found at every call (tens of microseconds), with the joint frames'
-    poses in ``context``.
-
-    Returns:
-        (velocity index of the joint, ``g_W . k_W`` in m/s^2), or None.
-    """
-    gx, gy, gz = plant.gravity_field().gravity_vector().tolist()
-    scale = 1e-12 * (1.0 + abs(gx) + abs(gy) + abs(gz))
-    fixed = {body.index() for body in plant.GetBodiesWeldedTo(plant.world_body())}
-    for index in plant.GetJointIndices():
-        joint = plant.get_joint(index)
-        if joint.type_name() != "revolute" or joint.parent_body().index() not in fixed:
-            continue
-        R_WF = joint.frame_on_parent().CalcRotationMatrixInWorld(context)
-        kx, ky, kz = R_WF.multiply(joint.revolute_axis()).tolist()
-        # k_W x g_W = 0: the axis is along gravity (scalar arithmetic: cheap).
-        cross = (ky * gz - kz * gy, kz * gx - kx * gz, kx * gy - ky * gx)
-        if max(abs(v) for v in cross) > scale:
-            continue
-        if cup_body in plant.GetBodiesKinematicallyAffectedBy([index]):
-            return joint.velocity_start(), kx * gx + ky * gy + kz * gz
-    return None
 
 
 def _wrench_coefficients(

@@ -229,14 +229,15 @@ def test_gravity_term_is_the_cup_rotation_of_g(plant, held):
     in C from its Jacobian column; with a tilted gravity no joint fits and
     they take the cup's rotation. Both must equal the reference.
     """
-    from rt_drake import dynamics
+    from rt_drake.cup_frame import CupFrame, vertical_base_joint
 
     spline = _path()
     s = np.linspace(0.0, 1.0, 25)
     q = spline(s)
     context = plant.CreateDefaultContext()
     frame = plant.GetFrameByName(CUP_FRAME)
-    assert dynamics._vertical_base_joint(plant, context, frame.body().index()) == (
+    cup = CupFrame.of(plant)
+    assert vertical_base_joint(plant, cup) == (
         0,
         pytest.approx(-9.81),
     )
@@ -253,8 +254,6 @@ def test_gravity_term_is_the_cup_rotation_of_g(plant, held):
                 g_C = R_WC.T @ g_W
                 expected = -held.mass * np.hstack([np.cross(p, g_C), g_C])
                 np.testing.assert_allclose(ci, expected, rtol=1e-12, atol=1e-12)
-        assert (
-            dynamics._vertical_base_joint(plant, context, frame.body().index()) is None
-        )
+        assert vertical_base_joint(plant, cup) is None
     finally:
         gravity.set_gravity_vector(g_original)

@@ -76,6 +76,35 @@ class XBound(LinearConstraint):
         return None, None, None, None, None, None, self.x_bound
 
 
+class StageRows(LinearConstraint):
+    """Rows ``A_i u + B_i x + C_i <= 0`` of stage i's own (u_i, x_i), i < N.
+
+    For constraints at points inside segment i (the retimer's cuts between
+    grid points, :mod:`.between`), expressed in the stage's variables; a row
+    with ``A = B = 0, C = -1`` is inactive. Toppra sees them as collocation
+    constraints ``I (a_i u + b_i x + c_i) <= 0`` (the last grid point has
+    none).
+
+    Args:
+        A, B, C: (N, k) rows of the N stages.
+    """
+
+    def __init__(self, A: np.ndarray, B: np.ndarray, C: np.ndarray) -> None:
+        super().__init__()
+        self.discretization_type = DiscretizationType.Collocation
+        self.identical = True
+        self.rows = tuple(seidel.kernel_array(v) for v in (A, B, C))
+
+    def compute_constraint_params(self, path, gridpoints, *args, **kwargs):  # noqa: D102
+        width = self.rows[0].shape[1]
+        inactive = [np.zeros((1, width)), np.zeros((1, width)), -np.ones((1, width))]
+        a, b, c = (
+            np.vstack([rows, last])
+            for rows, last in zip(self.rows, inactive, strict=True)
+        )
+        return a, b, c, np.eye(width), np.zeros(width), None, None
+
+
 class Reachability(NamedTuple):
     """Result of the passes.
 
@@ -142,11 +171,12 @@ def stage_rows(
         lo, hi: (N+1, 2) boxes on (u, x): toppra's +-1e8 and the x bounds.
     """
     stages = len(ds)
-    width = 2 + sum(
-        2 * len(c.coefficients[4])
-        for c in constraints
-        if isinstance(c, AffineConstraint)
-    )
+    width = 2
+    for c in constraints:
+        if isinstance(c, AffineConstraint):
+            width += 2 * len(c.coefficients[4])
+        elif isinstance(c, StageRows):
+            width += c.rows[0].shape[1]
     A = np.zeros((stages + 1, width))
     B = np.zeros((stages + 1, width))
     C = np.full((stages + 1, width), -1.0)
@@ -159,6 +189,11 @@ def stage_rows(
             np.minimum(hi[:, 1], constraint.x_bound[:, 1], out=hi[:, 1])
         elif isinstance(constraint, AffineConstraint):
             column = seidel.project(*constraint.coefficients, ds, A, B, C, column)
+        elif isinstance(constraint, StageRows):
+            count = constraint.rows[0].shape[1]
+            for target, rows in zip((A, B, C), constraint.rows, strict=True):
+                target[:stages, column : column + count] = rows
+            column += count
         else:
             raise TypeError(f"unsupported constraint {type(constraint).__name__}")
     return A, B, C, lo, hi
@@ -167,6 +202,7 @@ def stage_rows(
 __all__ = [
     "AffineConstraint",
     "Reachability",
+    "StageRows",
     "XBound",
     "reachability",
     "stage_rows",

@@ -84,7 +84,7 @@ def wrench_ratios(
     normals: np.ndarray,
     g: np.ndarray,
     tol: float,
-) -> tuple[np.ndarray, np.ndarray]:
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Evaluate every grasp row at every wrench.
 
     Args:
@@ -96,9 +96,11 @@ def wrench_ratios(
     Returns:
         ratio: (M,) ``max_k n_k w`` (<= 1: the wrench is in the polytope).
         violated: Sorted rows with ``g_k (n_k w - 1) > tol`` at some wrench.
+        row_max: (R,) ``max_w n_k w`` of every row over the wrenches.
     """
     ratio = np.empty(len(wrenches))
     violated = np.zeros(len(g), dtype=np.bool_)
+    row_max = np.full(len(g), -np.inf)
     _ratios(
         kernel_array(wrenches),
         normals,
@@ -106,8 +108,9 @@ def wrench_ratios(
         float(tol),
         ratio,
         violated,
+        row_max,
     )
-    return ratio, np.flatnonzero(violated)
+    return ratio, np.flatnonzero(violated), row_max
 
 
 @njit(cache=True)
@@ -125,7 +128,7 @@ def _products(n, w0, w1, w2, w3, w4, w5, out):
 
 
 @njit(cache=True)
-def _ratios(wrenches, n, g, tol, ratio, violated):
+def _ratios(wrenches, n, g, tol, ratio, violated, row_max):
     values = np.empty(n.shape[1])
     g_min = g.min()
     for i in range(wrenches.shape[0]):
@@ -135,6 +138,8 @@ def _ratios(wrenches, n, g, tol, ratio, violated):
         for k in range(values.shape[0]):
             if values[k] > best:
                 best = values[k]
+            if values[k] > row_max[k]:
+                row_max[k] = values[k]
         ratio[i] = best
         if g_min * (best - 1.0) <= 0.0:
             continue  # no row exceeds its bound at all

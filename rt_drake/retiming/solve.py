@@ -39,25 +39,45 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import Context
 from toppra.constraint import LinearConstraint
 
-from rt_drake.dynamics import (
-    PathCoefficients,
-    path_torque_coefficients,
-    path_wrench_coefficients,
-)
+from rt_drake.cup_frame import CupFrame
+from rt_drake.dynamics import PathCoefficients
 from rt_drake.retiming import rows as R
 from rt_drake.retiming.at_rest import check_grasp_at_rest, check_torque_at_rest
+from rt_drake.retiming.between import (
+    MIDDLE,
+    Segments,
+    grasp_midpoint_rows,
+    interior_rows,
+    joint_cuts,
+    refinement_points,
+)
 from rt_drake.retiming.errors import (
     PathNotControllableError,
     RetimeInputError,
     RetimeStatus,
 )
+from rt_drake.retiming.grid import initial_grid
 from rt_drake.retiming.limits import GraspConstraint, JointLimits
-from rt_drake.retiming.passes import AffineConstraint, XBound, reachability
+from rt_drake.retiming.passes import (
+    AffineConstraint,
+    StageRows,
+    XBound,
+    reachability,
+)
 from rt_drake.retiming.path import path_spline, toppra_path
+from rt_drake.retiming.samples import PathSamples, sample_path
+from rt_drake.retiming.samples import with_points as merge_samples
 from rt_drake.retiming.timed_path import TimedPath
 
 #: Grasp rows violated by more than this (N or N m) are added and re-solved.
 ROW_TOLERANCE = 1e-9
+#: Relative excess over a limit between grid points that makes the retimer
+#: add a grid point there (the contract, checked at 1 kHz, is 1e-3).
+BETWEEN_TOLERANCE = 5e-4
+#: Rounds of grid refinement at most (each shrinks an overshoot about 4x).
+MAX_REFINEMENTS = 8
+#: Rounds of cuts for the joint limits inside segments, at most.
+MAX_CUT_ROUNDS = 4
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -79,6 +99,8 @@ class RetimeResult:
         grasp_rows: Rows of the grasp polytope the stage LPs used (of
             ``len(grasp.g)``).
         repairs: Times the exactness check added rows and solved again.
+        refinements: Times points were added to the grid where the torque or
+            grasp was exceeded between grid points.
     """
 
     trajectory: TimedPath
@@ -91,6 +113,7 @@ class RetimeResult:
     status: RetimeStatus
     grasp_rows: int
     repairs: int
+    refinements: int = 0
 
 
 def retime(
@@ -105,6 +128,7 @@ def retime(
     start_time: float = 0.0,
     context: Context | None = None,
     engine: str = "compiled",
+    cup: CupFrame | None = None,
 ) -> RetimeResult:
     """Retime ``path`` time-optimally under ``limits`` and ``grasp``.
 
@@ -115,15 +139,21 @@ def retime(
             waypoints (chord-length knots).
         limits: Joint limits (torques limited if ``limits.torque``).
         grasp: Held object and grasp polytope; None: no object.
-        gridpoints: Number of uniform grid points in s (>= 2), or the grid.
+        gridpoints: Number of uniform grid points in s (>= 2), to which the
+            path's knots are added and, where the limits would be exceeded
+            between grid points, more points (:mod:`.grid`); or an explicit
+            grid, refined likewise.
         sd_start: Path velocity ds/dt at the start (1/s; 0 = rest).
         sd_end: Path velocity ds/dt at the end (1/s; 0 = rest).
         start_time: Time (s) at which the trajectory starts.
         context: Scratch context of ``plant``.
         engine: "compiled" or "toppra" (see :mod:`rt_drake.retiming.passes`).
+        cup: The cup frame C (default: the plant's ``suction_cup``); build it
+            once with ``CupFrame.of(plant, ...)`` when retiming often.
 
     Raises:
-        RetimeInputError: malformed path, limits or grid.
+        RetimeInputError: malformed path, limits or grid, or a path that
+            leaves the joint position limits.
         GraspUnstableAtRestError: gravity alone breaks the grasp somewhere.
         TorqueLimitAtRestError: holding the arm still exceeds a torque limit.
         PathNotControllableError: no admissible speed reaches the end.
@@ -134,40 +164,56 @@ def retime(
         raise RetimeInputError(
             f"path has {n} joints but {plant.num_positions()=} and {limits.num_joints=}"
         )
-    s = _grid(gridpoints)
-    ds = np.diff(s)
-    q, dq, ddq = spline(s), spline(s, 1), spline(s, 2)
     context = context or plant.CreateDefaultContext()
-    with np.errstate(divide="ignore"):
-        x_cap = np.min(limits.velocity**2 / dq**2, axis=1)
-    box = np.vstack([np.eye(n), -np.eye(n)])
-    fixed = [
-        XBound(np.column_stack([np.zeros_like(s), x_cap])),
-        AffineConstraint(
-            dq, ddq, np.zeros_like(dq), box, np.tile(limits.acceleration, 2)
-        ),
-    ]
-    tau = terms = None
-    if limits.torque is not None:
-        held = grasp.held if grasp is not None else None
-        tau = path_torque_coefficients(plant, q, dq, ddq, held, context)
-        check_torque_at_rest(s, tau.c, limits.torque)
-        fixed.append(AffineConstraint(*tau, box, np.tile(limits.torque, 2)))
-    if grasp is not None:
-        wrench = path_wrench_coefficients(plant, grasp.held, q, dq, ddq, context)
-        terms = _GraspTerms(grasp, wrench, R.normalised_rows(grasp.F, grasp.g))
-        rest, rows = R.rest_and_candidates(*wrench, terms.normals, x_cap)
-        check_grasp_at_rest(s, rest, wrench.c, grasp)
-    else:
-        rows = np.zeros(0, dtype=int)
+    cup = cup or CupFrame.of(plant)
+    knots = spline.x
+    held = grasp.held if grasp is not None else None
+    torque = limits.torque is not None
+
+    def sample(s: np.ndarray) -> PathSamples:
+        return sample_path(
+            plant, spline, s, limits.velocity, torque, held, context, cup
+        )
+
+    samples = sample(initial_grid(gridpoints, knots))
+    check_position_limits(plant, samples)
+    normals = None if grasp is None else R.normalised_rows(grasp.F, grasp.g)
+    rows = _checked_rows(samples, limits, grasp, normals)
     # The compiled passes do not need the path; toppra's TOPPRA class does.
     toppra_spline = toppra_path(path) if engine == "toppra" else None
-    profile = _solve_exact(
-        fixed, terms, rows, toppra_spline, s, sd_start, sd_end, engine
-    )
+    refinements = cut_rounds = 0
+    cuts: StageRows | None = None
+    segments = Segments(samples, knots)
+    joints = _joint_constraints(samples, segments, limits)
+    while True:
+        fixed = joints if cuts is None else [*joints, cuts]
+        profile = _solve_exact(
+            samples, segments, fixed, grasp, normals, rows, toppra_spline, sd_start,
+            sd_end, engine,
+        )  # fmt: skip
+        x, u = profile.x, profile.u
+        points = refinement_points(
+            segments, samples, x, u, limits, normals, profile.row_max,
+            BETWEEN_TOLERANCE,
+        )  # fmt: skip
+        if points.size and refinements < MAX_REFINEMENTS:
+            added = sample(points)
+            rows = np.union1d(rows, _checked_rows(added, limits, grasp, normals))
+            samples = merge_samples(samples, added)
+            segments = Segments(samples, knots)
+            joints = _joint_constraints(samples, segments, limits)
+            refinements += 1
+            cuts = None  # made for the old segments
+            continue
+        new_cuts = joint_cuts(segments, x, u, limits, BETWEEN_TOLERANCE)
+        if new_cuts is None or cut_rounds == MAX_CUT_ROUNDS:
+            break
+        cuts = new_cuts if cuts is None else _stacked(cuts, new_cuts)
+        cut_rounds += 1
+    s = samples.s
     trajectory = TimedPath(spline, s, profile.x, start_time)
-    u = (profile.x[1:] - profile.x[:-1]) / (2.0 * ds)
-    margins = _margins(limits, dq, ddq, profile.x, u, tau)
+    u = (profile.x[1:] - profile.x[:-1]) / (2.0 * np.diff(s))
+    margins = _margins(limits, samples.dq, samples.ddq, profile.x, u, samples.torque)
     if profile.ratio is not None:
         margins["grasp"] = 1.0 - profile.ratio
     return RetimeResult(
@@ -181,15 +227,85 @@ def retime(
         status=RetimeStatus.OK,
         grasp_rows=len(profile.rows),
         repairs=profile.repairs,
+        refinements=refinements,
     )
 
 
-class _GraspTerms(NamedTuple):
-    """The grasp constraint along the path: ``F (a u + b x + c) <= g``."""
+def check_position_limits(plant: MultibodyPlant, samples: PathSamples) -> None:
+    """Raise if the path leaves the plant's joint position limits anywhere.
 
-    grasp: GraspConstraint
-    wrench: PathCoefficients  # a, b, c at the grid points
-    normals: np.ndarray  # (6, R) F / g, transposed
+    Exact for the cubic path: at the grid points, and at the extremes of
+    each joint inside each segment, the roots in (0, 1) of the quadratic
+    ``d q_j(s_i + theta ds_i) / d theta`` (every segment lies inside one
+    cubic piece, :mod:`.grid`). A tolerance of 1e-9 rad absorbs rounding.
+
+    Raises:
+        RetimeInputError: naming the joint, the value, the limit and s.
+    """
+    s, q, dq, ddq = samples.s, samples.q, samples.dq, samples.ddq
+    ds = np.diff(s)[:, None]
+    # dq/dtheta = c0 + c1 theta + c2 theta^2 within segment i.
+    c0, c1 = dq[:-1] * ds, ddq[:-1] * ds**2
+    c2 = 0.5 * (ddq[1:] - ddq[:-1]) * ds**2
+    values, where = [q], [np.broadcast_to(s[:, None], q.shape)]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        root = np.sqrt(np.maximum(c1**2 - 4.0 * c2 * c0, 0.0))
+        flat = np.abs(c2) <= 1e-12 * (np.abs(c1) + 1e-300)
+        roots = (
+            np.where(flat, -c0 / c1, (-c1 + root) / (2.0 * c2)),
+            np.where(flat, -1.0, (-c1 - root) / (2.0 * c2)),
+        )
+    for theta in roots:
+        theta = np.where((theta > 0.0) & (theta < 1.0), theta, 0.0)
+        values.append(q[:-1] + theta * (c0 + theta * (c1 / 2.0 + theta * c2 / 3.0)))
+        where.append(s[:-1, None] + theta * ds)
+    value, at = np.vstack(values), np.vstack(where)
+    lower = plant.GetPositionLowerLimits()
+    upper = plant.GetPositionUpperLimits()
+    below, above = value < lower - 1e-9, value > upper + 1e-9
+    if not (below.any() or above.any()):
+        return
+    i, j = (int(index[0]) for index in np.nonzero(below | above))
+    limit = lower[j] if below[i, j] else upper[j]
+    raise RetimeInputError(
+        f"path leaves the position limits of joint {j + 1} "
+        f"({_joint_name(plant, j)}) at s = {at[i, j]:.3f}: {value[i, j]:.4f} rad, "
+        f"limit {limit:.4f} rad",
+        s=float(at[i, j]),
+    )
+
+
+def _joint_name(plant: MultibodyPlant, position_index: int) -> str:
+    """The name of the joint owning position ``position_index``."""
+    for index in plant.GetJointIndices():
+        joint = plant.get_joint(index)
+        start = joint.position_start()
+        if start <= position_index < start + joint.num_positions():
+            return joint.name()
+    return f"position {position_index}"
+
+
+def _stacked(first: StageRows, second: StageRows) -> StageRows:
+    """Both sets of cuts (side by side)."""
+    return StageRows(
+        *(np.hstack([a, b]) for a, b in zip(first.rows, second.rows, strict=True))
+    )
+
+
+def _checked_rows(
+    samples: PathSamples,
+    limits: JointLimits,
+    grasp: GraspConstraint | None,
+    normals: np.ndarray | None,
+) -> np.ndarray:
+    """Check holding still at the samples; return the grasp rows they select."""
+    if samples.torque is not None and limits.torque is not None:
+        check_torque_at_rest(samples.s, samples.torque.c, limits.torque)
+    if grasp is None or samples.wrench is None or normals is None:
+        return np.zeros(0, dtype=int)
+    rest, rows = R.rest_and_candidates(*samples.wrench, normals, samples.x_cap)
+    check_grasp_at_rest(samples.s, rest, samples.wrench.c, grasp)
+    return rows
 
 
 class _Profile(NamedTuple):
@@ -202,6 +318,8 @@ class _Profile(NamedTuple):
         ratio: With a grasp, ``max_k F_k w / g_k`` (N+1,) at each grid point
             (the acceleration of the segment that starts there; the last
             point takes the last one); else None.
+        row_max: With a grasp, ``max_i F_k w_i / g_k`` (R,) of every row over
+            the wrenches enforced; else None.
     """
 
     x: np.ndarray
@@ -209,29 +327,62 @@ class _Profile(NamedTuple):
     rows: np.ndarray
     repairs: int
     ratio: np.ndarray | None
+    row_max: np.ndarray | None
+
+
+def _joint_constraints(
+    samples: PathSamples, segments: Segments, limits: JointLimits
+) -> list[LinearConstraint]:
+    """The joint limits: at the grid points, and inside segments.
+
+    Velocity and acceleration at the grid points, torques, and the rows of
+    :func:`~.between.interior_rows` inside the segments.
+    """
+    s, dq, ddq = samples.s, samples.dq, samples.ddq
+    n = dq.shape[1]
+    box = np.vstack([np.eye(n), -np.eye(n)])
+    constraints: list[LinearConstraint] = [
+        XBound(np.column_stack([np.zeros_like(s), samples.x_cap])),
+        AffineConstraint(
+            dq, ddq, np.zeros_like(dq), box, np.tile(limits.acceleration, 2)
+        ),
+        interior_rows(segments, limits),
+    ]
+    if samples.torque is not None and limits.torque is not None:
+        constraints.append(
+            AffineConstraint(*samples.torque, box, np.tile(limits.torque, 2))
+        )
+    return constraints
 
 
 def _solve_exact(
+    samples: PathSamples,
+    segments: Segments,
     fixed: list[LinearConstraint],
-    terms: _GraspTerms | None,
+    grasp: GraspConstraint | None,
+    normals: np.ndarray | None,
     rows: np.ndarray,
     spline: toppra.SplineInterpolator | None,
-    s: np.ndarray,
     sd_start: float,
     sd_end: float,
     engine: str,
 ) -> _Profile:
-    """TOPP-RA with the selected grasp rows, adding missed rows until none."""
+    """TOPP-RA with the selected grasp rows, adding missed rows until none.
+
+    ``fixed``: every other constraint (:func:`_joint_constraints`, cuts).
+    """
+    s = samples.s
     repairs = 0
     while True:
         constraints = list(fixed)
-        if terms is not None:
-            F, g = terms.grasp.F, terms.grasp.g
-            constraints.append(AffineConstraint(*terms.wrench, F[rows], g[rows]))
+        if grasp is not None and samples.wrench is not None:
+            F, g = grasp.F[rows], grasp.g[rows]
+            constraints.append(AffineConstraint(*samples.wrench, F, g))
+            constraints.append(grasp_midpoint_rows(segments, samples.wrench, F, g))
         solution = reachability(constraints, spline, s, sd_start, sd_end, engine)
         if solution.x is None or solution.u is None:
-            if terms is not None and len(rows) < len(terms.grasp.g):
-                rows = np.arange(len(terms.grasp.g))  # confirm with every row
+            if grasp is not None and len(rows) < len(grasp.g):
+                rows = np.arange(len(grasp.g))  # confirm with every row
                 repairs += 1
                 continue
             where = float(s[solution.failed_stage or 0])
@@ -241,23 +392,40 @@ def _solve_exact(
                 "limits",
                 s=where,
             )
-        if terms is None:
-            return _Profile(solution.x, solution.u, rows, repairs, None)
-        ratio, violated = R.wrench_ratios(
-            _enforced_wrenches(terms.wrench, solution.x, solution.u, np.diff(s)),
-            terms.normals,
-            terms.grasp.g,
+        if grasp is None or samples.wrench is None or normals is None:
+            return _Profile(solution.x, solution.u, rows, repairs, None, None)
+        enforced = _enforced_wrenches(samples.wrench, solution.x, solution.u, s)
+        middle = _midpoint_wrenches(segments, samples.wrench, solution.x, solution.u)
+        ratio, violated, row_max = R.wrench_ratios(
+            np.vstack([enforced, middle]),
+            normals,
+            grasp.g,
             ROW_TOLERANCE,
         )
         missed = np.setdiff1d(violated, rows) if violated.size else violated
         if not missed.size:
-            return _Profile(solution.x, solution.u, rows, repairs, ratio[: len(s)])
+            return _Profile(
+                solution.x, solution.u, rows, repairs, ratio[: len(s)], row_max
+            )
         rows = np.union1d(rows, missed)
         repairs += 1
 
 
+def _midpoint_wrenches(
+    segments: Segments, wrench: PathCoefficients, x: np.ndarray, u: np.ndarray
+) -> np.ndarray:
+    """The (N, 6) wrenches the midpoint rows enforce (interpolated coefficients).
+
+    Checked with the rest, so that a row missing there is added too: the
+    profile is then TOPP-RA's with every row at the grid points and midpoints.
+    """
+    a, b, c = (segments.interpolate(v, MIDDLE) for v in wrench)
+    x_middle = (x[:-1] + segments.ds * u)[:, None]
+    return a * u[:, None] + b * x_middle + c
+
+
 def _enforced_wrenches(
-    wrench: PathCoefficients, x: np.ndarray, u: np.ndarray, ds: np.ndarray
+    wrench: PathCoefficients, x: np.ndarray, u: np.ndarray, s: np.ndarray
 ) -> np.ndarray:
     """The (2N+1, 6) wrenches ``w = a u + b x + c`` the stage LPs enforced.
 
@@ -266,31 +434,12 @@ def _enforced_wrenches(
     end point at ``(u_{N-1}, x_N)``, for its margin.
     """
     a, b, c = wrench
+    ds = np.diff(s)
     u_at = np.append(u, u[-1])[:, None]
     x_next = (x[:-1] + 2.0 * ds * u)[:, None]
     here = a * u_at + b * x[:, None] + c
     following = a[1:] * u[:, None] + b[1:] * x_next + c[1:]
     return np.vstack([here, following])
-
-
-def _grid(gridpoints: int | np.ndarray) -> np.ndarray:
-    if np.ndim(gridpoints) == 0:
-        count = int(gridpoints)
-        if count < 2 or count != gridpoints:
-            raise RetimeInputError(
-                f"gridpoints must be an integer >= 2, got {gridpoints!r}"
-            )
-        return np.linspace(0.0, 1.0, count)
-    s = np.asarray(gridpoints, dtype=float)
-    if (
-        s.ndim != 1
-        or s.size < 2
-        or s[0] != 0.0
-        or s[-1] != 1.0
-        or np.any(np.diff(s) <= 0)
-    ):
-        raise RetimeInputError("gridpoints must increase strictly from 0 to 1")
-    return s
 
 
 def _margins(
@@ -318,4 +467,12 @@ def _margins(
     return out
 
 
-__all__ = ["ROW_TOLERANCE", "RetimeResult", "retime"]
+__all__ = [
+    "BETWEEN_TOLERANCE",
+    "MAX_CUT_ROUNDS",
+    "MAX_REFINEMENTS",
+    "ROW_TOLERANCE",
+    "RetimeResult",
+    "check_position_limits",
+    "retime",
+]

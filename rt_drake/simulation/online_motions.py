@@ -21,6 +21,7 @@ from pydrake.math import RigidTransform
 from pydrake.trajectories import Trajectory
 
 from rt_drake.contact import cached_wrench_polytope
+from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import HeldObject, path_wrench_coefficients
 from rt_drake.errors import InputError
 from rt_drake.planning import CyclePlanner, GeometricPath, PlannedPath
@@ -69,6 +70,7 @@ class OnlineMotions:
         self._scenario = scenario
         self._planner = CyclePlanner(scenario, seed=seed)
         self._plant = make_arm_plant(scenario)
+        self._cup = CupFrame.of(self._plant)
         self._context = self._plant.CreateDefaultContext()
         self._limits = JointLimits.from_plant(self._plant, scenario.robot)
         self._speed = move_speed
@@ -94,6 +96,7 @@ class OnlineMotions:
             grasp,
             gridpoints=self._gridpoints,
             context=self._context,
+            cup=self._cup,
         )
 
     def velocity_bound(self, path: GeometricPath, s: np.ndarray) -> np.ndarray:
@@ -120,6 +123,7 @@ class OnlineMotions:
             path.deriv(s),
             path.deriv2(s),
             self._context,
+            self._cup,
         )
         u = np.append(result.sdd, result.sdd[-1])[:, None]
         x = (result.sd**2)[:, None]

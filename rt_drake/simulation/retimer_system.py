@@ -15,6 +15,7 @@ from pydrake.common.value import AbstractValue
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import BasicVector, Context, LeafSystem, State
 
+from rt_drake.cup_frame import CupFrame
 from rt_drake.errors import InputError
 from rt_drake.retiming import (
     GraspConstraint,
@@ -93,6 +94,7 @@ class Retimer(LeafSystem):
     ) -> None:
         super().__init__()
         self._plant = plant
+        self._cup = CupFrame.of(plant)
         self._limits = limits
         self._gridpoints = gridpoints
         self._q_initial = np.array(q_initial, dtype=float)
@@ -146,6 +148,7 @@ class Retimer(LeafSystem):
             request.grasp,
             self._gridpoints,
             start_time=start,
+            cup=self._cup,
         )
         state.get_mutable_abstract_state(self._state_index).set_value(
             RetimerState(request.request_id, result)

@@ -79,7 +79,11 @@ def test_wrench_ratios_equal_numpy(polytope, seed, scale):
     F, g = polytope.F, polytope.g
     rng = np.random.default_rng(seed)
     wrenches = scale * rng.normal(size=(40, 6)) * [0.2, 0.2, 0.1, 3.0, 3.0, 6.0]
-    ratio, violated = rows.wrench_ratios(wrenches, rows.normalised_rows(F, g), g, 1e-9)
+    ratio, violated, row_max = rows.wrench_ratios(
+        wrenches, rows.normalised_rows(F, g), g, 1e-9
+    )
+    expected_max = (wrenches @ F.T / g).max(axis=0)
+    np.testing.assert_allclose(row_max, expected_max, rtol=1e-12, atol=1e-12)
     products = wrenches @ F.T
     np.testing.assert_allclose(ratio, (products / g).max(axis=1), rtol=1e-12)
     expected = np.flatnonzero((products - g > 1e-9).any(axis=0))

@@ -1,0 +1,115 @@
+"""The path and its constraint coefficients at the grid points.
+
+At each grid point s_i: ``q(s_i)``, ``q'(s_i)``, ``q''(s_i)`` from the path's
+spline, the velocity bound ``x_cap = min_j v_j^2 / q'_j^2`` on ``x = s'^2``,
+and, from Drake (:mod:`rt_drake.dynamics`), the coefficients of the joint
+torques ``tau = a u + b x + c`` (if torques are limited) and of the object
+wrench ``w = a u + b x + c`` (if an object is held). Drake is the expensive
+part (about 20 us per point), so a refined grid evaluates only its new
+points (:func:`with_points`).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from pydrake.multibody.plant import MultibodyPlant
+from pydrake.systems.framework import Context
+from scipy.interpolate import CubicSpline
+
+from rt_drake.cup_frame import CupFrame
+from rt_drake.dynamics import (
+    HeldObject,
+    PathCoefficients,
+    path_torque_coefficients,
+    path_wrench_coefficients,
+)
+
+
+class PathSamples(NamedTuple):
+    """The path at the grid points (see the module docstring).
+
+    Attributes:
+        s: (G,) the grid.
+        q, dq, ddq: (G, n) the path and its first two derivatives in s.
+        x_cap: (G,) the joint-velocity bound on ``s'^2`` (inf where q' = 0).
+        torque: torque coefficients (each (G, n)), or None.
+        wrench: object-wrench coefficients (each (G, 6)), or None.
+    """
+
+    s: np.ndarray
+    q: np.ndarray
+    dq: np.ndarray
+    ddq: np.ndarray
+    x_cap: np.ndarray
+    torque: PathCoefficients | None
+    wrench: PathCoefficients | None
+
+
+def sample_path(
+    plant: MultibodyPlant,
+    spline: CubicSpline,
+    s: np.ndarray,
+    velocity_limit: np.ndarray,
+    torque: bool,
+    held: HeldObject | None,
+    context: Context,
+    cup: CupFrame,
+) -> PathSamples:
+    """Evaluate the path and the coefficients at the grid ``s``.
+
+    Args:
+        plant: The retimer's plant.
+        spline: The path q(s).
+        s: (G,) grid points.
+        velocity_limit: (n,) rad/s.
+        torque: Whether to compute torque coefficients (with ``held``'s load).
+        held: The held object, for the wrench (and the torques' load).
+        context: Scratch context of ``plant``.
+        cup: The cup frame C.
+    """
+    q, dq, ddq = spline(s), spline(s, 1), spline(s, 2)
+    with np.errstate(divide="ignore"):
+        x_cap = np.min(velocity_limit**2 / dq**2, axis=1)
+    tau = (
+        path_torque_coefficients(plant, q, dq, ddq, held, context, cup)
+        if torque
+        else None
+    )
+    wrench = (
+        None
+        if held is None
+        else path_wrench_coefficients(plant, held, q, dq, ddq, context, cup)
+    )
+    return PathSamples(s, q, dq, ddq, x_cap, tau, wrench)
+
+
+def with_points(samples: PathSamples, new: PathSamples) -> PathSamples:
+    """``samples`` and ``new`` (other grid points) merged, sorted by s."""
+    order = np.argsort(np.concatenate([samples.s, new.s]), kind="stable")
+
+    def merged(old: np.ndarray, added: np.ndarray) -> np.ndarray:
+        return np.concatenate([old, added])[order]
+
+    def merged_coefficients(
+        old: PathCoefficients | None, added: PathCoefficients | None
+    ) -> PathCoefficients | None:
+        if old is None or added is None:
+            return None
+        return PathCoefficients(
+            *(merged(o, a) for o, a in zip(old, added, strict=True))
+        )
+
+    return PathSamples(
+        merged(samples.s, new.s),
+        merged(samples.q, new.q),
+        merged(samples.dq, new.dq),
+        merged(samples.ddq, new.ddq),
+        merged(samples.x_cap, new.x_cap),
+        merged_coefficients(samples.torque, new.torque),
+        merged_coefficients(samples.wrench, new.wrench),
+    )
+
+
+__all__ = ["PathSamples", "sample_path", "with_points"]
