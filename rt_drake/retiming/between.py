@@ -40,11 +40,13 @@ overshoots measured at 100 grid points stay below 3 %).
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
 from rt_drake.dynamics import PathCoefficients
 from rt_drake.retiming.limits import JointLimits
 from rt_drake.retiming.passes import VAR_BOUND, StageRows
 from rt_drake.retiming.samples import PathSamples
+from rt_drake.retiming.seidel import kernel_array
 
 #: Interior points per segment: theta = 1/8, 2/8, ..., 7/8.
 SUBPOINTS = 7
@@ -286,23 +288,43 @@ def _lagrange(s: np.ndarray, knots: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     on_grid = on_grid[np.abs(s[on_grid] - knots) <= 1e-12]
     bounds = np.unique(np.concatenate([[0, count], on_grid]))
     piece = np.searchsorted(bounds, np.arange(count), side="right") - 1
-    low, high = bounds[piece], bounds[piece + 1]
-    size = np.minimum(4, high - low + 1)  # points available in the piece
-    start = np.clip(np.arange(count) - 1, low, high - size + 1)
-    offsets = np.arange(4)
-    index = np.minimum(start[:, None] + offsets, high[:, None])  # (N, 4)
-    nodes = s[index]
-    valid = offsets < size[:, None]  # (N, 4)
-    t = s[:-1, None] + _THETA * np.diff(s)[:, None]  # (N, K)
-    # w_k(t) = prod_{m != k} (t - t_m) / (t_k - t_m) over the valid nodes m
-    # (t is never a node: the sub-points lie strictly inside the segments).
-    factors = np.where(valid[:, None, :], t[..., None] - nodes[:, None, :], 1.0)
-    numerators = np.prod(factors, axis=2, keepdims=True) / factors  # (N, K, 4)
-    gaps = nodes[:, :, None] - nodes[:, None, :]  # (N, k, m)
-    gaps[:, offsets, offsets] = 1.0
-    gaps = np.where(valid[:, None, :], gaps, 1.0)
-    weights = numerators / np.prod(gaps, axis=2)[:, None, :]
-    return index, np.where(valid[:, None, :], weights, 0.0)
+    index = np.empty((count, 4), dtype=np.int64)
+    weights = np.empty((count, len(_THETA), 4))
+    _lagrange_kernel(
+        kernel_array(s),
+        bounds[piece].astype(np.int64),
+        bounds[piece + 1].astype(np.int64),
+        _THETA,
+        index,
+        weights,
+    )
+    return index, weights
+
+
+@njit(cache=True)
+def _lagrange_kernel(s, low, high, theta, index, weights):  # noqa: D417
+    """Fill ``index`` (N, 4) and ``weights`` (N, K, 4) (see :func:`_lagrange`).
+
+    ``w_k(t) = prod_{m != k} (t - t_m) / (t_k - t_m)`` over the nodes of the
+    piece; unused slots (a piece with fewer than four points) get weight 0.
+    """
+    for i in range(index.shape[0]):
+        size = min(4, high[i] - low[i] + 1)
+        start = min(max(i - 1, low[i]), high[i] - size + 1)
+        for k in range(4):
+            index[i, k] = min(start + k, high[i])
+        for j in range(theta.shape[0]):
+            t = s[i] + theta[j] * (s[i + 1] - s[i])
+            for k in range(4):
+                if k >= size:
+                    weights[i, j, k] = 0.0
+                    continue
+                w = 1.0
+                for m in range(size):
+                    if m != k:
+                        t_k, t_m = s[index[i, k]], s[index[i, m]]
+                        w *= (t - t_m) / (t_k - t_m)
+                weights[i, j, k] = w
 
 
 __all__ = [
