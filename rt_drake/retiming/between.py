@@ -43,6 +43,7 @@ import numpy as np
 from numba import njit
 
 from rt_drake.dynamics import PathCoefficients
+from rt_drake.retiming import between_kernels as K
 from rt_drake.retiming.limits import JointLimits
 from rt_drake.retiming.passes import VAR_BOUND, StageRows
 from rt_drake.retiming.samples import PathSamples
@@ -59,7 +60,7 @@ MAX_SPLIT = 8
 _THETA = np.arange(1, SUBPOINTS + 1) / (SUBPOINTS + 1)
 #: The sub-points of the interior joint rows (theta = 1/4, 1/2, 3/4) and the
 #: midpoint.
-_INTERIOR_POINTS = np.array([1, 3, 5])
+_INTERIOR_POINTS = np.array([1, 3, 5], dtype=np.int64)
 MIDDLE = 3
 
 
@@ -76,17 +77,17 @@ class Segments:
     def __init__(self, samples: PathSamples, knots: np.ndarray) -> None:
         self.s = samples.s
         self.ds = np.diff(self.s)
-        # Inside one cubic piece q'' is linear, so with J = q''_{i+1} - q''_i,
-        # q'(s_i + theta ds) = q'_i + theta ds (q''_i + theta J / 2) and
-        # q''(s_i + theta ds) = q''_i + theta J.
-        ddq = samples.ddq
-        jump = (ddq[1:] - ddq[:-1])[:, None]  # (N, 1, n)
-        theta = _THETA[None, :, None]
-        ds = self.ds[:, None, None]
-        self.dq = samples.dq[:-1, None] + theta * ds * (
-            ddq[:-1, None] + 0.5 * theta * jump
+        count, n = len(self.ds), samples.dq.shape[1]
+        self.dq = np.empty((count, len(_THETA), n))
+        self.ddq = np.empty((count, len(_THETA), n))
+        K.sub_derivatives(
+            kernel_array(samples.dq),
+            kernel_array(samples.ddq),
+            self.ds,
+            _THETA,
+            self.dq,
+            self.ddq,
         )
-        self.ddq = ddq[:-1, None] + theta * jump
         self.step = 2.0 * _THETA * self.ds[:, None]  # x(s) = x_i + step u_i
         self._index, self._weights = _lagrange(self.s, knots)
 
@@ -108,27 +109,22 @@ def interior_rows(segments: Segments, limits: JointLimits) -> StageRows:
     min_j v_j^2 / q'_j(s)^2`` (inactive where every q'_j is 0) and the
     accelerations of every joint, each sign.
     """
-    points = _INTERIOR_POINTS
-    with np.errstate(divide="ignore"):
-        cap = np.min(limits.velocity**2 / segments.dq[:, points] ** 2, axis=2)
-    bounded = cap < VAR_BOUND  # (N, 3)
-    velocity = (
-        np.where(bounded, segments.step[:, points], 0.0),
-        np.where(bounded, 1.0, 0.0),
-        np.where(bounded, -np.minimum(cap, VAR_BOUND), -1.0),
+    count, n = len(segments.ds), segments.dq.shape[2]
+    width = len(_INTERIOR_POINTS) * (1 + 2 * n)
+    A, B, C = (np.empty((count, width)) for _ in range(3))
+    K.interior_rows(
+        segments.dq,
+        segments.ddq,
+        segments.step,
+        _INTERIOR_POINTS,
+        kernel_array(limits.velocity),
+        kernel_array(limits.acceleration),
+        VAR_BOUND,
+        A,
+        B,
+        C,
     )
-    dq = segments.dq[:, points]  # (N, 3, n)
-    ddq = segments.ddq[:, points]
-    step = segments.step[:, points, None]
-    count = len(segments.ds)
-    A = (dq + step * ddq).reshape(count, -1)
-    B = ddq.reshape(count, -1)
-    C = -np.broadcast_to(np.tile(limits.acceleration, len(points)), A.shape)
-    return StageRows(
-        np.hstack([velocity[0], A, -A]),
-        np.hstack([velocity[1], B, -B]),
-        np.hstack([velocity[2], C, C]),
-    )
+    return StageRows(A, B, C)
 
 
 def grasp_midpoint_rows(
@@ -173,40 +169,43 @@ def joint_cuts(
         rows elsewhere), or None if no joint limit is exceeded.
     """
     dq, ddq, step = segments.dq, segments.ddq, segments.step
-    x_sub = np.maximum(x[:-1, None] + step * u[:, None], 0.0)
-    velocity = np.abs(dq) * np.sqrt(x_sub)[..., None] / limits.velocity
-    acceleration = (dq * u[:, None, None] + ddq * x_sub[..., None]) / (
-        limits.acceleration
+    count, n = len(u), dq.shape[2]
+    worst = np.empty((3, count, n), dtype=np.int64)
+    excess = np.empty((3, count, n))
+    K.joint_excess(
+        dq,
+        ddq,
+        step,
+        kernel_array(x),
+        kernel_array(u),
+        kernel_array(limits.velocity),
+        kernel_array(limits.acceleration),
+        worst,
+        excess,
     )
-    rows = np.arange(len(u))[:, None]
-    joints = np.arange(dq.shape[2])
+    exceeded = excess > tolerance  # (3, N, n)
+    if not exceeded.any():
+        return None
+    rows = np.arange(count)[:, None]
+    joints = np.arange(n)
     columns = []
     # Velocity: (2 theta ds) u + x - v^2 / q'^2 <= 0 at the worst theta.
-    worst = np.argmax(velocity, axis=1)  # (N, n)
-    exceeded = velocity[rows, worst, joints] > 1.0 + tolerance
-    if exceeded.any():
-        q1 = dq[rows, worst, joints]
-        with np.errstate(divide="ignore"):
-            cap = limits.velocity**2 / q1**2
-        columns.append((step[rows, worst], np.ones_like(q1), -cap, exceeded))
+    q1 = dq[rows, worst[0], joints]
+    with np.errstate(divide="ignore"):
+        cap = limits.velocity**2 / q1**2
+    columns.append((step[rows, worst[0]], np.ones_like(q1), -cap, exceeded[0]))
     # Acceleration, each sign: sign ((q' + 2 theta ds q'') u + q'' x) - a <= 0.
-    for sign in (1.0, -1.0):
-        value = sign * acceleration
-        worst = np.argmax(value, axis=1)
-        exceeded = value[rows, worst, joints] > 1.0 + tolerance
-        if not exceeded.any():
-            continue
-        q1, q2 = dq[rows, worst, joints], ddq[rows, worst, joints]
+    for kind, sign in ((1, 1.0), (2, -1.0)):
+        q1 = dq[rows, worst[kind], joints]
+        q2 = ddq[rows, worst[kind], joints]
         columns.append(
             (
-                sign * (q1 + step[rows, worst] * q2),
+                sign * (q1 + step[rows, worst[kind]] * q2),
                 sign * q2,
                 -np.broadcast_to(limits.acceleration, q1.shape),
-                exceeded,
+                exceeded[kind],
             )
         )
-    if not columns:
-        return None
     A, B, C, active = (np.hstack(parts) for parts in zip(*columns, strict=True))
     used = active.any(axis=0)
     A, B, C, active = A[:, used], B[:, used], C[:, used], active[:, used]
@@ -241,25 +240,33 @@ def refinement_points(
     Returns:
         Sorted new s values (empty: nothing exceeded).
     """
-    checks: list[tuple[PathCoefficients, np.ndarray | None]] = []
+    checks: list[tuple[PathCoefficients, np.ndarray, bool]] = []
     if samples.torque is not None and limits.torque is not None:
-        checks.append((samples.torque, None))
+        checks.append((samples.torque, np.diag(1.0 / limits.torque), True))
     if samples.wrench is not None and normals is not None and row_max is not None:
         rows = np.flatnonzero(row_max > 1.0 - ROW_SCREEN)
         if rows.size:
-            checks.append((samples.wrench, normals[:, rows]))
+            checks.append((samples.wrench, normals[:, rows], False))
     if not checks:
         return np.zeros(0)
-    x_sub = np.maximum(x[:-1, None] + segments.step * u[:, None], 0.0)
-    ratio = np.zeros_like(x_sub)
-    for coefficients, rows_normals in checks:
-        a, b, c = (segments.interpolate(v) for v in coefficients)
-        value = a * u[:, None, None] + b * x_sub[..., None] + c
-        if rows_normals is None:
-            ratio = np.maximum(ratio, np.max(np.abs(value) / limits.torque, axis=2))
-        else:
-            ratio = np.maximum(ratio, np.max(value @ rows_normals, axis=2))
-    excess = ratio.max(axis=1) - 1.0
+    excess = np.full(len(u), -np.inf)
+    part = np.empty(len(u))
+    x, u = kernel_array(x), kernel_array(u)
+    for (a, b, c), rows_map, absolute in checks:
+        K.affine_excess(
+            segments._weights,
+            segments._index,
+            kernel_array(a),
+            kernel_array(b),
+            kernel_array(c),
+            segments.step,
+            x,
+            u,
+            kernel_array(rows_map),
+            absolute,
+            part,
+        )
+        np.maximum(excess, part, out=excess)
     split = np.flatnonzero(excess > tolerance)
     if not split.size:
         return np.zeros(0)

@@ -51,6 +51,7 @@ from rt_drake.retiming.between import (
     joint_cuts,
     refinement_points,
 )
+from rt_drake.retiming.between_kernels import position_excess
 from rt_drake.retiming.errors import (
     PathNotControllableError,
     RetimeInputError,
@@ -67,6 +68,7 @@ from rt_drake.retiming.passes import (
 from rt_drake.retiming.path import path_spline, toppra_path
 from rt_drake.retiming.samples import PathSamples, sample_path
 from rt_drake.retiming.samples import with_points as merge_samples
+from rt_drake.retiming.seidel import kernel_array
 from rt_drake.retiming.timed_path import TimedPath
 
 #: Grasp rows violated by more than this (N or N m) are added and re-solved.
@@ -237,41 +239,28 @@ def check_position_limits(plant: MultibodyPlant, samples: PathSamples) -> None:
     Exact for the cubic path: at the grid points, and at the extremes of
     each joint inside each segment, the roots in (0, 1) of the quadratic
     ``d q_j(s_i + theta ds_i) / d theta`` (every segment lies inside one
-    cubic piece, :mod:`.grid`). A tolerance of 1e-9 rad absorbs rounding.
+    cubic piece, :mod:`.grid`; :func:`.between_kernels.position_excess`). A
+    tolerance of 1e-9 rad absorbs rounding.
 
     Raises:
         RetimeInputError: naming the joint, the value, the limit and s.
     """
-    s, q, dq, ddq = samples.s, samples.q, samples.dq, samples.ddq
-    ds = np.diff(s)[:, None]
-    # dq/dtheta = c0 + c1 theta + c2 theta^2 within segment i.
-    c0, c1 = dq[:-1] * ds, ddq[:-1] * ds**2
-    c2 = 0.5 * (ddq[1:] - ddq[:-1]) * ds**2
-    values, where = [q], [np.broadcast_to(s[:, None], q.shape)]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        root = np.sqrt(np.maximum(c1**2 - 4.0 * c2 * c0, 0.0))
-        flat = np.abs(c2) <= 1e-12 * (np.abs(c1) + 1e-300)
-        roots = (
-            np.where(flat, -c0 / c1, (-c1 + root) / (2.0 * c2)),
-            np.where(flat, -1.0, (-c1 - root) / (2.0 * c2)),
-        )
-    for theta in roots:
-        theta = np.where((theta > 0.0) & (theta < 1.0), theta, 0.0)
-        values.append(q[:-1] + theta * (c0 + theta * (c1 / 2.0 + theta * c2 / 3.0)))
-        where.append(s[:-1, None] + theta * ds)
-    value, at = np.vstack(values), np.vstack(where)
     lower = plant.GetPositionLowerLimits()
     upper = plant.GetPositionUpperLimits()
-    below, above = value < lower - 1e-9, value > upper + 1e-9
-    if not (below.any() or above.any()):
+    found, j, value, at = position_excess(
+        *(kernel_array(v) for v in (samples.s, samples.q, samples.dq, samples.ddq)),
+        kernel_array(lower),
+        kernel_array(upper),
+        1e-9,
+    )
+    if not found:
         return
-    i, j = (int(index[0]) for index in np.nonzero(below | above))
-    limit = lower[j] if below[i, j] else upper[j]
+    limit = lower[j] if value < lower[j] else upper[j]
     raise RetimeInputError(
         f"path leaves the position limits of joint {j + 1} "
-        f"({_joint_name(plant, j)}) at s = {at[i, j]:.3f}: {value[i, j]:.4f} rad, "
+        f"({_joint_name(plant, j)}) at s = {at:.3f}: {value:.4f} rad, "
         f"limit {limit:.4f} rad",
-        s=float(at[i, j]),
+        s=float(at),
     )
 
 

@@ -14,8 +14,12 @@ import functools
 
 import numpy as np
 
-from rt_drake.retiming import rows
+from rt_drake.dynamics import PathCoefficients
+from rt_drake.retiming import between, rows
+from rt_drake.retiming.between_kernels import position_excess
+from rt_drake.retiming.limits import JointLimits
 from rt_drake.retiming.passes import AffineConstraint, XBound, reachability
+from rt_drake.retiming.samples import PathSamples
 
 
 @functools.cache
@@ -32,6 +36,22 @@ def warm_up() -> None:
     wrench = np.full((3, 6), 0.1)
     rows.rest_and_candidates(wrench, wrench, 0.0 * wrench, normals, grid + 1.0)
     rows.wrench_ratios(wrench, normals, np.ones(12), 1e-9)
+    # Between grid points: one joint, torques and a wrench.
+    path = np.column_stack([grid**2])
+    coefficients = PathCoefficients(wrench, wrench, 0.0 * wrench)
+    torque = PathCoefficients(path, path, path)
+    samples = PathSamples(
+        grid, path, 2 * grid[:, None], 2 + 0 * path, grid, torque, coefficients
+    )
+    limits = JointLimits(np.ones(1), np.ones(1), np.ones(1))
+    segments = between.Segments(samples, np.array([0.0, 1.0]))
+    between.interior_rows(segments, limits)
+    x, u = np.full(3, 0.5), np.zeros(2)
+    between.joint_cuts(segments, x, u, limits, 1e-3)
+    between.refinement_points(
+        segments, samples, x, u, limits, normals, np.ones(12), 1e-3
+    )
+    position_excess(grid, path, path, path, -np.ones(1), np.ones(1), 1e-9)
 
 
 __all__ = ["warm_up"]
