@@ -91,6 +91,29 @@ class Segments:
         self.step = 2.0 * _THETA * self.ds[:, None]  # x(s) = x_i + step u_i
         self._index, self._weights = _lagrange(self.s, knots)
 
+    def enforced_wrenches(
+        self, wrench: PathCoefficients, x: np.ndarray, u: np.ndarray
+    ) -> np.ndarray:
+        """The (3N + 1, 6) wrenches the stage LPs enforce.
+
+        At every grid point, both ends of every segment and its midpoint
+        (interpolated), see :func:`.between_kernels.enforced_wrenches`; the
+        exactness check evaluates every grasp row at them.
+        """
+        count = len(self.ds)
+        out = np.empty((3 * count + 1, 6))
+        K.enforced_wrenches(
+            *(kernel_array(v) for v in wrench),
+            kernel_array(x),
+            kernel_array(u),
+            self.s,
+            self._weights,
+            self._index,
+            MIDDLE,
+            out,
+        )
+        return out
+
     def interpolate(self, values: np.ndarray, point: int | None = None) -> np.ndarray:
         """(G, m) values at the grid points -> (N, K, m) at the sub-points.
 

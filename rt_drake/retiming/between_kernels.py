@@ -122,6 +122,38 @@ def affine_excess(weights, index, a, b, c, step, x, u, rows, absolute, out):  # 
 
 
 @njit(cache=True)
+def enforced_wrenches(a, b, c, x, u, s, weights, index, middle, out):  # noqa: D417
+    """The wrenches ``a u + b x + c`` the stage LPs enforce, (3N + 1, 6).
+
+    Rows 0..N-1: stage i at ``s_i`` with ``(u_i, x_i)``; row N: the end
+    point with ``(u_{N-1}, x_N)``; rows N+1..2N: stage i at ``s_{i+1}``
+    with ``(u_i, x_i + 2 ds_i u_i)``; rows 2N+1..3N: stage i at its
+    midpoint with ``(u_i, x_i + ds_i u_i)``, the coefficients interpolated
+    (sub-point ``middle`` of the stencil ``weights``, ``index``).
+    """
+    count = u.shape[0]
+    for i in range(count + 1):
+        u_i = u[min(i, count - 1)]
+        for d in range(6):
+            out[i, d] = a[i, d] * u_i + b[i, d] * x[i] + c[i, d]
+    for i in range(count):
+        ds = s[i + 1] - s[i]
+        x_next = x[i] + 2.0 * ds * u[i]
+        x_middle = x[i] + ds * u[i]
+        for d in range(6):
+            out[count + 1 + i, d] = (
+                a[i + 1, d] * u[i] + b[i + 1, d] * x_next + c[i + 1, d]
+            )
+            total = 0.0
+            for slot in range(4):
+                w = weights[i, middle, slot]
+                if w != 0.0:
+                    g = index[i, slot]
+                    total += w * (a[g, d] * u[i] + b[g, d] * x_middle + c[g, d])
+            out[2 * count + 1 + i, d] = total
+
+
+@njit(cache=True)
 def position_excess(s, q, dq, ddq, lower, upper, tolerance):  # noqa: D417
     """The first grid point or segment extreme outside the position limits.
 
@@ -164,6 +196,7 @@ def position_excess(s, q, dq, ddq, lower, upper, tolerance):  # noqa: D417
 
 __all__ = [
     "affine_excess",
+    "enforced_wrenches",
     "interior_rows",
     "joint_excess",
     "position_excess",

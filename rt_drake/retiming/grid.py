@@ -14,8 +14,6 @@ planned MOVE at both 100 and 200 uniform points). Hence :func:`initial_grid`:
 - at least :data:`MIN_PIECE_SEGMENTS` segments in every piece, so that the
   values between grid points can be estimated from neighbours of the same
   piece (:mod:`.between`).
-
-:func:`with_points` inserts the points where the estimate found an overshoot.
 """
 
 from __future__ import annotations
@@ -35,18 +33,19 @@ def initial_grid(gridpoints: int | np.ndarray, knots: np.ndarray) -> np.ndarray:
 
     Args:
         gridpoints: Number of uniform points (an integer >= 2), or an
-            explicit grid (strictly increasing from 0 to 1), used as given.
+            explicit grid (strictly increasing from 0 to 1).
         knots: (K,) the path's knots in s, 0 to 1.
 
     Returns:
-        (G,) strictly increasing from 0 to 1. For an integer, the uniform
-        points, every knot, and :data:`MIN_PIECE_SEGMENTS` equal segments in
-        pieces that got fewer.
+        (G,) strictly increasing from 0 to 1: the uniform points (or the
+        grid given), every knot, and, for a number of points,
+        :data:`MIN_PIECE_SEGMENTS` equal segments in pieces that got fewer.
 
     Raises:
         RetimeInputError: not an integer >= 2, or a grid that does not
             increase strictly from 0 to 1.
     """
+    knots = np.asarray(knots, dtype=float)
     if np.ndim(gridpoints) != 0:
         s = np.asarray(gridpoints, dtype=float)
         if (
@@ -57,24 +56,18 @@ def initial_grid(gridpoints: int | np.ndarray, knots: np.ndarray) -> np.ndarray:
             or not np.all(np.diff(s) > 0)
         ):
             raise RetimeInputError("gridpoints must increase strictly from 0 to 1")
+        return _merge(s, knots)
+    count = gridpoints
+    if isinstance(count, bool) or int(count) != count or count < 2:
+        raise RetimeInputError(f"gridpoints must be an integer >= 2, got {count!r}")
+    s = _merge(np.linspace(0.0, 1.0, int(count)), knots)
+    segments = np.diff(np.searchsorted(s, knots))  # per piece
+    short = np.flatnonzero(segments < MIN_PIECE_SEGMENTS)
+    if not short.size:
         return s
-    if isinstance(gridpoints, bool) or int(gridpoints) != gridpoints or gridpoints < 2:
-        raise RetimeInputError(
-            f"gridpoints must be an integer >= 2, got {gridpoints!r}"
-        )
-    uniform = np.linspace(0.0, 1.0, int(gridpoints))
-    s = _merge(uniform, np.asarray(knots, dtype=float))
-    extra = []
-    for start, end in zip(knots[:-1], knots[1:], strict=True):
-        inside = np.count_nonzero((s > start) & (s < end))
-        if inside + 1 < MIN_PIECE_SEGMENTS:
-            extra.append(np.linspace(start, end, MIN_PIECE_SEGMENTS + 1)[1:-1])
-    return _merge(s, *extra) if extra else s
-
-
-def with_points(s: np.ndarray, points: np.ndarray) -> np.ndarray:
-    """``s`` with ``points`` inserted (sorted; near-duplicates dropped)."""
-    return _merge(s, points)
+    fractions = np.arange(1, MIN_PIECE_SEGMENTS) / MIN_PIECE_SEGMENTS
+    start, end = knots[short, None], knots[short + 1, None]
+    return _merge(s, (start + fractions * (end - start)).ravel())
 
 
 def _merge(*grids: np.ndarray) -> np.ndarray:
@@ -86,4 +79,4 @@ def _merge(*grids: np.ndarray) -> np.ndarray:
     return np.concatenate([[0.0], inside, [1.0]])
 
 
-__all__ = ["MIN_PIECE_SEGMENTS", "MIN_STEP", "initial_grid", "with_points"]
+__all__ = ["MIN_PIECE_SEGMENTS", "MIN_STEP", "initial_grid"]

@@ -44,7 +44,6 @@ from rt_drake.dynamics import PathCoefficients
 from rt_drake.retiming import rows as R
 from rt_drake.retiming.at_rest import check_grasp_at_rest, check_torque_at_rest
 from rt_drake.retiming.between import (
-    MIDDLE,
     Segments,
     grasp_midpoint_rows,
     interior_rows,
@@ -383,10 +382,9 @@ def _solve_exact(
             )
         if grasp is None or samples.wrench is None or normals is None:
             return _Profile(solution.x, solution.u, rows, repairs, None, None)
-        enforced = _enforced_wrenches(samples.wrench, solution.x, solution.u, s)
-        middle = _midpoint_wrenches(segments, samples.wrench, solution.x, solution.u)
+        enforced = segments.enforced_wrenches(samples.wrench, solution.x, solution.u)
         ratio, violated, row_max = R.wrench_ratios(
-            np.vstack([enforced, middle]),
+            enforced,
             normals,
             grasp.g,
             ROW_TOLERANCE,
@@ -398,37 +396,6 @@ def _solve_exact(
             )
         rows = np.union1d(rows, missed)
         repairs += 1
-
-
-def _midpoint_wrenches(
-    segments: Segments, wrench: PathCoefficients, x: np.ndarray, u: np.ndarray
-) -> np.ndarray:
-    """The (N, 6) wrenches the midpoint rows enforce (interpolated coefficients).
-
-    Checked with the rest, so that a row missing there is added too: the
-    profile is then TOPP-RA's with every row at the grid points and midpoints.
-    """
-    a, b, c = (segments.interpolate(v, MIDDLE) for v in wrench)
-    x_middle = (x[:-1] + segments.ds * u)[:, None]
-    return a * u[:, None] + b * x_middle + c
-
-
-def _enforced_wrenches(
-    wrench: PathCoefficients, x: np.ndarray, u: np.ndarray, s: np.ndarray
-) -> np.ndarray:
-    """The (2N+1, 6) wrenches ``w = a u + b x + c`` the stage LPs enforced.
-
-    Stage i (i < N) enforced ``s_i`` at ``(u_i, x_i)`` (rows 0..N-1) and
-    ``s_{i+1}`` at ``(u_i, x_i + 2 ds_i u_i)`` (rows N+1..2N). Row N is the
-    end point at ``(u_{N-1}, x_N)``, for its margin.
-    """
-    a, b, c = wrench
-    ds = np.diff(s)
-    u_at = np.append(u, u[-1])[:, None]
-    x_next = (x[:-1] + 2.0 * ds * u)[:, None]
-    here = a * u_at + b * x[:, None] + c
-    following = a[1:] * u[:, None] + b[1:] * x_next + c[1:]
-    return np.vstack([here, following])
 
 
 def _margins(

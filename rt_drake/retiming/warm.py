@@ -51,6 +51,7 @@ def warm_up() -> None:
     between.refinement_points(
         segments, samples, x, u, limits, normals, np.ones(12), 1e-3
     )
+    segments.enforced_wrenches(coefficients, x, u)
     position_excess(grid, path, path, path, -np.ones(1), np.ones(1), 1e-9)
 
 
