@@ -44,6 +44,7 @@ from numba import njit
 
 from rt_drake.dynamics import PathCoefficients
 from rt_drake.retiming import between_kernels as K
+from rt_drake.retiming.joint_path import JointPath
 from rt_drake.retiming.limits import JointLimits
 from rt_drake.retiming.passes import VAR_BOUND, StageRows
 from rt_drake.retiming.samples import PathSamples
@@ -67,27 +68,36 @@ MIDDLE = 3
 class Segments:
     """The grid's segments at their sub-points: path derivatives, stencils.
 
-    Built once per grid (it does not depend on the profile).
+    Built once per grid (it does not depend on the profile). For a cubic
+    path q' and q'' at the sub-points follow from their grid values; for
+    another path they are evaluated.
 
     Attributes:
         s: (G,) grid; ds: (N,) steps.
         dq, ddq: (N, K, n) q'(s), q''(s) at the sub-points.
     """
 
-    def __init__(self, samples: PathSamples, knots: np.ndarray) -> None:
+    def __init__(
+        self, samples: PathSamples, knots: np.ndarray, path: JointPath
+    ) -> None:
         self.s = samples.s
         self.ds = np.diff(self.s)
         count, n = len(self.ds), samples.dq.shape[1]
-        self.dq = np.empty((count, len(_THETA), n))
-        self.ddq = np.empty((count, len(_THETA), n))
-        K.sub_derivatives(
-            kernel_array(samples.dq),
-            kernel_array(samples.ddq),
-            self.ds,
-            _THETA,
-            self.dq,
-            self.ddq,
-        )
+        if path.cubic:  # exact from the grid values (q'' linear per segment)
+            self.dq = np.empty((count, len(_THETA), n))
+            self.ddq = np.empty((count, len(_THETA), n))
+            K.sub_derivatives(
+                kernel_array(samples.dq),
+                kernel_array(samples.ddq),
+                self.ds,
+                _THETA,
+                self.dq,
+                self.ddq,
+            )
+        else:
+            points = self.s[:-1, None] + _THETA * self.ds[:, None]
+            self.dq = kernel_array(path(points, 1))
+            self.ddq = kernel_array(path(points, 2))
         self.step = 2.0 * _THETA * self.ds[:, None]  # x(s) = x_i + step u_i
         self._index, self._weights = _lagrange(self.s, knots)
 

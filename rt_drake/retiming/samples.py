@@ -16,7 +16,6 @@ from typing import NamedTuple
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import Context
-from scipy.interpolate import CubicSpline
 
 from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import (
@@ -25,6 +24,7 @@ from rt_drake.dynamics import (
     path_torque_coefficients,
     path_wrench_coefficients,
 )
+from rt_drake.retiming.joint_path import JointPath
 
 
 class PathSamples(NamedTuple):
@@ -49,7 +49,7 @@ class PathSamples(NamedTuple):
 
 def sample_path(
     plant: MultibodyPlant,
-    spline: CubicSpline,
+    spline: JointPath,
     s: np.ndarray,
     velocity_limit: np.ndarray,
     torque: bool,

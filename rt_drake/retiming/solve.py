@@ -57,6 +57,7 @@ from rt_drake.retiming.errors import (
     RetimeStatus,
 )
 from rt_drake.retiming.grid import initial_grid
+from rt_drake.retiming.joint_path import JointPath, ToppraPath, as_joint_path
 from rt_drake.retiming.limits import GraspConstraint, JointLimits
 from rt_drake.retiming.passes import (
     AffineConstraint,
@@ -64,7 +65,6 @@ from rt_drake.retiming.passes import (
     XBound,
     reachability,
 )
-from rt_drake.retiming.path import path_spline, toppra_path
 from rt_drake.retiming.samples import PathSamples, sample_path
 from rt_drake.retiming.samples import with_points as merge_samples
 from rt_drake.retiming.seidel import kernel_array
@@ -77,6 +77,9 @@ ROW_TOLERANCE = 1e-9
 BETWEEN_TOLERANCE = 5e-4
 #: Rounds of grid refinement at most (each shrinks an overshoot about 4x).
 MAX_REFINEMENTS = 8
+#: Where a non-cubic path is checked against the position limits, in
+#: fractions of each segment.
+_DENSE = np.arange(1, 16) / 16
 #: Rounds of cuts for the joint limits inside segments, at most.
 MAX_CUT_ROUNDS = 4
 
@@ -159,15 +162,15 @@ def retime(
         TorqueLimitAtRestError: holding the arm still exceeds a torque limit.
         PathNotControllableError: no admissible speed reaches the end.
     """
-    spline = path_spline(path)  # checks the path
-    n = spline.c.shape[2]
+    spline = as_joint_path(path)  # checks the path
+    n = spline.num_joints
     if n != plant.num_positions() or n != limits.num_joints:
         raise RetimeInputError(
             f"path has {n} joints but {plant.num_positions()=} and {limits.num_joints=}"
         )
     context = context or plant.CreateDefaultContext()
     cup = cup or CupFrame.of(plant)
-    knots = spline.x
+    knots = spline.breaks
     held = grasp.held if grasp is not None else None
     torque = limits.torque is not None
 
@@ -177,14 +180,14 @@ def retime(
         )
 
     samples = sample(initial_grid(gridpoints, knots))
-    check_position_limits(plant, samples)
+    check_position_limits(plant, samples, spline)
     normals = None if grasp is None else R.normalised_rows(grasp.F, grasp.g)
     rows = _checked_rows(samples, limits, grasp, normals)
     # The compiled passes do not need the path; toppra's TOPPRA class does.
-    toppra_spline = toppra_path(path) if engine == "toppra" else None
+    toppra_spline = ToppraPath(spline) if engine == "toppra" else None
     refinements = cut_rounds = 0
     cuts: StageRows | None = None
-    segments = Segments(samples, knots)
+    segments = Segments(samples, knots, spline)
     joints = _joint_constraints(samples, segments, limits)
     while True:
         fixed = joints if cuts is None else [*joints, cuts]
@@ -201,7 +204,7 @@ def retime(
             added = sample(points)
             rows = np.union1d(rows, _checked_rows(added, limits, grasp, normals))
             samples = merge_samples(samples, added)
-            segments = Segments(samples, knots)
+            segments = Segments(samples, knots, spline)
             joints = _joint_constraints(samples, segments, limits)
             refinements += 1
             cuts = None  # made for the old segments
@@ -232,26 +235,39 @@ def retime(
     )
 
 
-def check_position_limits(plant: MultibodyPlant, samples: PathSamples) -> None:
+def check_position_limits(
+    plant: MultibodyPlant, samples: PathSamples, path: JointPath
+) -> None:
     """Raise if the path leaves the plant's joint position limits anywhere.
 
-    Exact for the cubic path: at the grid points, and at the extremes of
-    each joint inside each segment, the roots in (0, 1) of the quadratic
+    For a cubic path, exact: at the grid points, and at the extremes of each
+    joint inside each segment, the roots in (0, 1) of the quadratic
     ``d q_j(s_i + theta ds_i) / d theta`` (every segment lies inside one
-    cubic piece, :mod:`.grid`; :func:`.between_kernels.position_excess`). A
-    tolerance of 1e-9 rad absorbs rounding.
+    cubic piece, :mod:`.grid`; :func:`.between_kernels.position_excess`).
+    For another path, at the grid points and 15 points inside every segment.
+    A tolerance of 1e-9 rad absorbs rounding.
 
     Raises:
         RetimeInputError: naming the joint, the value, the limit and s.
     """
     lower = plant.GetPositionLowerLimits()
     upper = plant.GetPositionUpperLimits()
-    found, j, value, at = position_excess(
-        *(kernel_array(v) for v in (samples.s, samples.q, samples.dq, samples.ddq)),
-        kernel_array(lower),
-        kernel_array(upper),
-        1e-9,
-    )
+    s = samples.s
+    if path.cubic:
+        found, j, value, at = position_excess(
+            *(kernel_array(v) for v in (s, samples.q, samples.dq, samples.ddq)),
+            kernel_array(lower),
+            kernel_array(upper),
+            1e-9,
+        )
+    else:
+        where = np.union1d(s, (s[:-1, None] + np.diff(s)[:, None] * _DENSE).ravel())
+        q = path(where)
+        outside = (q < lower - 1e-9) | (q > upper + 1e-9)
+        found = bool(outside.any())
+        if found:
+            i, j = (int(k[0]) for k in np.nonzero(outside))
+            value, at = float(q[i, j]), float(where[i])
     if not found:
         return
     limit = lower[j] if value < lower[j] else upper[j]

@@ -17,6 +17,7 @@ import numpy as np
 from rt_drake.dynamics import PathCoefficients
 from rt_drake.retiming import between, rows
 from rt_drake.retiming.between_kernels import position_excess
+from rt_drake.retiming.joint_path import as_joint_path
 from rt_drake.retiming.limits import JointLimits
 from rt_drake.retiming.passes import AffineConstraint, XBound, reachability
 from rt_drake.retiming.samples import PathSamples
@@ -44,7 +45,7 @@ def warm_up() -> None:
         grid, path, 2 * grid[:, None], 2 + 0 * path, grid, torque, coefficients
     )
     limits = JointLimits(np.ones(1), np.ones(1), np.ones(1))
-    segments = between.Segments(samples, np.array([0.0, 1.0]))
+    segments = between.Segments(samples, grid[[0, -1]], as_joint_path(path))
     between.interior_rows(segments, limits)
     x, u = np.full(3, 0.5), np.zeros(2)
     between.joint_cuts(segments, x, u, limits, 1e-3)
