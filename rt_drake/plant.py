@@ -25,13 +25,15 @@ from pydrake.multibody.plant import CoulombFriction, MultibodyPlant
 from pydrake.multibody.tree import Frame, ModelInstanceIndex
 
 from rt_drake.contact import CupParameters
-from rt_drake.errors import ScenarioError
+from rt_drake.cup_frame import DEFAULT_CUP_FRAME, find_frame
+from rt_drake.errors import InputError, ScenarioError
 from rt_drake.resources import models_dir
 from rt_drake.scenario import Scenario
 
-#: Name of the cup frame C (origin at the centre of the cup's contact face,
-#: +z out of the cup toward the object), defined in suction_tool.urdf.
-CUP_FRAME = "suction_cup"
+#: Name of the shipped tool's cup frame C (origin at the centre of the cup's
+#: contact face, +z out of the cup toward the object, suction_tool.urdf): the
+#: default of the scenario's ``robot.cup_frame``.
+CUP_FRAME = DEFAULT_CUP_FRAME
 #: Name of each object's body in its SDF.
 OBJECT_BODY = "body"
 #: Friction coefficient of the objects' SDF collision geometry.
@@ -96,9 +98,7 @@ def add_scenario_models(
             f"key 'robot.model_instance': '{robot_name}' is not a model of the "
             f"directives (they add: {', '.join(by_name)})"
         )
-    if not plant.HasFrameNamed(CUP_FRAME):
-        raise ScenarioError(f"the directives define no frame named '{CUP_FRAME}'")
-    cup_frame = plant.GetFrameByName(CUP_FRAME)
+    cup_frame = scenario_cup_frame(plant, scenario)
     tool = cup_frame.model_instance()
     if plant.geometry_source_is_registered():
         add_cup_rim(plant, cup_frame, scenario.cup)
@@ -114,6 +114,18 @@ def add_scenario_models(
                 plant.SetDefaultFloatingBaseBodyPose(body, X_WO)
             added[obj.name] = instance
     return ScenarioModels(robot=by_name[robot_name], tool=tool, objects=added)
+
+
+def scenario_cup_frame(plant: MultibodyPlant, scenario: Scenario) -> Frame:
+    """The frame named by the scenario's ``robot.cup_frame``.
+
+    Raises:
+        ScenarioError: the directives define no such frame (or several).
+    """
+    try:
+        return find_frame(plant, scenario.robot.cup_frame)
+    except InputError as error:
+        raise ScenarioError(f"key 'robot.cup_frame': {error}") from None
 
 
 def make_arm_plant(scenario: Scenario) -> MultibodyPlant:
@@ -233,4 +245,5 @@ __all__ = [
     "make_parser",
     "rim_friction",
     "robot_position_indices",
+    "scenario_cup_frame",
 ]

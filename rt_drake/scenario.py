@@ -24,6 +24,7 @@ from pydrake.common.yaml import yaml_load_typed
 from pydrake.multibody.parsing import ModelDirective
 
 from rt_drake.contact import CupParameters
+from rt_drake.cup_frame import DEFAULT_CUP_FRAME
 from rt_drake.errors import ScenarioError
 from rt_drake.resources import models_dir
 
@@ -31,6 +32,9 @@ from rt_drake.resources import models_dir
 @dataclasses.dataclass
 class RobotConfig:
     """The arm: its model instance, home configuration and limit overrides.
+
+    ``cup_frame`` names the frame C of the cup (or tool) the arm carries,
+    possibly scoped (``"suction_tool::suction_cup"``).
 
     Empty limit lists mean "take them from the model" (URDF ``velocity``,
     ``drake:acceleration`` and ``effort``). Units: rad, rad/s, rad/s^2, N m.
@@ -41,6 +45,7 @@ class RobotConfig:
 
     model_instance: str = "vs060"
     home: list[float] = dataclasses.field(default_factory=list)
+    cup_frame: str = DEFAULT_CUP_FRAME
     velocity_limits: list[float] = dataclasses.field(default_factory=list)
     acceleration_limits: list[float] = dataclasses.field(default_factory=list)
     torque_limits: list[float] = dataclasses.field(default_factory=list)

@@ -70,6 +70,7 @@ def read_waypoints(path: Path, joints: int) -> np.ndarray:
 def run(args: argparse.Namespace) -> int:
     """Retime, write the .npz and print a summary; return 0."""
     from rt_drake import (
+        CupFrame,
         GraspConstraint,
         HeldObject,
         JointLimits,
@@ -96,10 +97,12 @@ def run(args: argparse.Namespace) -> int:
         else GraspConstraint.for_cup(held, scenario.cup)
     )
     limits = JointLimits.from_plant(plant, scenario.robot)
-    result = retime(plant, waypoints, limits, grasp, args.gridpoints)
+    cup = CupFrame.of(plant, scenario.robot.cup_frame)
+    result = retime(plant, waypoints, limits, grasp, args.gridpoints, cup=cup)
     saved = sample_trajectory(
-        plant, result, held, grasp, scenario.cup, obj.name, waypoints, knots
-    )
+        plant, result, held, grasp, scenario.cup, obj.name, waypoints, knots,
+        cup_frame=cup.frame,
+    )  # fmt: skip
     args.out.parent.mkdir(parents=True, exist_ok=True)
     save_trajectory(args.out, saved)
     constraint = "joint limits only" if grasp is None else "grasp constraint"

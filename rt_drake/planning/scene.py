@@ -42,7 +42,7 @@ from rt_drake.planning.geometry import (
     object_geometries,
     shrink_face,
 )
-from rt_drake.plant import CUP_FRAME, ObjectMode, add_scenario_models
+from rt_drake.plant import ObjectMode, add_scenario_models, scenario_cup_frame
 from rt_drake.scenario import Scenario
 
 #: Edge step of the checker's straight-line checks, in the weighted metric
@@ -78,7 +78,7 @@ class PlanningScene:
             )
         self.scenario = scenario
         self.plant = plant
-        self.cup_frame = plant.GetFrameByName(CUP_FRAME)
+        self.cup_frame = scenario_cup_frame(plant, scenario)
         self.lower = plant.GetPositionLowerLimits()
         self.upper = plant.GetPositionUpperLimits()
         self._query_port = diagram.scene_graph().get_query_output_port()

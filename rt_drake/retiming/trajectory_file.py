@@ -31,9 +31,9 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import Frame
 
 from rt_drake.contact import CupParameters
+from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import HeldObject
 from rt_drake.errors import InputError
-from rt_drake.plant import CUP_FRAME
 from rt_drake.retiming.limits import GraspConstraint
 from rt_drake.retiming.solve import RetimeResult
 
@@ -96,7 +96,7 @@ def sample_trajectory(
     t = np.append(np.arange(0.0, result.duration, period), result.duration)
     q, qd, qdd = result.trajectory.sample(t, order=2)
     context = plant.CreateDefaultContext()
-    frame = cup_frame if cup_frame is not None else plant.GetFrameByName(CUP_FRAME)
+    frame = cup_frame if cup_frame is not None else CupFrame.of(plant).frame
     X_WC = np.empty((len(t), 4, 4))
     for i, qi in enumerate(q):
         plant.SetPositions(context, qi)

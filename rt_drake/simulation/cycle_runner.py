@@ -16,7 +16,7 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, EventStatus
 
 from rt_drake.errors import RtDrakeError
-from rt_drake.plant import CUP_FRAME, OBJECT_BODY, home_configuration
+from rt_drake.plant import OBJECT_BODY, home_configuration, scenario_cup_frame
 from rt_drake.scenario import Scenario
 from rt_drake.simulation.motion import MotionSource
 from rt_drake.simulation.sequencer import ObjectRecord, Sequencer
@@ -53,7 +53,7 @@ def build_cycle(
     """Return (diagram, station, sequencer) of the cycle of ``scenario``."""
     station: Station = MakeStation(scenario, meshcat=meshcat, options=options)
     plant = station.plant
-    cup = plant.GetFrameByName(CUP_FRAME)
+    cup = scenario_cup_frame(plant, scenario)
     builder = DiagramBuilder()
     cell = builder.AddNamedSystem("station", station.diagram)
     sequencer = builder.AddNamedSystem(

@@ -70,7 +70,7 @@ class OnlineMotions:
         self._scenario = scenario
         self._planner = CyclePlanner(scenario, seed=seed)
         self._plant = make_arm_plant(scenario)
-        self._cup = CupFrame.of(self._plant)
+        self._cup = CupFrame.of(self._plant, scenario.robot.cup_frame)
         self._context = self._plant.CreateDefaultContext()
         self._limits = JointLimits.from_plant(self._plant, scenario.robot)
         self._speed = move_speed

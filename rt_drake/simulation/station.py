@@ -42,12 +42,12 @@ from pydrake.systems.framework import Diagram, DiagramBuilder
 
 from rt_drake.errors import InputError
 from rt_drake.plant import (
-    CUP_FRAME,
     OBJECT_BODY,
     ObjectMode,
     ScenarioModels,
     add_scenario_models,
     make_arm_plant,
+    scenario_cup_frame,
 )
 from rt_drake.scenario import Scenario
 from rt_drake.simulation.suction import SuctionCup, SuctionTarget
@@ -123,7 +123,7 @@ def MakeStation(
         plant.get_desired_state_input_port(models.robot), "robot.desired_state"
     )
 
-    cup_frame = plant.GetFrameByName(CUP_FRAME)
+    cup_frame = scenario_cup_frame(plant, scenario)
     suction = builder.AddNamedSystem(
         "suction",
         SuctionCup(
