@@ -14,7 +14,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from rt_drake.cli._args import positive_int
+from rt_drake.cli._args import nonnegative_int, positive_int
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -38,7 +38,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "--n", type=positive_int, default=20, help="number of random paths (default 20)"
     )
     transport.add_argument(
-        "--seed", type=int, default=0, help="sampling and planning seed (default 0)"
+        "--seed",
+        type=nonnegative_int,
+        default=0,
+        help="sampling and planning seed (default 0)",
     )
     transport.add_argument(
         "--object", default=None, help="object to carry (default: the scenario's)"
@@ -65,16 +68,20 @@ def run_transport(args: argparse.Namespace) -> int:
     """Run the transport experiment and write its outputs; return 0."""
     import time
 
+    from rt_drake.cli._output import output_directory
     from rt_drake.experiments import (
+        TRANSPORT_FILES,
         run_transport_experiment,
         transport_table,
         write_transport_report,
     )
     from rt_drake.resources import resolve_scenario_path
 
+    path = resolve_scenario_path(args.scenario)
+    output_directory(args.out, "--out", TRANSPORT_FILES, {"scenario file": path})
     start = time.perf_counter()
     results = run_transport_experiment(
-        resolve_scenario_path(args.scenario),
+        path,
         n=args.n,
         seed=args.seed,
         object_name=args.object,
