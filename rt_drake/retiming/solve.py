@@ -58,6 +58,9 @@ from rt_drake.retiming.timed_path import TimedPath
 
 #: Grasp rows violated by more than this (N or N m) are added and re-solved.
 ROW_TOLERANCE = 1e-9
+#: Most grid points accepted (the dynamics and the passes are linear in
+#: them: 100 000 take about 4 s and 0.6 GB with the grasp constraint).
+MAX_GRIDPOINTS = 100_000
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -123,11 +126,13 @@ def retime(
         engine: "compiled" or "toppra" (see :mod:`rt_drake.retiming.passes`).
 
     Raises:
-        RetimeInputError: malformed path, limits or grid.
+        RetimeInputError: malformed path, limits or grid, or ``sd_start``,
+            ``sd_end`` not finite and >= 0, ``start_time`` not finite.
         GraspUnstableAtRestError: gravity alone breaks the grasp somewhere.
         TorqueLimitAtRestError: holding the arm still exceeds a torque limit.
         PathNotControllableError: no admissible speed reaches the end.
     """
+    _check_arguments(sd_start, sd_end, start_time)
     spline = path_spline(path)  # checks the path
     n = spline.c.shape[2]
     if n != plant.num_positions() or n != limits.num_joints:
@@ -273,23 +278,45 @@ def _enforced_wrenches(
     return np.vstack([here, following])
 
 
+def _check_arguments(sd_start: float, sd_end: float, start_time: float) -> None:
+    """Refuse NaN, inf or negative path velocities and a NaN start time."""
+    for name, value in (("sd_start", sd_start), ("sd_end", sd_end)):
+        if not (isinstance(value, (int, float, np.number)) and np.isfinite(value)):
+            raise RetimeInputError(f"{name} must be a finite number, got {value!r}")
+        if value < 0.0:
+            raise RetimeInputError(f"{name} must be >= 0 (1/s), got {value!r}")
+    if not (
+        isinstance(start_time, (int, float, np.number)) and np.isfinite(start_time)
+    ):
+        raise RetimeInputError(f"start_time must be finite, got {start_time!r}")
+
+
 def _grid(gridpoints: int | np.ndarray) -> np.ndarray:
     if np.ndim(gridpoints) == 0:
+        if isinstance(gridpoints, bool) or not isinstance(
+            gridpoints, (int, np.integer)
+        ):
+            raise RetimeInputError(f"gridpoints must be an integer, got {gridpoints!r}")
         count = int(gridpoints)
-        if count < 2 or count != gridpoints:
+        if not 2 <= count <= MAX_GRIDPOINTS:
             raise RetimeInputError(
-                f"gridpoints must be an integer >= 2, got {gridpoints!r}"
+                f"gridpoints must be an integer in [2, {MAX_GRIDPOINTS}], "
+                f"got {gridpoints!r}"
             )
         return np.linspace(0.0, 1.0, count)
     s = np.asarray(gridpoints, dtype=float)
     if (
         s.ndim != 1
         or s.size < 2
+        or s.size > MAX_GRIDPOINTS
         or s[0] != 0.0
         or s[-1] != 1.0
         or np.any(np.diff(s) <= 0)
     ):
-        raise RetimeInputError("gridpoints must increase strictly from 0 to 1")
+        raise RetimeInputError(
+            f"gridpoints must be 2 to {MAX_GRIDPOINTS} values increasing strictly "
+            f"from 0 to 1, got {s.size} values"
+        )
     return s
 
 
@@ -318,4 +345,4 @@ def _margins(
     return out
 
 
-__all__ = ["ROW_TOLERANCE", "RetimeResult", "retime"]
+__all__ = ["MAX_GRIDPOINTS", "ROW_TOLERANCE", "RetimeResult", "retime"]
