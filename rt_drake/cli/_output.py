@@ -45,11 +45,11 @@ def output_file(
     """
     path = Path(path)
     _check_not_an_input(path, flag, path, inputs or {})
-    if path.suffix != suffix:
-        raise InputError(f"{flag} '{path}' must end in {suffix}")
     problem = output_problem(path)
     if problem is not None:
         raise InputError(f"{flag} '{path}': {problem}")
+    if path.suffix != suffix:
+        raise InputError(f"{flag} '{path}' must end in {suffix}")
     return path
 
 

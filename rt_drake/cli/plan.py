@@ -58,18 +58,20 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Plan, print the timings, write the CSV; return 0."""
+    from rt_drake.resources import resolve_scenario_path
+
+    scenario_path = resolve_scenario_path(args.scenario)
+    if args.out is not None:  # before the heavy imports: a quick refusal
+        output_file(args.out, "--out", ".csv", {"scenario file": scenario_path})
+
     import io
 
     import numpy as np
 
     from rt_drake.atomic_file import write_text_atomically
     from rt_drake.planning import CyclePlanner, PlannedPath
-    from rt_drake.resources import resolve_scenario_path
     from rt_drake.scenario import load_scenario
 
-    scenario_path = resolve_scenario_path(args.scenario)
-    if args.out is not None:
-        output_file(args.out, "--out", ".csv", {"scenario file": scenario_path})
     scenario = load_scenario(scenario_path)
     scenario.object(args.object)
     planner = CyclePlanner(scenario, seed=args.seed, budget_s=args.budget)

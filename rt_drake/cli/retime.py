@@ -97,6 +97,16 @@ def read_waypoints(path: Path, joints: int) -> np.ndarray:
 
 def run(args: argparse.Namespace) -> int:
     """Retime, write the .npz and print a summary; return 0."""
+    from rt_drake.resources import resolve_scenario_path
+
+    path = resolve_scenario_path(args.scenario)
+    output_file(  # before the heavy imports: a quick refusal
+        args.out,
+        "--out",
+        ".npz",
+        {"scenario file": path, "waypoint file": args.waypoints},
+    )
+
     from rt_drake import (
         GraspConstraint,
         HeldObject,
@@ -108,20 +118,12 @@ def run(args: argparse.Namespace) -> int:
         save_trajectory,
     )
     from rt_drake.plant import make_arm_plant
-    from rt_drake.resources import resolve_scenario_path
     from rt_drake.retiming.solve import MAX_GRIDPOINTS
 
     if not 2 <= args.gridpoints <= MAX_GRIDPOINTS:
         raise InputError(
             f"--gridpoints must be in [2, {MAX_GRIDPOINTS}], got {args.gridpoints}"
         )
-    path = resolve_scenario_path(args.scenario)
-    output_file(
-        args.out,
-        "--out",
-        ".npz",
-        {"scenario file": path, "waypoint file": args.waypoints},
-    )
     scenario = load_scenario(path)
     obj = scenario.object(args.object)
     plant = make_arm_plant(scenario)

@@ -76,6 +76,20 @@ def test_a_budget_that_is_not_a_positive_time_is_refused(capsys, value):
     refused(capsys, argv, "--budget", value)
 
 
+@pytest.mark.parametrize(
+    "argv,words",
+    [
+        (["run", "--time-step", "1e-9"], ["--time-step", "1e-9"]),
+        (["run", "--speed", "1e300"], ["--speed", "1e300"]),
+        (["run", "--seed", "-1"], ["--seed", "-1"]),
+        (["experiment", "transport", "--n", "1000000", "--out", "o"], ["--n"]),
+        (["experiment", "transport", "--workers", "500", "--out", "o"], ["--workers"]),
+    ],
+)
+def test_flags_asking_for_endless_work_are_refused(capsys, argv, words):
+    refused(capsys, argv, *words)
+
+
 def test_retime_out_with_another_suffix_is_refused_not_renamed(capsys, tmp_path):
     (tmp_path / "w.csv").write_text(SWING)
     refused(
