@@ -120,7 +120,7 @@ class CyclePlanner:
     def plan_approach(self, q_current: np.ndarray, name: str) -> PlannedPath:
         """Path from ``q_current`` to the cup above object ``name``."""
         attempt = self._begin(Phase.APPROACH, name)
-        q_current = self._configuration(attempt, q_current, "start configuration")
+        q_current = self._configuration(attempt, q_current, "q_current")
         with attempt.watch("scene"):
             self.prepare(Phase.APPROACH, name, q_current)
         self._check_start(attempt, q_current)
@@ -135,7 +135,7 @@ class CyclePlanner:
     def plan_reach(self, q_approach: np.ndarray, name: str) -> PlannedPath:
         """Straight descent from ``q_approach`` to the grasp of ``name``."""
         attempt = self._begin(Phase.REACH, name)
-        q_approach = self._configuration(attempt, q_approach, "start configuration")
+        q_approach = self._configuration(attempt, q_approach, "q_approach")
         X_start = self.scene.cup_pose(q_approach)
         X_OC = self._nearest_grasp(attempt, X_start)
         with attempt.watch("scene"):
@@ -175,7 +175,7 @@ class CyclePlanner:
                 lifts along its descent, reversed, when that fits.
         """
         attempt = self._begin(Phase.MOVE, name)
-        q_grasp = self._configuration(attempt, q_grasp, "start configuration")
+        q_grasp = self._configuration(attempt, q_grasp, "q_grasp")
         obj = self.scenario.object(name)
         if X_WO_goal is None:
             X_WO_goal = obj.goal.GetDeterministicValue()
@@ -238,8 +238,8 @@ class CyclePlanner:
         """
         phase = Phase.APPROACH if X_OC is None else Phase.MOVE
         attempt = self._begin(phase, name)
-        q_start = self._configuration(attempt, q_start, "start configuration")
-        q_goal = self._configuration(attempt, q_goal, "goal configuration")
+        q_start = self._configuration(attempt, q_start, "q_start")
+        q_goal = self._configuration(attempt, q_goal, "q_goal")
         if X_OC is not None:
             _check_pose(X_OC, "grasp X_OC", attempt)
         with attempt.watch("scene"):
@@ -266,7 +266,7 @@ class CyclePlanner:
         Raises UnreachablePoseError or GoalInCollisionError.
         """
         attempt = self._begin(phase, name, check=False)
-        q_near = self._configuration(attempt, q_near, "configuration q_near")
+        q_near = self._configuration(attempt, q_near, "q_near")
         _check_pose(X_WC, "cup pose X_WC", attempt)
         return self._solve(attempt, "cup", [X_WC], q_near)[1]
 
@@ -337,8 +337,8 @@ class CyclePlanner:
             ),
         )
 
-    def _configuration(self, attempt: Attempt, q: object, what: str) -> np.ndarray:
-        """``q`` as the plant's (n,) joint positions; PlanningInputError if not.
+    def _configuration(self, attempt: Attempt, q: object, name: str) -> np.ndarray:
+        """``q`` (argument ``name``) as (n,) joint positions; PlanningInputError if not.
 
         Wrong size, NaN or inf are refused before any query sees them.
         """
@@ -352,7 +352,8 @@ class CyclePlanner:
             raise PlanningInputError(
                 attempt.phase,
                 attempt.name,
-                f"{what} must be {n} finite joint positions (rad), got {shown}",
+                f"configuration {name} must be {n} finite joint positions (rad), "
+                f"got {shown}",
             )
         return array
 

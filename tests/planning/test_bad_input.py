@@ -33,7 +33,7 @@ def test_planning_input_errors_are_planning_and_input_errors():
         ),
         ("plan_approach", np.zeros(3), ["APPROACH notebook", "got [0. 0. 0.]"]),
         ("plan_approach", "text", ["APPROACH notebook", "got text"]),
-        ("plan_reach", "nan", ["REACH notebook", "start configuration"]),
+        ("plan_reach", "nan", ["REACH notebook", "configuration q_approach"]),
         ("plan_move", "inf", ["MOVE notebook", "inf"]),
     ],
 )
@@ -52,7 +52,7 @@ def test_a_malformed_start_is_refused_not_checked_for_collision(
 def test_a_malformed_goal_or_pose_is_refused(planner):
     goal = planner.q_home.copy()
     goal[4] = np.nan
-    with pytest.raises(PlanningInputError, match="goal configuration.*nan"):
+    with pytest.raises(PlanningInputError, match="configuration q_goal.*nan"):
         planner.plan_between(planner.q_home, goal, "notebook")
     nan_pose = RigidTransform(np.array([np.nan, 0.0, 0.0]))
     with pytest.raises(InputError, match="pose of object 'notebook'"):
