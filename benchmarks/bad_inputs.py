@@ -18,7 +18,9 @@ insensitive; ``a|b`` accepts either). Each case gets one verdict:
 - ``traceback``: a Python traceback, an exit code other than 0 and 2, or an
   API error that is not an ``RtDrakeError`` (``SystemExit`` included);
 - ``silent wrong``: exit 0, or the API returned a value;
-- ``poor message``: refused, but not in one line, or without the tokens;
+- ``poor message``: refused, but not in one line, or without the tokens
+  (for the API, Drake's own log lines, e.g. ``INFO:drake:...``, are not
+  counted: logging is the calling program's to configure);
 - ``good``: refused in one line naming the problem.
 
 A few controls (good inputs, ``control=True``) must succeed; they guard the
@@ -33,6 +35,7 @@ import dataclasses
 import hashlib
 import json
 import os
+import re
 import resource
 import subprocess
 import sys
@@ -121,7 +124,16 @@ _ALIAS_BOMB = "".join(
 def _object_sdf_case(name: str, pairs, expect) -> Case:
     return Case(
         f"retime.object_sdf.{name}",
-        ("retime", "s.yaml", "--waypoints", "w.csv", "--object", "notebook", "--out", "o.npz"),
+        (
+            "retime",
+            "s.yaml",
+            "--waypoints",
+            "w.csv",
+            "--object",
+            "notebook",
+            "--out",
+            "o.npz",
+        ),
         files={"s.yaml": scenario(_MODEL), "obj.sdf": sdf(*pairs), "w.csv": _SWING},
         expect=expect,
     )
@@ -1059,6 +1071,10 @@ _API_WRAPPER = textwrap.dedent(
 )
 
 
+#: A line of Drake's logging through Python's default format.
+_DRAKE_LOG = re.compile(r"^(DEBUG|INFO|WARNING):drake:")
+
+
 def _limit(memory_bytes: int):
     def apply() -> None:
         resource.setrlimit(resource.RLIMIT_AS, (memory_bytes, memory_bytes))
@@ -1109,6 +1125,8 @@ def run_case(case: Case, base: Path, timeout: float, memory: int) -> dict:
         code, out, err = None, str(expired.stdout or ""), str(expired.stderr or "")
     seconds = time.perf_counter() - start
     lines = [line for line in err.splitlines() if line.strip()]
+    if not case.argv:  # the API: Drake's own log lines are the user's to configure
+        lines = [line for line in lines if not _DRAKE_LOG.match(line)]
     changed = [n for n, d in before.items() if _digest(directory / n) != d]
     left = sorted(
         str(p.relative_to(directory))

@@ -348,7 +348,11 @@ class CyclePlanner:
         except (TypeError, ValueError):
             array = None
         if array is None or array.shape != (n,) or not np.all(np.isfinite(array)):
-            shown = np.array2string(array, precision=4) if array is not None else q
+            shown = (
+                f"{array.size} values {np.array2string(array, precision=4)}"
+                if array is not None
+                else repr(q)
+            )
             raise PlanningInputError(
                 attempt.phase,
                 attempt.name,
