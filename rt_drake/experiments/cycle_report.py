@@ -14,6 +14,7 @@ import math
 from pathlib import Path
 from typing import Any
 
+from rt_drake.atomic_file import write_text_atomically
 from rt_drake.phase import Phase
 from rt_drake.simulation.motion import PlanTimes
 from rt_drake.simulation.sequencer import ObjectRecord
@@ -24,6 +25,8 @@ PLAN_KEYS = ("approach", "reach", "move", "retime")
 #: The phases of ``exec_s``, in order (keys: their values).
 EXEC_PHASES = (Phase.APPROACH, Phase.REACH, Phase.ATTACH, Phase.MOVE, Phase.DETACH)
 EXEC_KEYS = tuple(phase.value for phase in EXEC_PHASES)
+#: The files :func:`write_report` writes into its directory.
+REPORT_FILES = ("report.json", "report.md")
 
 
 def object_report(record: ObjectRecord) -> dict[str, Any]:
@@ -101,11 +104,13 @@ def table_markdown(report: dict[str, Any]) -> str:
 
 
 def write_report(report: dict[str, Any], out_dir: Path) -> tuple[Path, Path]:
-    """Write ``report.json`` and ``report.md`` into ``out_dir``; return both paths."""
-    out_dir.mkdir(parents=True, exist_ok=True)
-    json_path = out_dir / "report.json"
-    md_path = out_dir / "report.md"
-    json_path.write_text(json.dumps(report, indent=2) + "\n")
+    """Write ``report.json`` and ``report.md`` into ``out_dir``; return both paths.
+
+    Each file is written atomically (:mod:`rt_drake.atomic_file`).
+    """
+    json_path = out_dir / REPORT_FILES[0]
+    md_path = out_dir / REPORT_FILES[1]
+    write_text_atomically(json_path, json.dumps(report, indent=2) + "\n")
     lines = [
         "# Pick-and-place cycle",
         "",
@@ -116,13 +121,14 @@ def write_report(report: dict[str, Any], out_dir: Path) -> tuple[Path, Path]:
         table_markdown(report),
         f"Cycle total: {report['total_s']:.3f} s",
     ]
-    md_path.write_text("\n".join(lines) + "\n")
+    write_text_atomically(md_path, "\n".join(lines) + "\n")
     return json_path, md_path
 
 
 __all__ = [
     "EXEC_KEYS",
     "EXEC_PHASES",
+    "REPORT_FILES",
     "PLAN_KEYS",
     "cycle_report",
     "object_report",
