@@ -176,9 +176,21 @@ def grasp_midpoint_rows(
         F: (R, 6) the rows in force.
         g: (R,) their bounds.
     """
-    a, b, c = (segments.interpolate(v, MIDDLE) for v in wrench)  # (N, 6)
-    Fa, Fb, Fc = a @ F.T, b @ F.T, c @ F.T
-    return StageRows(Fa + segments.ds[:, None] * Fb, Fb, Fc - g)
+    shape = (len(segments.ds), len(g))
+    A, B, C = np.empty(shape), np.empty(shape), np.empty(shape)
+    K.midpoint_rows(
+        *(kernel_array(v) for v in wrench),
+        kernel_array(F),
+        kernel_array(g),
+        segments.s,
+        segments._weights,
+        segments._index,
+        MIDDLE,
+        A,
+        B,
+        C,
+    )
+    return StageRows(A, B, C)
 
 
 def joint_cuts(

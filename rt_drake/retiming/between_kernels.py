@@ -154,6 +154,39 @@ def enforced_wrenches(a, b, c, x, u, s, weights, index, middle, out):  # noqa: D
 
 
 @njit(cache=True)
+def midpoint_rows(a, b, c, F, g, s, weights, index, middle, A, B, C):  # noqa: D417
+    """Rows ``F (a(m) u + b(m) (x + ds u) + c(m)) - g <= 0`` at every midpoint.
+
+    ``m = s_i + ds_i / 2``, the coefficients interpolated (sub-point
+    ``middle`` of the stencil ``weights``, ``index``); A, B, C (N, k) are
+    written in place: ``A = F a(m) + ds_i F b(m)``, ``B = F b(m)``,
+    ``C = F c(m) - g``.
+    """
+    k, m = F.shape
+    here = np.empty((3, m))
+    for i in range(A.shape[0]):
+        for d in range(m):
+            sum_a = sum_b = sum_c = 0.0
+            for slot in range(4):
+                w = weights[i, middle, slot]
+                g_i = index[i, slot]
+                sum_a += w * a[g_i, d]
+                sum_b += w * b[g_i, d]
+                sum_c += w * c[g_i, d]
+            here[0, d], here[1, d], here[2, d] = sum_a, sum_b, sum_c
+        ds = s[i + 1] - s[i]
+        for r in range(k):
+            f_a = f_b = f_c = 0.0
+            for d in range(m):
+                f_a += here[0, d] * F[r, d]
+                f_b += here[1, d] * F[r, d]
+                f_c += here[2, d] * F[r, d]
+            A[i, r] = f_a + ds * f_b
+            B[i, r] = f_b
+            C[i, r] = f_c - g[r]
+
+
+@njit(cache=True)
 def position_excess(s, q, dq, ddq, lower, upper, tolerance):  # noqa: D417
     """The first grid point or segment extreme outside the position limits.
 
@@ -199,6 +232,7 @@ __all__ = [
     "enforced_wrenches",
     "interior_rows",
     "joint_excess",
+    "midpoint_rows",
     "position_excess",
     "sub_derivatives",
 ]

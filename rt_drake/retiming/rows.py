@@ -128,18 +128,28 @@ def _products(n, w0, w1, w2, w3, w4, w5, out):
 
 
 @njit(cache=True)
+def _running_max(values, row_max):
+    """``max_k values[k]``; ``row_max[k] = max(row_max[k], values[k])``.
+
+    Written as selects with unconditional stores (no branch per row).
+    """
+    best = -np.inf
+    for k in range(values.shape[0]):
+        value = values[k]
+        best = value if value > best else best
+        previous = row_max[k]
+        row_max[k] = value if value > previous else previous
+    return best
+
+
+@njit(cache=True)
 def _ratios(wrenches, n, g, tol, ratio, violated, row_max):
     values = np.empty(n.shape[1])
     g_min = g.min()
     for i in range(wrenches.shape[0]):
         w = wrenches[i]
         _products(n, w[0], w[1], w[2], w[3], w[4], w[5], values)
-        best = -np.inf
-        for k in range(values.shape[0]):
-            if values[k] > best:
-                best = values[k]
-            if values[k] > row_max[k]:
-                row_max[k] = values[k]
+        best = _running_max(values, row_max)
         ratio[i] = best
         if g_min * (best - 1.0) <= 0.0:
             continue  # no row exceeds its bound at all

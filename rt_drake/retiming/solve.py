@@ -64,6 +64,7 @@ from rt_drake.retiming.passes import (
     StageRows,
     XBound,
     reachability,
+    stage_rows,
 )
 from rt_drake.retiming.samples import PathSamples, sample_path
 from rt_drake.retiming.samples import with_points as merge_samples
@@ -375,17 +376,21 @@ def _solve_exact(
 ) -> _Profile:
     """TOPP-RA with the selected grasp rows, adding missed rows until none.
 
-    ``fixed``: every other constraint (:func:`_joint_constraints`, cuts).
+    ``fixed``: every other constraint (:func:`_joint_constraints`, cuts);
+    the compiled engine projects them once for all the solves.
     """
     s = samples.s
     repairs = 0
+    base = None
+    if engine == "compiled" and grasp is not None:
+        base = stage_rows(fixed, np.diff(s))
     while True:
-        constraints = list(fixed)
+        constraints = [] if base is not None else list(fixed)
         if grasp is not None and samples.wrench is not None:
             F, g = grasp.F[rows], grasp.g[rows]
             constraints.append(AffineConstraint(*samples.wrench, F, g))
             constraints.append(grasp_midpoint_rows(segments, samples.wrench, F, g))
-        solution = reachability(constraints, spline, s, sd_start, sd_end, engine)
+        solution = reachability(constraints, spline, s, sd_start, sd_end, engine, base)
         if solution.x is None or solution.u is None:
             if grasp is not None and len(rows) < len(grasp.g):
                 rows = np.arange(len(grasp.g))  # confirm with every row
