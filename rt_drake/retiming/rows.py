@@ -158,13 +158,32 @@ def _ratios(wrenches, n, g, tol, ratio, violated, row_max):
                 violated[k] = True
 
 
+#: Skipping a division (:func:`_argmax_ratio`, :func:`_side_hits`): a row
+#: with ``d > 1e-290`` and ``num <= best' d (1 - 2^-50)`` (as computed)
+#: cannot beat ``best``, where ``best' = best`` if it is at least 1e-290,
+#: else 0. Then ``num / d <= best (1 - 5u)`` (u the unit roundoff; an
+#: underflow in the products adds at most 5e-324 / d), which rounds below
+#: ``best``, or ``num <= 0``: the row found is the one dividing every row
+#: would find, with a fraction of the divisions.
+_SHRINK = 1.0 - 2.0**-50
+_NORMAL = 1e-290
+
+
 @njit(cache=True)
-def _argmax_positive(values, sign):
-    """First k maximising ``sign values[k]`` among the positive ones (else -1)."""
-    hit, best = -1, 0.0
-    for k in range(values.shape[0]):
-        if sign * values[k] > best:
-            hit, best = k, sign * values[k]
+def _argmax_ratio(num, den):
+    """First k maximising ``num[k] / den[k]`` among the positive ones (else -1).
+
+    Divides only the rows that can beat the best so far (see ``_SHRINK``).
+    """
+    hit, best, scale = -1, 0.0, 0.0
+    for k in range(num.shape[0]):
+        d = den[k]
+        if d > _NORMAL and num[k] <= scale * d * _SHRINK:
+            continue
+        value = num[k] / d
+        if value > best:
+            hit, best = k, value
+            scale = best if best >= _NORMAL else 0.0
     return hit
 
 
@@ -172,26 +191,34 @@ def _argmax_positive(values, sign):
 def _side_hits(alpha, beta, slack, lifts, selected):
     """Mark the rows maximising and minimising ``alpha / (slack - lift beta)``.
 
-    One pass over the rows for every lift (rays along +u and -u from (0,
-    lift)); only positive maxima count (-1: that ray hits nothing).
+    For every lift (rays along +u and -u from (0, lift)); only positive
+    maxima count (none: that ray hits nothing). Divides only the rows that
+    can beat the running extremes (see ``_SHRINK``).
     """
-    count = lifts.shape[0]
-    plus = np.full(count, -1)
-    minus = np.full(count, -1)
-    best_plus = np.zeros(count)
-    best_minus = np.zeros(count)
-    for k in range(alpha.shape[0]):
-        for j in range(count):
-            value = alpha[k] / (slack[k] - lifts[j] * beta[k])
-            if value > best_plus[j]:
-                plus[j], best_plus[j] = k, value
-            if -value > best_minus[j]:
-                minus[j], best_minus[j] = k, -value
-    for j in range(count):
-        if plus[j] >= 0:
-            selected[plus[j]] = True
-        if minus[j] >= 0:
-            selected[minus[j]] = True
+    for j in range(lifts.shape[0]):
+        lift = lifts[j]
+        plus, minus = -1, -1
+        best_plus = best_minus = scale_plus = scale_minus = 0.0
+        for k in range(alpha.shape[0]):
+            d = slack[k] - lift * beta[k]
+            top = alpha[k]
+            if (
+                d > _NORMAL
+                and top <= scale_plus * d * _SHRINK
+                and -top <= scale_minus * d * _SHRINK
+            ):
+                continue
+            value = top / d
+            if value > best_plus:
+                plus, best_plus = k, value
+                scale_plus = best_plus if best_plus >= _NORMAL else 0.0
+            if -value > best_minus:
+                minus, best_minus = k, -value
+                scale_minus = best_minus if best_minus >= _NORMAL else 0.0
+        if plus >= 0:
+            selected[plus] = True
+        if minus >= 0:
+            selected[minus] = True
 
 
 @njit(cache=True)
@@ -200,7 +227,6 @@ def _rest_and_rays(a, b, c, n, x_cap, stride, heights, rest, selected):
     slack = np.empty(rows)
     alpha = np.empty(rows)
     beta = np.empty(rows)
-    ratio = np.empty(rows)
     held = True
     for i in range(c.shape[0]):
         _products(n, c[i, 0], c[i, 1], c[i, 2], c[i, 3], c[i, 4], c[i, 5], slack)
@@ -216,9 +242,7 @@ def _rest_and_rays(a, b, c, n, x_cap, stride, heights, rest, selected):
         _products(n, a[i, 0], a[i, 1], a[i, 2], a[i, 3], a[i, 4], a[i, 5], alpha)
         _products(n, b[i, 0], b[i, 1], b[i, 2], b[i, 3], b[i, 4], b[i, 5], beta)
         # Along +x from rest: the first row hit maximises beta / slack.
-        for k in range(rows):
-            ratio[k] = beta[k] / slack[k]
-        top = _argmax_positive(ratio, 1.0)
+        top = _argmax_ratio(beta, slack)
         x_top = x_cap[i]
         if top >= 0:
             selected[top] = True
