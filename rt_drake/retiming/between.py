@@ -278,8 +278,9 @@ def refinement_points(
         u: (G-1,) ``s''`` per segment.
         limits: Joint limits.
         normals: (6, R) grasp rows ``F / g`` (transposed), or None.
-        row_max: (R,) each grasp row's largest ``F_k w / g_k`` at the grid
-            points (from the exactness check), or None.
+        row_max: (R,) each grasp row's largest ``F_k w / g_k`` over the
+            wrenches the stage LPs enforced (from the exactness check; exact
+            where above ``1 - ROW_SCREEN``), or None.
         tolerance: Relative excess allowed.
 
     Returns:

@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from rt_drake.retiming.row_groups import group_rows, grouped_ratios
 from rt_drake.retiming.seidel import kernel_array
 
 #: Heights, as fractions of the height x_top reached from rest along +x, of
@@ -84,31 +85,39 @@ def wrench_ratios(
     normals: np.ndarray,
     g: np.ndarray,
     tol: float,
+    floor: float = -np.inf,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Evaluate every grasp row at every wrench.
+    """Evaluate every grasp row at every wrench (rows far below skipped).
+
+    Rows are grouped in boxes (:mod:`.row_groups`); a group that can hold
+    neither a wrench's largest value nor a value above ``floor`` is skipped
+    at that wrench, which changes none of the results below.
 
     Args:
         wrenches: (M, 6) wrenches on the object (N m, N).
         normals: (6, R) from :func:`normalised_rows`.
         g: (R,) the rows' offsets.
-        tol: Excess (N or N m) above which a row counts as violated.
+        tol: Excess (N or N m, >= 0) above which a row counts as violated.
+        floor: ``row_max`` is exact where above it (at most 1; -inf: for
+            every row).
 
     Returns:
         ratio: (M,) ``max_k n_k w`` (<= 1: the wrench is in the polytope).
         violated: Sorted rows with ``g_k (n_k w - 1) > tol`` at some wrench.
-        row_max: (R,) ``max_w n_k w`` of every row over the wrenches.
+        row_max: (R,) ``max_w n_k w`` of each row over the wrenches where
+            that is above ``floor``; at most ``floor`` for the others.
     """
+    if not tol >= 0.0:
+        raise ValueError(f"tol must be >= 0, got {tol}")
+    wrenches = kernel_array(wrenches)
+    g = kernel_array(g)
+    scale = np.abs(wrenches).max(axis=0) if len(wrenches) else np.ones(6)
+    groups = group_rows(normals, g, scale)
     ratio = np.empty(len(wrenches))
     violated = np.zeros(len(g), dtype=np.bool_)
-    row_max = np.full(len(g), -np.inf)
-    _ratios(
-        kernel_array(wrenches),
-        normals,
-        kernel_array(g),
-        float(tol),
-        ratio,
-        violated,
-        row_max,
+    row_max = np.empty(len(g))
+    grouped_ratios(
+        wrenches, groups, float(tol), min(float(floor), 1.0), ratio, violated, row_max
     )
     return ratio, np.flatnonzero(violated), row_max
 
@@ -125,37 +134,6 @@ def _products(n, w0, w1, w2, w3, w4, w5, out):
             + n[4, k] * w4
             + n[5, k] * w5
         )
-
-
-@njit(cache=True)
-def _running_max(values, row_max):
-    """``max_k values[k]``; ``row_max[k] = max(row_max[k], values[k])``.
-
-    Written as selects with unconditional stores (no branch per row).
-    """
-    best = -np.inf
-    for k in range(values.shape[0]):
-        value = values[k]
-        best = value if value > best else best
-        previous = row_max[k]
-        row_max[k] = value if value > previous else previous
-    return best
-
-
-@njit(cache=True)
-def _ratios(wrenches, n, g, tol, ratio, violated, row_max):
-    values = np.empty(n.shape[1])
-    g_min = g.min()
-    for i in range(wrenches.shape[0]):
-        w = wrenches[i]
-        _products(n, w[0], w[1], w[2], w[3], w[4], w[5], values)
-        best = _running_max(values, row_max)
-        ratio[i] = best
-        if g_min * (best - 1.0) <= 0.0:
-            continue  # no row exceeds its bound at all
-        for k in range(values.shape[0]):
-            if g[k] * (values[k] - 1.0) > tol:
-                violated[k] = True
 
 
 #: Skipping a division (:func:`_argmax_ratio`, :func:`_side_hits`): a row

@@ -44,6 +44,7 @@ from rt_drake.dynamics import PathCoefficients
 from rt_drake.retiming import rows as R
 from rt_drake.retiming.at_rest import check_grasp_at_rest, check_torque_at_rest
 from rt_drake.retiming.between import (
+    ROW_SCREEN,
     Segments,
     grasp_midpoint_rows,
     interior_rows,
@@ -326,7 +327,8 @@ class _Profile(NamedTuple):
             (the acceleration of the segment that starts there; the last
             point takes the last one); else None.
         row_max: With a grasp, ``max_i F_k w_i / g_k`` (R,) of every row over
-            the wrenches enforced; else None.
+            the wrenches enforced where above ``1 - ROW_SCREEN`` (at most
+            that for the others); else None.
     """
 
     x: np.ndarray
@@ -407,10 +409,7 @@ def _solve_exact(
             return _Profile(solution.x, solution.u, rows, repairs, None, None)
         enforced = segments.enforced_wrenches(samples.wrench, solution.x, solution.u)
         ratio, violated, row_max = R.wrench_ratios(
-            enforced,
-            normals,
-            grasp.g,
-            ROW_TOLERANCE,
+            enforced, normals, grasp.g, ROW_TOLERANCE, floor=1.0 - ROW_SCREEN
         )
         missed = np.setdiff1d(violated, rows) if violated.size else violated
         if not missed.size:
