@@ -92,9 +92,10 @@ def affine_excess(weights, index, a, b, c, step, x, u, rows, absolute, out):  # 
     """Largest ratio - 1 in each segment of ``rows . (a u + b x + c)``.
 
     The coefficients at each sub-point are interpolated (``weights``,
-    ``index``: the Lagrange stencil); ``rows`` (m, R) maps a value to
-    ratios (``F / g`` transposed for the grasp, ``diag(1 / tau_max)`` for
-    torques); ``absolute``: take the absolute value (torques).
+    ``index``: the Lagrange stencil); ``rows`` (R, m) maps a value to
+    ratios (``F / g`` for the grasp, ``diag(1 / tau_max)`` for torques), a
+    row at a time (contiguous); ``absolute``: take the absolute value
+    (torques).
     """
     m = a.shape[1]
     value = np.empty(m)
@@ -110,14 +111,14 @@ def affine_excess(weights, index, a, b, c, step, x, u, rows, absolute, out):  # 
                         g = index[i, slot]
                         total += w * (a[g, d] * u[i] + b[g, d] * x_j + c[g, d])
                 value[d] = total
-            for r in range(rows.shape[1]):
+            largest = -math.inf  # of the ratios, or of their absolute values
+            for r in range(rows.shape[0]):
                 ratio = 0.0
                 for d in range(m):
-                    ratio += rows[d, r] * value[d]
-                if absolute:
-                    ratio = abs(ratio)
-                if ratio - 1.0 > best:
-                    best = ratio - 1.0
+                    ratio += rows[r, d] * value[d]
+                ratio = abs(ratio) if absolute else ratio
+                largest = ratio if ratio > largest else largest
+            best = max(best, largest - 1.0)
         out[i] = best
 
 

@@ -27,7 +27,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from rt_drake.retiming.row_groups import group_rows, grouped_ratios
+from rt_drake.retiming.row_groups import RowGroups, group_rows, grouped_ratios
 from rt_drake.retiming.seidel import kernel_array
 
 #: Heights, as fractions of the height x_top reached from rest along +x, of
@@ -86,12 +86,14 @@ def wrench_ratios(
     g: np.ndarray,
     tol: float,
     floor: float = -np.inf,
+    groups: RowGroups | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Evaluate every grasp row at every wrench (rows far below skipped).
 
     Rows are grouped in boxes (:mod:`.row_groups`); a group that can hold
     neither a wrench's largest value nor a value above ``floor`` is skipped
-    at that wrench, which changes none of the results below.
+    at that wrench, which changes none of the results below (nor does the
+    grouping: any grouping of these rows gives the same results).
 
     Args:
         wrenches: (M, 6) wrenches on the object (N m, N).
@@ -100,6 +102,8 @@ def wrench_ratios(
         tol: Excess (N or N m, >= 0) above which a row counts as violated.
         floor: ``row_max`` is exact where above it (at most 1; -inf: for
             every row).
+        groups: The rows grouped by :func:`wrench_groups` (to reuse them
+            across calls); None: grouped here for these wrenches.
 
     Returns:
         ratio: (M,) ``max_k n_k w`` (<= 1: the wrench is in the polytope).
@@ -110,9 +114,8 @@ def wrench_ratios(
     if not tol >= 0.0:
         raise ValueError(f"tol must be >= 0, got {tol}")
     wrenches = kernel_array(wrenches)
-    g = kernel_array(g)
-    scale = np.abs(wrenches).max(axis=0) if len(wrenches) else np.ones(6)
-    groups = group_rows(normals, g, scale)
+    if groups is None:
+        groups = wrench_groups(wrenches, normals, g)
     ratio = np.empty(len(wrenches))
     violated = np.zeros(len(g), dtype=np.bool_)
     row_max = np.empty(len(g))
@@ -120,6 +123,18 @@ def wrench_ratios(
         wrenches, groups, float(tol), min(float(floor), 1.0), ratio, violated, row_max
     )
     return ratio, np.flatnonzero(violated), row_max
+
+
+def wrench_groups(
+    wrenches: np.ndarray, normals: np.ndarray, g: np.ndarray
+) -> RowGroups:
+    """The grasp rows grouped for :func:`wrench_ratios` at such wrenches.
+
+    The wrenches only weight the split (by each coordinate's magnitude), so
+    the groups serve as well for other wrenches of the same path.
+    """
+    scale = np.abs(wrenches).max(axis=0) if len(wrenches) else np.ones(6)
+    return group_rows(normals, kernel_array(g), kernel_array(scale))
 
 
 @njit(cache=True)
@@ -239,5 +254,6 @@ __all__ = [
     "RAY_STRIDE",
     "normalised_rows",
     "rest_and_candidates",
+    "wrench_groups",
     "wrench_ratios",
 ]
