@@ -286,13 +286,13 @@ def refinement_points(
     Returns:
         Sorted new s values (empty: nothing exceeded).
     """
-    checks: list[tuple[PathCoefficients, np.ndarray, bool]] = []  # rows (R, m)
+    checks: list[tuple[PathCoefficients, np.ndarray, bool]] = []
     if samples.torque is not None and limits.torque is not None:
         checks.append((samples.torque, np.diag(1.0 / limits.torque), True))
     if samples.wrench is not None and normals is not None and row_max is not None:
         rows = np.flatnonzero(row_max > 1.0 - ROW_SCREEN)
         if rows.size:
-            checks.append((samples.wrench, normals[:, rows].T, False))
+            checks.append((samples.wrench, normals[:, rows], False))
     if not checks:
         return np.zeros(0)
     excess = np.full(len(u), -np.inf)

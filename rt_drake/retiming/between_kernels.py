@@ -92,13 +92,15 @@ def affine_excess(weights, index, a, b, c, step, x, u, rows, absolute, out):  # 
     """Largest ratio - 1 in each segment of ``rows . (a u + b x + c)``.
 
     The coefficients at each sub-point are interpolated (``weights``,
-    ``index``: the Lagrange stencil); ``rows`` (R, m) maps a value to
-    ratios (``F / g`` for the grasp, ``diag(1 / tau_max)`` for torques), a
-    row at a time (contiguous); ``absolute``: take the absolute value
-    (torques).
+    ``index``: the Lagrange stencil); ``rows`` (m, R) maps a value to
+    ratios (``F / g`` transposed for the grasp, ``diag(1 / tau_max)`` for
+    torques); ``absolute``: take the absolute value (torques). The ratios
+    are summed a coordinate at a time over all rows (the same sums, in the
+    same order, as row by row; the loop over rows vectorises).
     """
-    m = a.shape[1]
+    m, count = rows.shape
     value = np.empty(m)
+    ratio = np.empty(count)
     for i in range(weights.shape[0]):
         best = -math.inf
         for j in range(weights.shape[1]):
@@ -111,13 +113,15 @@ def affine_excess(weights, index, a, b, c, step, x, u, rows, absolute, out):  # 
                         g = index[i, slot]
                         total += w * (a[g, d] * u[i] + b[g, d] * x_j + c[g, d])
                 value[d] = total
+            ratio[:] = 0.0
+            for d in range(m):
+                v = value[d]
+                for r in range(count):
+                    ratio[r] += rows[d, r] * v
             largest = -math.inf  # of the ratios, or of their absolute values
-            for r in range(rows.shape[0]):
-                ratio = 0.0
-                for d in range(m):
-                    ratio += rows[r, d] * value[d]
-                ratio = abs(ratio) if absolute else ratio
-                largest = ratio if ratio > largest else largest
+            for r in range(count):
+                item = abs(ratio[r]) if absolute else ratio[r]
+                largest = item if item > largest else largest
             best = max(best, largest - 1.0)
         out[i] = best
 

@@ -149,9 +149,12 @@ def _build(normals, g, scale, order, start, sorted_normals, sorted_g, boxes):  #
 
 
 @njit(cache=True)
-def _group_max(low, high, n, w0, w1, w2, w3, w4, w5, row_max):  # noqa: D417
-    """``max_k n_k w`` over sorted positions low..high-1; update row_max."""
-    best = -np.inf
+def _group_max(low, high, n, w0, w1, w2, w3, w4, w5, row_max, values):  # noqa: D417
+    """``max_k n_k w`` over sorted positions low..high-1; update row_max.
+
+    The values first (a loop that vectorises: no reduction), then their
+    maximum.
+    """
     for k in range(low, high):
         value = (
             n[0, k] * w0
@@ -161,9 +164,12 @@ def _group_max(low, high, n, w0, w1, w2, w3, w4, w5, row_max):  # noqa: D417
             + n[4, k] * w4
             + n[5, k] * w5
         )
-        best = value if value > best else best
+        values[k] = value
         previous = row_max[k]
         row_max[k] = value if value > previous else previous
+    best = -np.inf
+    for k in range(low, high):
+        best = values[k] if values[k] > best else best
     return best
 
 
@@ -202,12 +208,12 @@ def grouped_ratios(wrenches, groups, tol, floor, ratio, violated, row_max):  # n
     count = start.shape[0] - 1
     bound = np.empty(count)
     sorted_max = np.full(n.shape[1], -np.inf)
+    values = np.empty(n.shape[1])
     for i in range(wrenches.shape[0]):
         w0, w1, w2 = wrenches[i, 0], wrenches[i, 1], wrenches[i, 2]
         w3, w4, w5 = wrenches[i, 3], wrenches[i, 4], wrenches[i, 5]
         a0, a1, a2, a3, a4, a5 = abs(w0), abs(w1), abs(w2), abs(w3), abs(w4), abs(w5)
-        top, top_bound = 0, -np.inf
-        for j in range(count):
+        for j in range(count):  # vectorises (no reduction)
             value = (
                 center[0, j] * w0
                 + center[1, j] * w1
@@ -233,6 +239,8 @@ def grouped_ratios(wrenches, groups, tol, floor, ratio, violated, row_max):  # n
                 + reach[5, j] * a5
             )
             bound[j] = value + spread + MARGIN * size
+        top, top_bound = 0, -np.inf
+        for j in range(count):
             if bound[j] > top_bound:
                 top, top_bound = j, bound[j]
         best = -np.inf
@@ -241,7 +249,7 @@ def grouped_ratios(wrenches, groups, tol, floor, ratio, violated, row_max):  # n
             if step > 0 and (j == top or bound[j] <= min(best, floor)):
                 continue
             low, high = start[j], start[j + 1]
-            value = _group_max(low, high, n, w0, w1, w2, w3, w4, w5, sorted_max)
+            value = _group_max(low, high, n, w0, w1, w2, w3, w4, w5, sorted_max, values)
             if value > 1.0:  # g (n w - 1) > tol > 0 needs n w > 1
                 _group_violated(
                     low, high, groups, tol, w0, w1, w2, w3, w4, w5, violated
