@@ -2,7 +2,7 @@
 
 A scenario file names the cell (Drake model directives), the robot's home
 configuration and limits, the suction cup, the objects with their start and
-goal poses, and the attach/detach times. ``yaml_load_typed`` rejects
+goal poses, and the vacuum (attach and detach behaviour). ``yaml_load_typed`` rejects
 misspelled keys; :func:`load_scenario` turns every error into a one-line
 :class:`~rt_drake.errors.ScenarioError` that names the file, the key path
 (``objects[1].start.translation``) and the offending value.
@@ -13,6 +13,7 @@ field says otherwise.
 """
 
 import dataclasses
+import enum
 import math
 import re
 from pathlib import Path
@@ -69,12 +70,75 @@ class ObjectConfig:
     grasp: Transform = dataclasses.field(default_factory=Transform)
 
 
-@dataclasses.dataclass
-class Timing:
-    """Waits of the cycle, in seconds (the paper: 1 s each)."""
+class VacuumModel(enum.Enum):
+    """How the suction force follows the valve."""
 
+    FIXED = "fixed"  # full force at once; fixed attach and detach waits
+    FIRST_ORDER = "first_order"  # first-order build-up and release
+
+
+@dataclasses.dataclass
+class Vacuum:
+    """The vacuum: how fast the suction force P A builds up and releases.
+
+    ``model: fixed`` (the paper's, the default): the force is P A while the
+    valve is on and 0 when it is off; ATTACH waits ``attach_s`` and DETACH
+    ``detach_s`` seconds (the paper: 1 s each).
+
+    ``model: first_order``: the vacuum level lambda in [0, 1] (force
+    lambda P A) follows a first-order lag, ``d lambda/dt = (1 - lambda) /
+    build_up_tau_s`` while the valve is on and the cup sealed on a face, and
+    ``-lambda / release_tau_s`` otherwise. A vacuum switch reports "part
+    present" once ``lambda >= part_present_fraction``: ATTACH ends then
+    (``t = build_up_tau_s ln(1 / (1 - part_present_fraction))`` after the
+    valve opens) and the MOVE is retimed for the force guaranteed from then
+    on, ``part_present_fraction P A``. DETACH ends when the force is below
+    the object's weight and the object is at rest. ``attach_s`` and
+    ``detach_s`` are then time-outs: a cycle that waits longer stops with a
+    VacuumTimeout (no seal, or the object sticks).
+
+    The default time constants are assumptions, not measurements: an
+    ejector evacuating a volume V at a suction flow q through the valve is a
+    first-order lag of ``tau = V / q`` (isothermal, flow proportional to the
+    remaining pressure difference; evacuating from p0 to p1 takes
+    ``(V / q) ln(p0 / p1)``). For the paper's 25 mm cup, V is about 15 cm^3
+    (cup and 1 m of 4 mm hose) and q about 9 l/min (0.15 l/s) at the cup,
+    so tau is about 0.1 s; venting with a blow-off pulse is assumed twice
+    as fast (0.05 s). Vacuum switches are commonly set to 60-80 % of the
+    working vacuum: 0.8.
+
+    Attributes:
+        model: ``fixed`` or ``first_order``.
+        attach_s, detach_s: s, the waits (fixed) or time-outs (first_order).
+        build_up_tau_s: s, time constant of the build-up (first_order).
+        release_tau_s: s, time constant of the release (first_order).
+        part_present_fraction: fraction of P A at which "part present" fires.
+    """
+
+    model: str = VacuumModel.FIXED.value
     attach_s: float = 1.0
     detach_s: float = 1.0
+    build_up_tau_s: float = 0.1
+    release_tau_s: float = 0.05
+    part_present_fraction: float = 0.8
+
+    @property
+    def kind(self) -> VacuumModel:
+        """``model`` as the enum (ScenarioError if unknown)."""
+        try:
+            return VacuumModel(self.model)
+        except ValueError:
+            known = ", ".join(m.value for m in VacuumModel)
+            raise ScenarioError(
+                f"key 'vacuum.model': unknown model {self.model!r} (known: {known})"
+            ) from None
+
+    @property
+    def move_force_fraction(self) -> float:
+        """Fraction of P A a MOVE may rely on (1 fixed, the switch's first_order)."""
+        if self.kind is VacuumModel.FIXED:
+            return 1.0
+        return self.part_present_fraction
 
 
 @dataclasses.dataclass
@@ -103,7 +167,7 @@ class Scenario:
     robot: RobotConfig = dataclasses.field(default_factory=RobotConfig)
     cup: CupParameters = dataclasses.field(default_factory=CupParameters)
     objects: list[ObjectConfig] = dataclasses.field(default_factory=list)
-    timing: Timing = dataclasses.field(default_factory=Timing)
+    vacuum: Vacuum = dataclasses.field(default_factory=Vacuum)
     random_transport: RandomTransport | None = None
 
     def object(self, name: str) -> ObjectConfig:
@@ -134,6 +198,7 @@ def load_scenario(path: str | Path) -> Scenario:
     if not isinstance(raw, dict):
         raise ScenarioError(f"{path}: expected a mapping of keys at the top level")
     _check_poses(path, raw)
+    _check_renamed(path, raw)
     try:
         scenario = yaml_load_typed(schema=Scenario, data=text)
     except (RuntimeError, ValueError, TypeError) as error:
@@ -184,6 +249,19 @@ def _check_poses(path: Path, raw: dict) -> None:
             raise ScenarioError(
                 f"{path}: key '{key_path}': expected 3 numbers, got {value!r}"
             )
+
+
+def _check_renamed(path: Path, raw: dict) -> None:
+    """``timing: {attach_s, detach_s}`` (before 0.2.0) is now ``vacuum``."""
+    timing = raw.get("timing")
+    if timing is None:
+        return
+    waits = timing if isinstance(timing, dict) else {}
+    attach, detach = waits.get("attach_s", 1.0), waits.get("detach_s", 1.0)
+    raise ScenarioError(
+        f"{path}: key 'timing' was renamed 'vacuum': write vacuum: "
+        f"{{model: fixed, attach_s: {attach}, detach_s: {detach}}}"
+    )
 
 
 def _locate(path: Path, raw: dict, message: str) -> str:
@@ -251,9 +329,33 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
         scenario.cup.validate()
     except ValueError as error:
         raise ScenarioError(f"{path}: key 'cup': {error}") from None
-    for field in ("attach_s", "detach_s"):
-        value = getattr(scenario.timing, field)
-        if not (math.isfinite(value) and value >= 0):
+    _check_vacuum(path, scenario.vacuum)
+
+
+def _check_vacuum(path: Path, vacuum: Vacuum) -> None:
+    if vacuum.model not in {m.value for m in VacuumModel}:
+        known = ", ".join(m.value for m in VacuumModel)
+        raise ScenarioError(
+            f"{path}: key 'vacuum.model': unknown model {vacuum.model!r} "
+            f"(known: {known})"
+        )
+    bounds = {
+        "attach_s": (0.0, False, "s"),
+        "detach_s": (0.0, False, "s"),
+        "build_up_tau_s": (0.0, True, "s"),
+        "release_tau_s": (0.0, True, "s"),
+    }
+    for field, (low, strict, unit) in bounds.items():
+        value = getattr(vacuum, field)
+        if not (math.isfinite(value) and (value > low if strict else value >= low)):
+            relation = ">" if strict else ">="
             raise ScenarioError(
-                f"{path}: key 'timing.{field}': must be >= 0 s, got {value}"
+                f"{path}: key 'vacuum.{field}': must be {relation} {low:g} {unit}, "
+                f"got {value}"
             )
+    fraction = vacuum.part_present_fraction
+    if not (math.isfinite(fraction) and 0.0 < fraction < 1.0):
+        raise ScenarioError(
+            f"{path}: key 'vacuum.part_present_fraction': must be in (0, 1), "
+            f"got {fraction}"
+        )

@@ -18,7 +18,7 @@ import numpy as np
 from pydrake.trajectories import PiecewisePolynomial, Trajectory
 
 from rt_drake.retiming import TimeScaled
-from rt_drake.scenario import ObjectConfig, Scenario, Timing
+from rt_drake.scenario import ObjectConfig, Scenario, Vacuum
 from rt_drake.simulation import UPDATE_PERIOD, Motion, run_cycle
 
 #: m and rad: a rollout slipped if the object moved more on the cup.
@@ -82,7 +82,7 @@ def rollout_scenario(trial: Scenario, q_grasp: np.ndarray) -> Scenario:
     return dataclasses.replace(
         trial,
         robot=dataclasses.replace(trial.robot, home=[float(q) for q in q_grasp]),
-        timing=Timing(attach_s=ROLLOUT_WAIT_S, detach_s=ROLLOUT_WAIT_S),
+        vacuum=Vacuum(attach_s=ROLLOUT_WAIT_S, detach_s=ROLLOUT_WAIT_S),
     )
 
 

@@ -68,8 +68,8 @@ def build_cycle(
             tool_body=cup.body().index(),
             X_TC=cup.GetFixedPoseInBodyFrame(),
             q_home=home_configuration(plant, scenario),
-            attach_s=scenario.timing.attach_s,
-            detach_s=scenario.timing.detach_s,
+            attach_s=scenario.vacuum.attach_s,
+            detach_s=scenario.vacuum.detach_s,
         ),
     )
     builder.Connect(
