@@ -65,6 +65,7 @@ def run_transport(args: argparse.Namespace) -> int:
     """Run the transport experiment and write its outputs; return 0."""
     import time
 
+    from rt_drake.cli._progress import Progress
     from rt_drake.experiments import (
         run_transport_experiment,
         transport_table,
@@ -72,14 +73,19 @@ def run_transport(args: argparse.Namespace) -> int:
     )
     from rt_drake.resources import resolve_scenario_path
 
+    progress = Progress("rt-drake experiment transport", args.n, "trial", eta=True)
     start = time.perf_counter()
-    results = run_transport_experiment(
-        resolve_scenario_path(args.scenario),
-        n=args.n,
-        seed=args.seed,
-        object_name=args.object,
-        workers=args.workers,
-    )
+    try:
+        results = run_transport_experiment(
+            resolve_scenario_path(args.scenario),
+            n=args.n,
+            seed=args.seed,
+            object_name=args.object,
+            workers=args.workers,
+            progress=lambda done, n: progress.step(done, "trials done"),
+        )
+    finally:
+        progress.close()
     results["wall_s"] = time.perf_counter() - start
     written = write_transport_report(results, args.out)
     s = results["summary"]
@@ -103,6 +109,7 @@ def run_cycle_experiment(args: argparse.Namespace) -> int:
         meshcat=False,
         no_grasp_constraint=False,
         speed=1.0,
+        sequential_planning=False,
         seed=0,
         time_step=1e-3,
     )

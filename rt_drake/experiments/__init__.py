@@ -8,6 +8,7 @@
 
 from rt_drake.experiments.cycle_report import (
     cycle_report,
+    summary_line,
     table_markdown,
     write_report,
 )
@@ -39,6 +40,7 @@ __all__ = [
     "run_transport_experiment",
     "simulate_move",
     "summarize",
+    "summary_line",
     "table_markdown",
     "transport_table",
     "transport_trial",

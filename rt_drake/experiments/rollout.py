@@ -62,14 +62,13 @@ class _Replay:
         )
         self._move = move
 
-    def approach(self, q_start: np.ndarray, obj: ObjectConfig) -> Motion:  # noqa: D102
-        return Motion(self._hold)
-
-    def reach(self, q_start: np.ndarray, obj: ObjectConfig) -> Motion:  # noqa: D102
+    def pick(  # noqa: D102
+        self, q_start: np.ndarray, obj: ObjectConfig, retreat: bool
+    ) -> Motion:
         return Motion(self._hold)
 
     def move(  # noqa: D102
-        self, q_start: np.ndarray, obj: ObjectConfig, reach: Motion | None
+        self, q_start: np.ndarray, obj: ObjectConfig, pick: Motion | None
     ) -> Motion:
         return Motion(self._move)
 
