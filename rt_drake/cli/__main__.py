@@ -2,4 +2,5 @@
 
 from rt_drake.cli import main_exit
 
-main_exit()
+if __name__ == "__main__":  # importing the module (e.g. walk_packages) runs nothing
+    main_exit()
