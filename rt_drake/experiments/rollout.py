@@ -53,7 +53,7 @@ class Rollout:
         }
 
 
-class _Replay:
+class Replay:
     """A MotionSource that stands at the grasp, then plays a given MOVE."""
 
     def __init__(self, q_grasp: np.ndarray, move: Trajectory) -> None:
@@ -90,7 +90,7 @@ def simulate_move(
 ) -> Rollout:
     """Play ``move`` (``speed`` times faster) in the cycle's physics; measure slip."""
     trajectory = move if speed == 1.0 else TimeScaled(move, speed)
-    result = run_cycle(scenario, _Replay(q_grasp, trajectory), max_sim_time=30.0)
+    result = run_cycle(scenario, Replay(q_grasp, trajectory), max_sim_time=30.0)
     (record,) = result.records
     return Rollout(record.max_slip_translation, record.max_slip_rotation)
 
@@ -116,6 +116,7 @@ __all__ = [
     "SLIP_ROTATION",
     "SLIP_TRANSLATION",
     "SPEED_FACTORS",
+    "Replay",
     "Rollout",
     "critical_speed",
     "rollout_scenario",

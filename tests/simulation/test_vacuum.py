@@ -13,15 +13,16 @@ import math
 
 import numpy as np
 import pytest
-from motion_helpers import IkMotions, min_jerk
+from motion_helpers import IkMotions
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource, TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
+from rt_drake.experiments.rollout import Replay
 from rt_drake.phase import Phase
 from rt_drake.scenario import Vacuum, load_scenario
-from rt_drake.simulation import UPDATE_PERIOD, MakeStation, Motion, run_cycle
+from rt_drake.simulation import UPDATE_PERIOD, MakeStation, run_cycle
 from rt_drake.simulation.vacuum import next_level, time_to_part_present
 
 FIRST_ORDER = Vacuum(
@@ -119,20 +120,6 @@ def guarded_move(scenario_paths):
     return scenario, pick.q_end, move
 
 
-class _Replay:
-    """Stand at the grasp, then play the given MOVE."""
-
-    def __init__(self, q_grasp, move):
-        self._hold = min_jerk([q_grasp, q_grasp], [UPDATE_PERIOD])
-        self._move = move
-
-    def pick(self, q_start, obj, retreat):
-        return Motion(self._hold)
-
-    def move(self, q_start, obj, pick):
-        return Motion(self._move.trajectory)
-
-
 #: s, a slow build-up for the guard tests: with it the force lags the MOVE's
 #: first acceleration by long enough to matter.
 SLOW_TAU = 0.5
@@ -152,7 +139,9 @@ def _play(scenario, q_grasp, move, fraction):
         vacuum=vacuum,
         robot=dataclasses.replace(scenario.robot, home=[float(x) for x in q_grasp]),
     )
-    (record,) = run_cycle(world, _Replay(q_grasp, move), max_sim_time=10.0).records
+    (record,) = run_cycle(
+        world, Replay(q_grasp, move.trajectory), max_sim_time=10.0
+    ).records
     return record
 
 
