@@ -162,7 +162,14 @@ class OnlineMotions:
         planned = self._planner.plan_pick(q_start, obj.name, retreat)
         plan_s = time.perf_counter() - start
         start = time.perf_counter()
-        result = self.retime_path(planned.path.path, None)
+        path = planned.path.path
+        result = retime(
+            self._plant,
+            path,
+            self._limits,
+            gridpoints=knot_grid(path.knots, self._gridpoints),
+            context=self._context,
+        )
         retime_s = time.perf_counter() - start
         reach_s = min(planned.reach_timing.total_s, plan_s)
         parts = (
@@ -241,6 +248,36 @@ class OnlineMotions:
         )
 
 
+#: grid points the pick's retime puts in every knot interval of its path.
+KNOT_SUBDIVISIONS = 8
+
+
+def knot_grid(
+    knots: np.ndarray, gridpoints: int, per_interval: int = KNOT_SUBDIVISIONS
+) -> np.ndarray:
+    """``gridpoints`` uniform in s plus ``per_interval`` per knot interval.
+
+    Points closer than 1e-4 are merged. TOPP-RA enforces the limits at grid
+    points only; a pick's short knot intervals (the 1 cm steps of its
+    vertical lines, where the spline turns) hold few uniform points, and
+    between them the joint accelerations exceeded their limits four times
+    over. With every interval subdivided
+    they stay within 1 % (checked at 1 kHz by the tests).
+    """
+    pieces = [np.linspace(0.0, 1.0, gridpoints)]
+    pieces += [
+        np.linspace(a, b, per_interval + 1)
+        for a, b in zip(knots[:-1], knots[1:], strict=True)
+    ]
+    merged = np.unique(np.concatenate(pieces))
+    keep = [merged[0]]
+    for s in merged[1:]:
+        if s - keep[-1] > 1e-4:
+            keep.append(s)
+    keep[-1] = 1.0
+    return np.array(keep)
+
+
 def time_at(result: RetimeResult, s: float) -> float:
     """Time (s) at which the retimed motion reaches path parameter ``s``.
 
@@ -257,4 +294,4 @@ def time_at(result: RetimeResult, s: float) -> float:
     return float(result.trajectory.start_time() + dt[:i].sum() + tau)
 
 
-__all__ = ["OnlineMotions", "held_object", "time_at"]
+__all__ = ["KNOT_SUBDIVISIONS", "OnlineMotions", "held_object", "knot_grid", "time_at"]

@@ -5,7 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rt_drake.retiming import TimeScaled
+from rt_drake.phase import Phase
+from rt_drake.plant import make_arm_plant
+from rt_drake.retiming import JointLimits, TimeScaled, check_trajectory
 from rt_drake.simulation import OnlineMotions
 
 
@@ -42,4 +44,24 @@ def test_time_scaling_scales_every_derivative(motions, scenario):
             fast.EvalDerivative(t, order),
             factor**order * motion.trajectory.EvalDerivative(factor * t, order),
             atol=1e-12,
+        )
+
+
+def test_picks_keep_the_joint_limits_between_grid_points(motions, scenario):
+    """The pick after a place (retreat, transit, descent) at 1 kHz: every joint
+    velocity and acceleration within the check's tolerance of its limit, and
+    the APPROACH part ends where the cup passes the approach pose."""
+    plant = make_arm_plant(scenario)
+    limits = JointLimits.from_plant(plant, scenario.robot)
+    first, second = scenario.objects[:2]
+    pick = motions.pick(motions.q_home, first)
+    move = motions.move(pick.q_end, first, pick)
+    after = motions.pick(move.q_end, second, retreat=True)
+    for motion in (pick, after):
+        check = check_trajectory(plant, motion.trajectory, limits)
+        assert check.passed(0.02), check.summary()  # within 2 % of every limit
+        t = motion.phase_end(Phase.APPROACH)
+        assert 0.0 < t < motion.duration
+        np.testing.assert_allclose(
+            motion.trajectory.value(t).ravel(), motion.planned.descent[0], atol=1e-9
         )
