@@ -54,4 +54,30 @@ def pose_difference(X_A: RigidTransform, X_B: RigidTransform) -> tuple[float, fl
     return translation, rotation
 
 
-__all__ = ["ObjectRecord", "pose_difference"]
+def with_slip(
+    record: ObjectRecord, X_CO_attached: RigidTransform, X_CO: RigidTransform
+) -> ObjectRecord:
+    """``record`` with its largest slip (m, rad) updated.
+
+    The slip is the object's pose X_CO on the cup against X_CO when the MOVE
+    started.
+    """
+    translation, rotation = pose_difference(X_CO_attached, X_CO)
+    return dataclasses.replace(
+        record,
+        max_slip_translation=max(record.max_slip_translation, translation),
+        max_slip_rotation=max(record.max_slip_rotation, rotation),
+    )
+
+
+def with_placement(
+    record: ObjectRecord, X_WO_goal: RigidTransform, X_WO: RigidTransform
+) -> ObjectRecord:
+    """``record`` with its placement error: X_WO against the goal (m, rad)."""
+    translation, rotation = pose_difference(X_WO_goal, X_WO)
+    return dataclasses.replace(
+        record, placement_translation=translation, placement_rotation=rotation
+    )
+
+
+__all__ = ["ObjectRecord", "pose_difference", "with_placement", "with_slip"]

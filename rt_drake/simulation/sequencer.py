@@ -37,8 +37,13 @@ from pydrake.systems.framework import BasicVector, Context, LeafSystem, State
 from rt_drake.phase import Phase
 from rt_drake.scenario import ObjectConfig, Vacuum, VacuumModel
 from rt_drake.simulation.motion import Motion, MotionSource, PendingMotion
-from rt_drake.simulation.records import ObjectRecord, pose_difference
-from rt_drake.simulation.vacuum import VacuumTimeout, is_released
+from rt_drake.simulation.records import (
+    ObjectRecord,
+    pose_difference,
+    with_placement,
+    with_slip,
+)
+from rt_drake.simulation.vacuum import is_released, wait_over
 
 #: s, period of the sequencer's update (the paper's robot runs at 125 Hz).
 UPDATE_PERIOD = 1.0 / 125.0
@@ -214,25 +219,13 @@ class Sequencer(LeafSystem):
         now = context.get_time()
         waited = now - state.t_phase_start
         if state.phase in (Phase.ATTACH, Phase.DETACH):
-            limit = (
-                self._vacuum.attach_s
-                if state.phase is Phase.ATTACH
-                else self._vacuum.detach_s
-            )
-            if self._vacuum.kind is VacuumModel.FIXED:
-                return waited >= limit - 1e-9
-            done = (
+            signal = self._vacuum.kind is VacuumModel.FIRST_ORDER and (
                 self._part_present(context)
                 if state.phase is Phase.ATTACH
                 else self._released(context, state.object_index)
             )
-            if not done and waited > limit:
-                name = self._objects[state.object_index].name
-                what = "part present" if state.phase is Phase.ATTACH else "release"
-                raise VacuumTimeout(
-                    f"{state.phase.label} {name}: no {what} within {limit:g} s"
-                )
-            return done
+            name = self._objects[state.object_index].name
+            return wait_over(self._vacuum, state.phase, waited, signal, name)
         assert state.motion is not None
         end = state.motion.phase_end(state.phase)
         return now - state.t_motion_start >= end - 1e-9
@@ -326,30 +319,15 @@ class Sequencer(LeafSystem):
 
     def _measure(self, context: Context, state: SequencerState) -> SequencerState:
         """Track slip during MOVE and the placement error during DETACH."""
-        record = state.records[state.object_index]
+        index = state.object_index
+        record = state.records[index]
         if state.phase is Phase.MOVE and state.X_CO_attached is not None:
-            X_CO = self._X_CO(context, state.object_index)
-            translation, rotation = pose_difference(state.X_CO_attached, X_CO)
-            if (
-                translation > record.max_slip_translation
-                or rotation > record.max_slip_rotation
-            ):
-                record = dataclasses.replace(
-                    record,
-                    max_slip_translation=max(record.max_slip_translation, translation),
-                    max_slip_rotation=max(record.max_slip_rotation, rotation),
-                )
-                state = _with_record(state, record)
-        if state.phase is Phase.DETACH:
-            poses = self._poses_port.Eval(context)
-            X_WO = poses[int(self._bodies[state.object_index])]
-            goal = self._objects[state.object_index].goal.GetDeterministicValue()
-            translation, rotation = pose_difference(goal, X_WO)
-            record = dataclasses.replace(
-                record, placement_translation=translation, placement_rotation=rotation
-            )
-            state = _with_record(state, record)
-        return state
+            record = with_slip(record, state.X_CO_attached, self._X_CO(context, index))
+        elif state.phase is Phase.DETACH:
+            X_WO = self._poses_port.Eval(context)[int(self._bodies[index])]
+            goal = self._objects[index].goal.GetDeterministicValue()
+            record = with_placement(record, goal, X_WO)
+        return _with_record(state, record)
 
 
 def _with_record(state: SequencerState, record: ObjectRecord) -> SequencerState:

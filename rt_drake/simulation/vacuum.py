@@ -14,6 +14,7 @@ the force on a sealed object is ``lambda P A``. With the scenario's
 "Part present" (the vacuum switch) is ``lambda >= part_present_fraction``
 (fixed: the valve on and the cup sealed). An object is released when the
 force is below its weight and it is at rest (:func:`is_released`).
+:func:`wait_over` says when ATTACH and DETACH end.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from __future__ import annotations
 import math
 
 from rt_drake.errors import RtDrakeError
+from rt_drake.phase import Phase
 from rt_drake.scenario import Vacuum, VacuumModel
 
 #: m/s and rad/s: an object moving slower than this is at rest.
@@ -66,6 +68,26 @@ def is_released(
     return force < weight and speed < REST_SPEED and angular_speed < REST_ANGULAR_SPEED
 
 
+def wait_over(
+    vacuum: Vacuum, phase: Phase, waited: float, signal: bool, name: str
+) -> bool:
+    """Whether ATTACH or DETACH of object ``name`` is over after ``waited`` s.
+
+    fixed: once ``waited`` reaches ``attach_s`` (``detach_s``). first_order:
+    once ``signal`` ("part present" for ATTACH, "released" for DETACH).
+
+    Raises:
+        VacuumTimeout: first_order, no signal and ``waited`` past the time-out.
+    """
+    limit = vacuum.attach_s if phase is Phase.ATTACH else vacuum.detach_s
+    if vacuum.kind is VacuumModel.FIXED:
+        return waited >= limit - 1e-9
+    if not signal and waited > limit:
+        what = "part present" if phase is Phase.ATTACH else "release"
+        raise VacuumTimeout(f"{phase.label} {name}: no {what} within {limit:g} s")
+    return signal
+
+
 __all__ = [
     "REST_ANGULAR_SPEED",
     "REST_SPEED",
@@ -74,4 +96,5 @@ __all__ = [
     "next_level",
     "part_present",
     "time_to_part_present",
+    "wait_over",
 ]

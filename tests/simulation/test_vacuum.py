@@ -23,7 +23,12 @@ from rt_drake.experiments.rollout import Replay
 from rt_drake.phase import Phase
 from rt_drake.scenario import Vacuum, load_scenario
 from rt_drake.simulation import UPDATE_PERIOD, MakeStation, run_cycle
-from rt_drake.simulation.vacuum import next_level, time_to_part_present
+from rt_drake.simulation.vacuum import (
+    VacuumTimeout,
+    next_level,
+    time_to_part_present,
+    wait_over,
+)
 
 FIRST_ORDER = Vacuum(
     model="first_order",
@@ -47,6 +52,19 @@ def test_level_steps_follow_the_exponential():
     assert time_to_part_present(FIRST_ORDER) == pytest.approx(0.1 * math.log(5.0))
     assert next_level(Vacuum(), 0.0, True, 1e-3) == 1.0
     assert next_level(Vacuum(), 1.0, False, 1e-3) == 0.0
+
+
+def test_waits_end_on_time_or_on_the_signal_and_time_out():
+    fixed = Vacuum(attach_s=1.0, detach_s=0.5)
+    assert not wait_over(fixed, Phase.ATTACH, 0.99, True, "box")
+    assert wait_over(fixed, Phase.ATTACH, 1.0, False, "box")
+    assert wait_over(fixed, Phase.DETACH, 0.5, False, "box")
+    assert wait_over(FIRST_ORDER, Phase.ATTACH, 0.2, True, "box")
+    assert not wait_over(FIRST_ORDER, Phase.ATTACH, 0.9, False, "box")
+    with pytest.raises(VacuumTimeout, match="ATTACH box: no part present within 1 s"):
+        wait_over(FIRST_ORDER, Phase.ATTACH, 1.01, False, "box")
+    with pytest.raises(VacuumTimeout, match="DETACH box: no release within 1 s"):
+        wait_over(FIRST_ORDER, Phase.DETACH, 1.01, False, "box")
 
 
 def _cup_on_the_notebook(scenario):
