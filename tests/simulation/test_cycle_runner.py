@@ -96,3 +96,16 @@ def test_bad_input_exits_2_with_one_line(tmp_path, capsys, argv, words):
     assert len(err.splitlines()) == 1 and err.startswith("rt-drake run: error:")
     for word in words:
         assert word in err
+
+
+def test_sequential_planning_puts_all_of_it_on_the_critical_path(tmp_path):
+    argv = ["run", "random_transport", "--sequential-planning", "--out", str(tmp_path)]
+    assert main(argv) == 0
+    report = json.loads((tmp_path / "report.json").read_text())
+    (entry,) = report["objects"]
+    assert report["pipelined_planning"] is False
+    # Each motion is planned when its phase starts: the arm waits for all of it.
+    assert entry["plan_on_critical_path_s"] == pytest.approx(
+        sum(entry["plan_s"].values()), abs=1e-9
+    )
+    assert report["sim_time_s"] == pytest.approx(report["total_s"], abs=0.01)
