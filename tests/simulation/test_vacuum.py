@@ -187,3 +187,12 @@ def test_a_move_started_before_part_present_loses_the_object(guarded_move):
     record = _play(scenario, q_grasp, move, 0.05)
     assert record.move_suction_force < 0.8 * scenario.cup.suction_force
     assert record.max_slip_translation > 5e-3
+
+
+@pytest.mark.slow
+def test_a_vacuum_that_does_not_hold_in_time_stops_the_cycle(scenario_paths):
+    scenario = load_scenario(scenario_paths["random_transport"])
+    slow = dataclasses.replace(FIRST_ORDER, attach_s=0.05, build_up_tau_s=0.5)
+    scenario = dataclasses.replace(scenario, vacuum=slow)
+    with pytest.raises(VacuumTimeout, match="ATTACH notebook: no part present"):
+        run_cycle(scenario, IkMotions(scenario), max_sim_time=10.0)
