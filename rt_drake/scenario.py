@@ -2,7 +2,8 @@
 
 A scenario file names the cell (Drake model directives), the robot's home
 configuration and limits, the suction cup, the objects with their start and
-goal poses, and the attach/detach times. :func:`load_scenario` refuses,
+goal poses, and the vacuum (:mod:`rt_drake.scenario_vacuum`: attach and
+detach behaviour). :func:`load_scenario` refuses,
 with a one-line :class:`~rt_drake.errors.ScenarioError` that names the file,
 the key path (``objects[1].start.translation``) and the offending value:
 unknown keys, a value of the wrong type, null where a value is needed, NaN
@@ -29,6 +30,7 @@ from rt_drake.contact import CupParameters
 from rt_drake.cup_frame import DEFAULT_CUP_FRAME
 from rt_drake.errors import InputError, ScenarioError
 from rt_drake.object_model import model_file, read_model_inertia
+from rt_drake.scenario_vacuum import Vacuum, VacuumModel, check_renamed, check_vacuum
 from rt_drake.scenario_yaml import MAX_DEPTH, check_schema, locate, read_yaml
 
 #: Largest scenario file read, bytes (the shipped ones are about 3 kB).
@@ -81,14 +83,6 @@ class ObjectConfig:
 
 
 @dataclasses.dataclass
-class Timing:
-    """Waits of the cycle, in seconds (the paper: 1 s each)."""
-
-    attach_s: float = 1.0
-    detach_s: float = 1.0
-
-
-@dataclasses.dataclass
 class Region:
     """An axis-aligned box of object positions (m, world) and a yaw range (deg)."""
 
@@ -114,7 +108,7 @@ class Scenario:
     robot: RobotConfig = dataclasses.field(default_factory=RobotConfig)
     cup: CupParameters = dataclasses.field(default_factory=CupParameters)
     objects: list[ObjectConfig] = dataclasses.field(default_factory=list)
-    timing: Timing = dataclasses.field(default_factory=Timing)
+    vacuum: Vacuum = dataclasses.field(default_factory=Vacuum)
     random_transport: RandomTransport | None = None
     #: The file it was loaded from, for messages (set by load_scenario; not
     #: a YAML key).
@@ -162,6 +156,7 @@ def load_scenario(path: str | Path) -> Scenario:
     except OSError as error:
         raise ScenarioError(f"{path}: cannot be read: {error.strerror}") from None
     raw = read_yaml(path, text)
+    check_renamed(path, raw)
     check_schema(path, raw, Scenario)
     try:
         scenario = yaml_load_typed(schema=Scenario, data=text)
@@ -226,12 +221,7 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
         scenario.cup.validate()
     except InputError as error:
         raise ScenarioError(f"{path}: key 'cup': {error}") from None
-    for field in ("attach_s", "detach_s"):
-        value = getattr(scenario.timing, field)
-        if value < 0:
-            raise ScenarioError(
-                f"{path}: key 'timing.{field}': must be >= 0 s, got {value}"
-            )
+    check_vacuum(path, scenario.vacuum)
 
 
 def _check_robot(path: Path, robot: RobotConfig) -> None:
@@ -256,6 +246,7 @@ __all__ = [
     "Region",
     "RobotConfig",
     "Scenario",
-    "Timing",
+    "Vacuum",
+    "VacuumModel",
     "load_scenario",
 ]

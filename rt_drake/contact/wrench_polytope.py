@@ -155,6 +155,31 @@ def check_polytope(polytope: WrenchPolytope, tol: float = VERTEX_TOLERANCE) -> N
         )
 
 
+def with_suction_force(
+    polytope: WrenchPolytope, suction_force: float
+) -> WrenchPolytope:
+    """Return W_c of the same cup with another suction force P' A (N): exact, cheap.
+
+    The suction force enters W_c only as the constant wrench
+    ``[0, 0, 0, 0, 0, -P A]`` added to the Minkowski sum of the rim forces
+    (module docstring), so changing it translates the set by
+    ``d = (P A - P' A) e_z`` (force z component): the rows F stay, the offsets
+    become ``g' = g + F d = g + (P A - P' A) F[:, 5]`` and the vertices move by
+    d. A weaker vacuum (P' < P) moves the set toward +f_z: less pull.
+
+    Raises:
+        InputError: ``suction_force`` not > 0 (the cup parameters' own check).
+    """
+    cup = dataclasses.replace(polytope.cup, suction_force=float(suction_force))
+    shift = polytope.cup.suction_force - cup.suction_force
+    return WrenchPolytope(
+        cup=cup,
+        F=polytope.F,
+        g=polytope.g + shift * polytope.F[:, 5],
+        vertices=polytope.vertices + np.array([0.0] * 5 + [shift]),
+    )
+
+
 def wrench_scale(cup: CupParameters) -> np.ndarray:
     """Return the diagonal S with ``S w = [torque / r; force]`` (all in N)."""
     return np.array([1.0 / cup.radius] * 3 + [1.0] * 3)
