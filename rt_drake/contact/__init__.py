@@ -8,17 +8,23 @@ origin, expressed in C. The grasp is stable when ``F w <= g``.
 - :class:`CupParameters`: the point-contact model of the cup.
 - :func:`contact_wrench_polytope`: the exact set W_c (minimal H-rep and
   vertices); :func:`cached_wrench_polytope` stores it on disk.
-- :func:`is_realizable` (H-rep), :func:`is_realizable_lp` (independent LP).
+- :class:`ToolParameters`: a tool of several cups, each a
+  :class:`CupMount` (cup and pose in the tool frame T);
+  :func:`tool_wrench_polytope`: its exact set W_T, about T's origin, in T
+  (also cached by :func:`cached_wrench_polytope`).
+- :func:`is_realizable` (H-rep), :func:`is_realizable_lp` (independent LP,
+  for a cup or a tool).
 - :func:`guided_approximation`: the paper's inner approximation.
 
-Only :mod:`rt_drake.contact.cup` (numpy) is imported with the package, so a
-scenario can name ``CupParameters`` cheaply; the rest (scipy) loads on first
-use of its names.
+Only :mod:`rt_drake.contact.cup` and :mod:`rt_drake.contact.tool` (numpy)
+are imported with the package, so a scenario can name ``CupParameters`` and
+``ToolParameters`` cheaply; the rest (scipy) loads on first use of its names.
 """
 
 import importlib
 
 from rt_drake.contact.cup import CupParameters, grasp_matrices, suction_wrench
+from rt_drake.contact.tool import CupMount, ToolParameterError, ToolParameters
 
 #: Public name -> submodule defining it, imported on first access.
 _LAZY = {
@@ -35,9 +41,20 @@ _LAZY = {
     "WrenchPolytope": "wrench_polytope",
     "contact_wrench_polytope": "wrench_polytope",
     "is_realizable": "wrench_polytope",
+    "tool_summands": "tool_polytope",
+    "tool_symmetry": "tool_polytope",
+    "tool_wrench_polytope": "tool_polytope",
 }
 
-__all__ = ["CupParameters", "grasp_matrices", "suction_wrench", *_LAZY]
+__all__ = [
+    "CupMount",
+    "CupParameters",
+    "ToolParameterError",
+    "ToolParameters",
+    "grasp_matrices",
+    "suction_wrench",
+    *_LAZY,
+]
 
 
 def __getattr__(name: str) -> object:

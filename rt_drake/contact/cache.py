@@ -1,11 +1,14 @@
-"""On-disk cache of exact contact wrench sets, one ``.npz`` per cup.
+"""On-disk cache of exact contact wrench sets, one ``.npz`` per cup or tool.
 
-A file is named by a hash of the cup parameters and :data:`FORMAT_VERSION`
-and lives in ``$RT_DRAKE_CACHE_DIR`` (default ``~/.cache/rt_drake``). It
-stores ``F``, ``g``, ``vertices``, ``parameter_names``, ``parameters`` and
-``format_version``; on load the stored parameters must equal the requested
-ones exactly, so a file written for another cup (renamed, hash collision,
-older format) is never used: it is recomputed and overwritten instead.
+A file is named by a hash of the cup parameters (or of a multi-cup tool's
+parameters and poses, every cup's) and :data:`FORMAT_VERSION` and lives in
+``$RT_DRAKE_CACHE_DIR`` (default ``~/.cache/rt_drake``). It stores ``F``,
+``g``, ``vertices``, ``format_version`` and the parameters: for a cup
+``parameter_names`` and ``parameters``, for a tool ``tool``, the JSON text of
+:meth:`ToolParameters.as_dict` (floats written exactly). On load the stored
+parameters must equal the requested ones exactly, so a file written for
+another cup or tool (renamed, hash collision, older format) is never used:
+it is recomputed and overwritten instead.
 """
 
 from __future__ import annotations
@@ -20,6 +23,8 @@ from pathlib import Path
 import numpy as np
 
 from rt_drake.contact.cup import CupParameters
+from rt_drake.contact.tool import ToolParameters
+from rt_drake.contact.tool_polytope import tool_wrench_polytope
 from rt_drake.contact.wrench_polytope import WrenchPolytope, contact_wrench_polytope
 
 #: Bump when the stored arrays or the enumeration change meaning.
@@ -35,16 +40,43 @@ def default_cache_dir() -> Path:
     return Path(configured) if configured else Path.home() / ".cache" / "rt_drake"
 
 
-def cache_key(cup: CupParameters) -> str:
-    """Return a hex digest of the cup parameters and the format version."""
-    text = json.dumps({"format": FORMAT_VERSION, "cup": cup.as_dict()}, sort_keys=True)
+def tool_text(tool: ToolParameters) -> str:
+    """Return the tool's parameters and poses as canonical JSON text."""
+    return json.dumps(tool.as_dict(), sort_keys=True)
+
+
+def cache_key(cup: CupParameters | ToolParameters) -> str:
+    """Return a hex digest of the parameters (and poses) and the format version."""
+    if isinstance(cup, ToolParameters):
+        fields = {"format": FORMAT_VERSION, "tool": tool_text(cup)}
+    else:
+        fields = {"format": FORMAT_VERSION, "cup": cup.as_dict()}
+    text = json.dumps(fields, sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:24]
 
 
-def cache_path(cup: CupParameters, directory: Path | None = None) -> Path:
-    """Return where the wrench set of ``cup`` is cached."""
+def cache_path(
+    cup: CupParameters | ToolParameters, directory: Path | None = None
+) -> Path:
+    """Return where the wrench set of ``cup`` (or of a tool) is cached."""
     directory = default_cache_dir() if directory is None else Path(directory)
-    return directory / f"wrench_polytope_{cache_key(cup)}.npz"
+    kind = (
+        "tool_wrench_polytope"
+        if isinstance(cup, ToolParameters)
+        else ("wrench_polytope")
+    )
+    return directory / f"{kind}_{cache_key(cup)}.npz"
+
+
+def _parameters(cup: CupParameters | ToolParameters) -> dict[str, np.ndarray]:
+    """Return the arrays that identify the parameters in a file."""
+    if isinstance(cup, ToolParameters):
+        return {"tool": np.array(tool_text(cup))}
+    fields = cup.as_dict()
+    return {
+        "parameter_names": np.array(list(fields)),
+        "parameters": np.array(list(fields.values()), dtype=float),
+    }
 
 
 def save_polytope(
@@ -53,36 +85,36 @@ def save_polytope(
     """Write ``polytope`` (and any ``extra`` arrays) to ``path`` atomically."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fields = polytope.cup.as_dict()
     with tempfile.NamedTemporaryFile(dir=path.parent, suffix=".tmp", delete=False) as f:
         np.savez(
             f,
             F=polytope.F,
             g=polytope.g,
             vertices=polytope.vertices,
-            parameter_names=np.array(list(fields)),
-            parameters=np.array(list(fields.values()), dtype=float),
             format_version=FORMAT_VERSION,
+            **_parameters(polytope.cup),
             **extra,
         )
     os.replace(f.name, path)
 
 
-def load_polytope(path: Path, cup: CupParameters) -> WrenchPolytope | None:
+def load_polytope(
+    path: Path, cup: CupParameters | ToolParameters
+) -> WrenchPolytope | None:
     """Return the wrench set stored in ``path`` if it was written for ``cup``.
 
     Returns None when the file is missing, unreadable, of another format
-    version, or stores other parameters.
+    version, or stores other parameters (or another tool).
     """
-    fields = cup.as_dict()
+    expected = _parameters(cup)
     try:
         with np.load(path, allow_pickle=False) as data:
             if int(data["format_version"]) != FORMAT_VERSION:
                 return None
-            if list(data["parameter_names"]) != list(fields) or not np.array_equal(
-                data["parameters"], np.array(list(fields.values()), dtype=float)
-            ):
-                return None
+            for name, value in expected.items():
+                stored = data[name]
+                if stored.shape != value.shape or not np.array_equal(stored, value):
+                    return None
             F, g, vertices = data["F"], data["g"], data["vertices"]
     except (OSError, KeyError, ValueError, zipfile.BadZipFile):
         return None
@@ -90,20 +122,28 @@ def load_polytope(path: Path, cup: CupParameters) -> WrenchPolytope | None:
 
 
 def cached_wrench_polytope(
-    cup: CupParameters, directory: Path | None = None, use_cache: bool = True
+    cup: CupParameters | ToolParameters,
+    directory: Path | None = None,
+    use_cache: bool = True,
 ) -> WrenchPolytope:
-    """Return the exact W_c of ``cup``, computed once per parameter set.
+    """Return the exact W_c of ``cup`` (or W_T of a tool), computed once.
 
     Args:
-        cup: The cup model.
+        cup: The cup model, or a multi-cup tool (then the set is about the
+            tool frame's origin, in the tool frame).
         directory: Cache directory (default :func:`default_cache_dir`).
         use_cache: If False, neither read nor write the cache.
     """
+    compute = (
+        tool_wrench_polytope
+        if isinstance(cup, ToolParameters)
+        else contact_wrench_polytope
+    )
     if not use_cache:
-        return contact_wrench_polytope(cup)
+        return compute(cup)
     path = cache_path(cup, directory)
     polytope = load_polytope(path, cup)
     if polytope is None:
-        polytope = contact_wrench_polytope(cup)
+        polytope = compute(cup)
         save_polytope(path, polytope)
     return polytope

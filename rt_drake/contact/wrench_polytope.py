@@ -30,6 +30,7 @@ from rt_drake.contact.cup import (
     suction_wrench,
 )
 from rt_drake.contact.minkowski import minkowski_sum
+from rt_drake.contact.tool import ToolParameters
 
 
 @dataclasses.dataclass(frozen=True)
@@ -37,13 +38,15 @@ class WrenchPolytope:
     """Contact wrench set ``W_c = {w : F w <= g} = conv(vertices)``.
 
     Attributes:
-        cup: The parameters it was computed for.
+        cup: The parameters it was computed for: a cup (W_c, in the cup frame
+            C), or a multi-cup tool (W_T, in the tool frame T, see
+            :mod:`rt_drake.contact.tool_polytope`).
         F: (rows, 6) unit rows, one per facet (no redundant or duplicate row).
         g: (rows,) offsets; ``F w - g`` is a signed distance, N*m and N.
         vertices: (count, 6) vertices ``[torque; force]``.
     """
 
-    cup: CupParameters
+    cup: CupParameters | ToolParameters
     F: np.ndarray
     g: np.ndarray
     vertices: np.ndarray
@@ -74,9 +77,14 @@ def is_realizable(
     return np.all(wrenches @ F.T <= g + tol, axis=-1)
 
 
-def wrench_scale(cup: CupParameters) -> np.ndarray:
-    """Return the diagonal S with ``S w = [torque / r; force]`` (all in N)."""
-    return np.array([1.0 / cup.radius] * 3 + [1.0] * 3)
+def wrench_scale(cup: CupParameters | ToolParameters) -> np.ndarray:
+    """Return the diagonal S with ``S w = [torque / L; force]`` (all in N).
+
+    L is the cup's radius r, or a tool's ``length_scale`` (``max |p_TCi| +
+    r_i``, which is r for one cup at the tool frame's origin).
+    """
+    length = cup.length_scale if isinstance(cup, ToolParameters) else cup.radius
+    return np.array([1.0 / length] * 3 + [1.0] * 3)
 
 
 def rotation_symmetry(cup: CupParameters) -> np.ndarray:
