@@ -17,13 +17,17 @@ from rt_drake.contact import (
     CupParameters,
     ToolParameterError,
     ToolParameters,
+    ToolWrenchSet,
+    TooManyFacetsError,
     cache_path,
     cached_wrench_polytope,
     contact_wrench_polytope,
+    guided_approximation,
     is_realizable,
     is_realizable_lp,
     load_polytope,
     lp_residual,
+    object_wrench_sampler,
     tool_symmetry,
     tool_wrench_polytope,
 )
@@ -31,6 +35,7 @@ from rt_drake.contact.adjacency import minkowski_sum_walk
 from rt_drake.contact.minkowski import minkowski_sum
 from rt_drake.contact.tool_polytope import tool_summands
 from rt_drake.contact.wrench_polytope import wrench_scale
+from rt_drake.errors import RtDrakeError
 
 GRAVITY = 9.81
 
@@ -329,3 +334,26 @@ def test_bad_tools_raise_one_line_errors_naming_the_value():
         tool_wrench_polytope(tool)
     assert str(error.value) == "cup 1: radius must be > 0, got -0.01"
     assert isinstance(error.value, ValueError)
+
+
+# --- Inner approximation without the facets --------------------------------------
+
+
+def test_guided_approximation_from_support_and_lp_is_inside_the_exact_set(symmetric):
+    samples = object_wrench_sampler(mass=0.5, p_CoOcm_C=(0.0, 0.0, 0.05), seed=1)(300)
+    approx = guided_approximation(ToolWrenchSet(SYMMETRIC), samples, 30, seed=0)
+    # Sound: its vertices (so the whole hull) lie in the exact W_T.
+    assert symmetric.contains(approx.vertices, tol=1e-9).all()
+    # The LP and the exact H-rep reject the same guiding samples.
+    assert approx.rejected == int((~symmetric.contains(samples)).sum())
+    covered = np.all(samples @ approx.F.T <= approx.g + 1e-9, axis=1)
+    assert covered.sum() == approx.covered
+    assert symmetric.contains(samples[covered]).all()
+    assert 0 < approx.covered <= approx.samples
+
+
+def test_a_walk_past_max_facets_stops_with_a_typed_error():
+    with pytest.raises(TooManyFacetsError, match="more than 100 facets") as error:
+        tool_wrench_polytope(SYMMETRIC, max_facets=100)
+    assert error.value.found > 100
+    assert isinstance(error.value, RtDrakeError)

@@ -41,6 +41,8 @@ _LAZY = {
     "WrenchPolytope": "wrench_polytope",
     "contact_wrench_polytope": "wrench_polytope",
     "is_realizable": "wrench_polytope",
+    "TooManyFacetsError": "adjacency",
+    "ToolWrenchSet": "tool_polytope",
     "tool_summands": "tool_polytope",
     "tool_symmetry": "tool_polytope",
     "tool_wrench_polytope": "tool_polytope",

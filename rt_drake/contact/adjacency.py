@@ -29,6 +29,7 @@ walked from, and the orbits are completed at the end.
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Sequence
 
 import numpy as np
@@ -44,6 +45,7 @@ from rt_drake.contact.minkowski import (
 )
 from rt_drake.contact.ridges import SumFaces
 from rt_drake.contact.summand import Summand, vertex_permutation
+from rt_drake.errors import RtDrakeError
 
 #: A facet whose ridges would need more combinations or candidate vertices
 #: than this is "hard": the walk does not cross its ridges (see
@@ -52,6 +54,22 @@ HARD_LIMIT = 2_000
 
 #: Facets whose neighbours are computed together.
 _BATCH = 256
+
+
+class TooManyFacetsError(RtDrakeError, ArithmeticError):
+    """The exact sum has more facets than the caller allows.
+
+    Attributes:
+        found: Facets found when the walk stopped (a lower bound).
+        seconds: Time the walk had taken.
+    """
+
+    def __init__(self, limit: int, found: int, seconds: float) -> None:
+        super().__init__(
+            f"the exact set has more than {limit} facets ({found} found in "
+            f"{seconds:.0f} s); use an inner approximation instead"
+        )
+        self.found, self.seconds = found, seconds
 
 
 def _keys(rows: np.ndarray) -> list[bytes]:
@@ -64,6 +82,7 @@ def _walk(
     first: tuple[np.ndarray, np.ndarray],
     maps: list[np.ndarray],
     limit: float,
+    max_facets: int | None = None,
 ) -> tuple[list[np.ndarray], list[bool], list[np.ndarray]]:
     """Return one facet row per symmetry orbit, and vertices of the sum.
 
@@ -72,6 +91,8 @@ def _walk(
         first: One facet: its unit normal and row.
         maps: Column maps of the symmetry (:func:`_orbit`).
         limit: Size above which a facet is hard.
+        max_facets: Raise :class:`TooManyFacetsError` beyond this many facets
+            (counting symmetric images).
 
     Returns:
         The facets' rows (P,), whether each is hard (its ridges were not
@@ -87,6 +108,7 @@ def _walk(
     tuples: list[np.ndarray] = []
     seen: set[bytes] = set()
     queue: list[tuple[np.ndarray, int]] = []
+    start = time.perf_counter()
 
     def visit(normals: np.ndarray, rows: np.ndarray) -> None:
         for normal, row in zip(normals, rows, strict=True):
@@ -96,6 +118,8 @@ def _walk(
                 queue.append((normal, len(found)))
                 found.append(row)
                 hard.append(False)
+        if max_facets is not None and len(seen) > max_facets:
+            raise TooManyFacetsError(max_facets, len(seen), time.perf_counter() - start)
 
     visit(first[0][None], first[1][None])
     while queue:
@@ -148,7 +172,10 @@ def _orbit(permutation: np.ndarray | None, count: int) -> list[np.ndarray]:
 
 
 def walk_facets(
-    parts: Sequence[Summand], atol: float, permutation: np.ndarray | None = None
+    parts: Sequence[Summand],
+    atol: float,
+    permutation: np.ndarray | None = None,
+    max_facets: int | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Return every facet normal (rows, d) and the vertices (count, m) of the sum.
 
@@ -168,6 +195,7 @@ def walk_facets(
         permutation: Optional (P,) vertex map of a symmetry (vertex j of the
             concatenated summands goes to vertex ``permutation[j]``); the walk
             visits one facet per orbit and adds the images at the end.
+        max_facets: Raise :class:`TooManyFacetsError` beyond this many facets.
 
     Returns:
         Unit facet normals, and the vertices as summand vertex indices.
@@ -185,7 +213,7 @@ def walk_facets(
             for normal in _candidate_normals(group, parts, d, atol):
                 start = walk.tight(normal[None], everything)
                 first = (walk.planes(start, flag, everything)[0], start[0])
-                found, hard, tuples = _walk(walk, first, maps, limit)
+                found, hard, tuples = _walk(walk, first, maps, limit, max_facets)
                 if not all(hard):
                     break
             if not all(hard):
@@ -214,6 +242,7 @@ def minkowski_sum_walk(
     offset: np.ndarray,
     symmetry: np.ndarray | None = None,
     tol: float = 1e-9,
+    max_facets: int | None = None,
 ) -> MinkowskiSum:
     """Return the exact H- and V-representation of ``offset + sum conv(V_s)``.
 
@@ -227,9 +256,11 @@ def minkowski_sum_walk(
         symmetry: Optional orthogonal (n, n) map that permutes the summands
             (in any order) and fixes ``offset``; speeds up the walk.
         tol: Relative tolerance of "on a face", times the summands' extent.
+        max_facets: Stop with :class:`TooManyFacetsError` beyond this many.
 
     Raises:
         ValueError: If a summand has dimension > 3 or ``symmetry`` is wrong.
+        TooManyFacetsError: If the sum has more than ``max_facets`` facets.
     """
     setup = prepare_sum(summands, offset, tol)
     if setup.dimension <= 1:
@@ -240,5 +271,5 @@ def minkowski_sum_walk(
         if np.abs(symmetry @ setup.offset - setup.offset).max() > setup.atol:
             raise ValueError("symmetry does not fix the offset")
         permutation = vertex_permutation(setup.parts, symmetry, setup.atol)
-    normals, tuples = walk_facets(setup.parts, setup.atol, permutation)
+    normals, tuples = walk_facets(setup.parts, setup.atol, permutation, max_facets)
     return assemble_sum(setup, normals, tuples)

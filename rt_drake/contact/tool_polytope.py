@@ -29,10 +29,13 @@ uses the wrench rotation ``blockdiag(Q, Q)``; it is checked, never assumed.
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from rt_drake.contact.adjacency import minkowski_sum_walk
 from rt_drake.contact.cup import friction_pyramid, grasp_matrices, suction_wrench
+from rt_drake.contact.lp import is_realizable_lp
 from rt_drake.contact.tool import ToolParameters, is_identity_pose
 from rt_drake.contact.wrench_polytope import (
     WrenchPolytope,
@@ -101,12 +104,19 @@ def tool_symmetry(tool: ToolParameters) -> np.ndarray | None:
     return None
 
 
-def tool_wrench_polytope(tool: ToolParameters) -> WrenchPolytope:
+def tool_wrench_polytope(
+    tool: ToolParameters, max_facets: int | None = None
+) -> WrenchPolytope:
     """Compute the exact W_T of a tool: minimal H-rep and vertices, in T.
 
     The result's ``cup`` attribute is ``tool``. One cup at T's origin gives
     exactly :func:`contact_wrench_polytope` of that cup (834 rows, 1779
-    vertices for the paper's cup).
+    vertices for the paper's cup); two paper cups 0.12 m apart, 47,728 rows.
+
+    Args:
+        tool: The tool.
+        max_facets: Stop with :class:`TooManyFacetsError` once the walk has
+            found more facets than this (None: no limit).
     """
     tool.validate()
     if len(tool.cups) == 1:
@@ -126,7 +136,10 @@ def tool_wrench_polytope(tool: ToolParameters) -> WrenchPolytope:
     scale = wrench_scale(tool)
     summands, offset = tool_summands(tool)
     exact = minkowski_sum_walk(
-        [s * scale for s in summands], offset * scale, symmetry=tool_symmetry(tool)
+        [s * scale for s in summands],
+        offset * scale,
+        symmetry=tool_symmetry(tool),
+        max_facets=max_facets,
     )
     F = exact.F * scale  # (a . S w <= b) reads ((a S) . w <= b)
     norms = np.linalg.norm(F, axis=1)
@@ -136,3 +149,36 @@ def tool_wrench_polytope(tool: ToolParameters) -> WrenchPolytope:
         g=exact.g / norms,
         vertices=exact.vertices / scale,
     )
+
+
+@dataclasses.dataclass(frozen=True)
+class ToolWrenchSet:
+    """W_T without its facets: a support function and a membership LP.
+
+    For tools whose exact H-representation is too large to compute or use;
+    :func:`rt_drake.contact.guided_approximation` builds a sound inner
+    approximation from it.
+
+    Attributes:
+        cup: The tool (named like :attr:`WrenchPolytope.cup`).
+    """
+
+    cup: ToolParameters
+
+    def support(self, directions: np.ndarray) -> np.ndarray:
+        """Return a point of W_T maximising ``u . w`` for each direction (K, 6).
+
+        ``h(u) = sum_s max_j u . v_sj + u . offset`` over the rim pyramids'
+        vertices in T: the maximiser (one vertex per pyramid) is a vertex of
+        W_T for a generic u, and in W_T always.
+        """
+        summands, offset = tool_summands(self.cup)
+        directions = np.atleast_2d(np.asarray(directions, dtype=float))
+        points = np.tile(offset, (len(directions), 1))
+        for vertices in summands:
+            points += vertices[np.argmax(directions @ vertices.T, axis=1)]
+        return points
+
+    def contains(self, wrenches: np.ndarray, tol: float = 1e-8) -> np.ndarray:
+        """Return whether each (..., 6) wrench is in W_T: LP residual <= tol."""
+        return is_realizable_lp(wrenches, self.cup, tol)
