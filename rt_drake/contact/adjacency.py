@@ -187,7 +187,9 @@ def walk_facets(
     through S has both strictly on one side, and the vertices strictly on one
     side of a hyperplane induce a connected subgraph). Every vertex of the
     sum lies on a facet that is not hard, since its normal cone is
-    full-dimensional and so is not inside S.
+    full-dimensional and so is not inside S, and every hard facet is found,
+    as a neighbour of a facet that is not hard (a vertex's edges span R^d).
+    If the hard facets span more, the walk is run again with no facet hard.
 
     Args:
         parts: The summands in the coordinates of the sum's span (d >= 2).
@@ -199,14 +201,15 @@ def walk_facets(
 
     Returns:
         Unit facet normals, and the vertices as summand vertex indices.
-
-    If they span more, the walk is run again with no facet hard.
     """
     walk = SumFaces(parts, atol)
     d = walk.points.shape[1]
     maps = _orbit(permutation, len(walk.points))
     everything = np.ones(len(walk.points), dtype=bool)
     flag = np.zeros((0, d))
+    found: list[np.ndarray] = []
+    hard: list[bool] = [True]
+    tuples: list[np.ndarray] = []
     for limit in (HARD_LIMIT, math.inf):
         found, hard = [], [True]
         for group in _groups([p.dimension for p in parts], d - 1):
@@ -230,11 +233,11 @@ def walk_facets(
             raise ArithmeticError("a symmetric image of a facet is not a facet")
         if not np.any(kinds) or np.linalg.matrix_rank(normals[kinds], 1e-9) <= d - 2:
             break
-    tuples = np.vstack(tuples).astype(np.intp) + walk.starts[:-1]
-    images = [np.sort(np.argsort(m)[tuples], axis=1) for m in maps]
-    tuples = (np.vstack(images) - walk.starts[:-1]).astype(np.uint8)
-    tuples = np.unique(tuples.view(f"V{tuples.shape[1]}").ravel())
-    return normals, tuples.view(np.uint8).reshape(-1, len(parts)).astype(np.intp)
+    chosen = np.vstack(tuples).astype(np.intp) + walk.starts[:-1]
+    images = [np.sort(np.argsort(m)[chosen], axis=1) for m in maps]
+    local = (np.vstack(images) - walk.starts[:-1]).astype(np.uint8)
+    unique = np.unique(local.view(f"V{local.shape[1]}").ravel())
+    return normals, unique.view(np.uint8).reshape(-1, len(parts)).astype(np.intp)
 
 
 def minkowski_sum_walk(

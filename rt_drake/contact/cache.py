@@ -19,6 +19,7 @@ import os
 import tempfile
 import zipfile
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -85,16 +86,16 @@ def save_polytope(
     """Write ``polytope`` (and any ``extra`` arrays) to ``path`` atomically."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
+    arrays: dict[str, Any] = {
+        "F": polytope.F,
+        "g": polytope.g,
+        "vertices": polytope.vertices,
+        "format_version": FORMAT_VERSION,
+        **_parameters(polytope.cup),
+        **extra,
+    }
     with tempfile.NamedTemporaryFile(dir=path.parent, suffix=".tmp", delete=False) as f:
-        np.savez(
-            f,
-            F=polytope.F,
-            g=polytope.g,
-            vertices=polytope.vertices,
-            format_version=FORMAT_VERSION,
-            **_parameters(polytope.cup),
-            **extra,
-        )
+        np.savez(f, **arrays)
     os.replace(f.name, path)
 
 
@@ -134,16 +135,12 @@ def cached_wrench_polytope(
         directory: Cache directory (default :func:`default_cache_dir`).
         use_cache: If False, neither read nor write the cache.
     """
-    compute = (
-        tool_wrench_polytope
-        if isinstance(cup, ToolParameters)
-        else contact_wrench_polytope
-    )
-    if not use_cache:
-        return compute(cup)
-    path = cache_path(cup, directory)
-    polytope = load_polytope(path, cup)
+    polytope = load_polytope(cache_path(cup, directory), cup) if use_cache else None
     if polytope is None:
-        polytope = compute(cup)
-        save_polytope(path, polytope)
+        if isinstance(cup, ToolParameters):
+            polytope = tool_wrench_polytope(cup)
+        else:
+            polytope = contact_wrench_polytope(cup)
+        if use_cache:
+            save_polytope(cache_path(cup, directory), polytope)
     return polytope

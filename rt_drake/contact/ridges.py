@@ -43,7 +43,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from rt_drake.contact.minkowski import _INDEPENDENT
-from rt_drake.contact.summand import Summand, face_table
+from rt_drake.contact.summand import Face, Summand, face_table
 from rt_drake.contact.vertex_tuples import vertex_test
 
 #: Facets whose planes are fitted in one batched SVD (memory: K x P x d).
@@ -71,7 +71,9 @@ class SumFaces:
         if max(sizes) > 62:
             raise ValueError(f"a summand has {max(sizes)} vertices; at most 62")
         self.bits = np.left_shift(1, self.local).astype(np.int64)
-        self._item_cache: dict[tuple[int, int], tuple[np.ndarray, ...]] = {}
+        self._item_cache: dict[
+            tuple[int, int], tuple[np.ndarray, np.ndarray, np.ndarray]
+        ] = {}
 
     def masks(self, row: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Return each summand's face in ``row`` as a bit mask, and its size."""
@@ -155,12 +157,13 @@ class SumFaces:
         """
         d = len(n)
         masks, sizes = self.masks(row)
-        faces = [
-            (s, self.tables[s].get(int(masks[s]))) for s in np.flatnonzero(sizes > 1)
-        ]
-        if any(f is None for _, f in faces) or sum(
-            len(f.directions) for _, f in faces
-        ) != d - 1 - len(flag):
+        faces: list[tuple[int, Face]] = []
+        for index in np.flatnonzero(sizes > 1):
+            face = self.tables[index].get(int(masks[index]))
+            if face is None:
+                return None  # not a face of the summand: enumerate instead
+            faces.append((int(index), face))
+        if sum(len(f.directions) for _, f in faces) != d - 1 - len(flag):
             return None
         inverse = np.linalg.inv(np.vstack([*[f.directions for _, f in faces], n, flag]))
         normals, rows, column = [], [], 0
@@ -172,10 +175,9 @@ class SumFaces:
                 ridge[self.starts[s] : self.starts[s + 1]] = sub
                 rows.append(ridge)
             column += q
-        normals = np.array(normals).reshape(-1, d)
-        normals /= np.linalg.norm(normals, axis=1, keepdims=True)
-        rows = np.array(rows, dtype=bool).reshape(-1, len(row))
-        return normals, rows, self.product(row)
+        unit = np.array(normals).reshape(-1, d)
+        unit /= np.linalg.norm(unit, axis=1, keepdims=True)
+        return unit, np.array(rows, dtype=bool).reshape(-1, len(row)), self.product(row)
 
     def _items(self, s: int, mask: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Return the faces of summand s inside face ``mask``, as arrays.
@@ -206,7 +208,7 @@ class SumFaces:
         orthogonal to ``[flag; u]`` and to items (faces of the F_s, at most
         one per summand) of dimensions adding up to k - 1, and each item lies
         in the face of its F_s that maximises it. All combinations are solved
-        in one batched SVD. The vertices are the sums of one vertex per F_s
+        in one batched QR. The vertices are the sums of one vertex per F_s
         whose ridges through it meet only there (:func:`vertex_test`).
 
         Returns None, without enumerating, when the facet is "hard": more than
@@ -217,14 +219,13 @@ class SumFaces:
         target = d - 1 - len(fixed)
         masks, sizes = self.masks(row)
         owners = np.flatnonzero(sizes > 1)
-        options = [self._items(s, int(masks[s])) for s in owners]
+        options = [self._items(int(s), int(masks[s])) for s in owners]
         ways = np.zeros(target + 1)  # combinations by total dimension so far
         ways[0] = 1.0
         for dims, _, _ in options:
             counts = np.bincount(dims, minlength=target + 1)[: target + 1]
             ways = np.convolve(ways, counts)[: target + 1]
-        candidates = float(np.prod(sizes, dtype=float))
-        if ways[target] > limit or candidates > limit:
+        if ways[target] > limit or float(np.prod(sizes, dtype=float)) > limit:
             return None
         room = np.cumsum([dims.max() for dims, _, _ in options][::-1])[::-1]
         combos, total = np.zeros((1, 0), dtype=np.intp), np.zeros(1, dtype=np.intp)
