@@ -35,7 +35,7 @@ from rt_drake.contact.adjacency import minkowski_sum_walk
 from rt_drake.contact.minkowski import minkowski_sum
 from rt_drake.contact.tool_polytope import tool_summands
 from rt_drake.contact.wrench_polytope import wrench_scale
-from rt_drake.errors import RtDrakeError
+from rt_drake.errors import InputError, RtDrakeError
 
 GRAVITY = 9.81
 
@@ -306,7 +306,8 @@ def test_cache_round_trip_and_the_key_covers_every_pose(tmp_path, monkeypatch):
     assert len(paths) == 3
     # A file written for another tool is never loaded.
     cache_path(moved, tmp_path).write_bytes(cache_path(tool, tmp_path).read_bytes())
-    assert load_polytope(cache_path(moved, tmp_path), moved) is None
+    with pytest.raises(InputError, match="written for another tool"):
+        load_polytope(cache_path(moved, tmp_path), moved)
     # A cup and the one-cup tool at its frame are cached apart.
     cup = tool.cups[0].cup
     assert cache_path(cup, tmp_path) != cache_path(ToolParameters.single(cup), tmp_path)
@@ -332,7 +333,7 @@ def test_bad_tools_raise_one_line_errors_naming_the_value():
     bad.radius = -0.01
     with pytest.raises(ToolParameterError) as error:
         tool_wrench_polytope(tool)
-    assert str(error.value) == "cup 1: radius must be > 0, got -0.01"
+    assert str(error.value) == "cup 1: radius must be in [0.0001, 0.5] m, got -0.01"
     assert isinstance(error.value, ValueError)
 
 
