@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from rt_drake.errors import ScenarioError
-from rt_drake.scenario import load_scenario
+from rt_drake.scenario import VacuumModel, load_scenario
 
 
 def test_shipped_scenarios_load(scenario_paths):
@@ -17,7 +17,12 @@ def test_shipped_scenarios_load(scenario_paths):
         "carton_box",
     ]
     assert stack.cup.points == 6 and stack.cup.friction == pytest.approx(0.3)
-    assert stack.timing.attach_s == pytest.approx(1.0)
+    assert stack.vacuum.kind is VacuumModel.FIXED
+    assert stack.vacuum.attach_s == pytest.approx(1.0)
+    sensor = load_scenario(scenario_paths["stack_four_objects_vacuum_sensor"])
+    assert sensor.vacuum.kind is VacuumModel.FIRST_ORDER
+    assert [o.name for o in sensor.objects] == [o.name for o in stack.objects]
+    assert sensor.vacuum.move_force_fraction == pytest.approx(0.8)
     transport = load_scenario(scenario_paths["random_transport"])
     assert transport.random_transport.object == "notebook"
 
@@ -68,7 +73,24 @@ BAD_EDITS = [
         ["bad.yaml", "objects[1].approach_offset", "-0.21"],
     ),
     ("  friction: 0.3", "  friction: -0.3", ["bad.yaml", "cup", "-0.3"]),
-    ("  attach_s: 1.0", "  attach_s: 1.0\n  wait_s: 2", ["bad.yaml", "timing.wait_s"]),
+    ("  attach_s: 1.0", "  attach_s: 1.0\n  wait_s: 2", ["bad.yaml", "vacuum.wait_s"]),
+    ("  model: fixed", "  model: fast", ["bad.yaml", "vacuum.model", "'fast'"]),
+    ("  attach_s: 1.0", "  attach_s: -1.0", ["bad.yaml", "vacuum.attach_s", "-1.0"]),
+    (
+        "  attach_s: 1.0",
+        "  attach_s: 1.0\n  build_up_tau_s: 0",
+        ["bad.yaml", "vacuum.build_up_tau_s", "> 0"],
+    ),
+    (
+        "  attach_s: 1.0",
+        "  attach_s: 1.0\n  part_present_fraction: 1.5",
+        ["bad.yaml", "vacuum.part_present_fraction", "1.5"],
+    ),
+    (
+        "vacuum:\n  model: fixed  # the paper's fixed 1 s waits (Table II)",
+        "timing:",
+        ["bad.yaml", "'timing' was renamed 'vacuum'", "attach_s: 1.0"],
+    ),
 ]
 
 

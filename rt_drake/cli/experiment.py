@@ -80,6 +80,7 @@ def run_transport(args: argparse.Namespace) -> int:
     import time
 
     from rt_drake.cli._output import output_directory
+    from rt_drake.cli._progress import Progress
     from rt_drake.experiments import (
         TRANSPORT_FILES,
         run_transport_experiment,
@@ -90,14 +91,19 @@ def run_transport(args: argparse.Namespace) -> int:
 
     path = resolve_scenario_path(args.scenario)
     output_directory(args.out, "--out", TRANSPORT_FILES, {"scenario file": path})
+    progress = Progress("rt-drake experiment transport", args.n, "trial", eta=True)
     start = time.perf_counter()
-    results = run_transport_experiment(
-        path,
-        n=args.n,
-        seed=args.seed,
-        object_name=args.object,
-        workers=args.workers,
-    )
+    try:
+        results = run_transport_experiment(
+            path,
+            n=args.n,
+            seed=args.seed,
+            object_name=args.object,
+            workers=args.workers,
+            progress=lambda done, n: progress.step(done, "trials done"),
+        )
+    finally:
+        progress.close()
     results["wall_s"] = time.perf_counter() - start
     written = write_transport_report(results, args.out)
     s = results["summary"]
@@ -121,6 +127,7 @@ def run_cycle_experiment(args: argparse.Namespace) -> int:
         meshcat=False,
         no_grasp_constraint=False,
         speed=1.0,
+        sequential_planning=False,
         seed=0,
         time_step=1e-3,
     )

@@ -134,16 +134,15 @@ def run(args: argparse.Namespace) -> int:
     except InputError as error:  # e.g. two equal rows: name the file
         raise InputError(f"{args.waypoints}: {error}") from None
     held = HeldObject.from_scenario_object(obj)
+    cup_model = scenario.single_cup("rt-drake retime")
     grasp = (
-        None
-        if args.no_grasp_constraint
-        else GraspConstraint.for_cup(held, scenario.cup)
+        None if args.no_grasp_constraint else GraspConstraint.for_cup(held, cup_model)
     )
     limits = JointLimits.from_plant(plant, scenario.robot)
     cup = CupFrame.of(plant, scenario.robot.cup_frame)
     result = retime(plant, waypoints, limits, grasp, args.gridpoints, cup=cup)
     saved = sample_trajectory(
-        plant, result, held, grasp, scenario.cup, obj.name, waypoints, knots,
+        plant, result, held, grasp, cup_model, obj.name, waypoints, knots,
         cup_frame=cup.frame,
     )  # fmt: skip
     save_trajectory(args.out, saved)

@@ -9,6 +9,7 @@
 from rt_drake.experiments.cycle_report import (
     REPORT_FILES,
     cycle_report,
+    summary_line,
     table_markdown,
     write_report,
 )
@@ -43,6 +44,7 @@ __all__ = [
     "run_transport_experiment",
     "simulate_move",
     "summarize",
+    "summary_line",
     "table_markdown",
     "transport_table",
     "transport_trial",

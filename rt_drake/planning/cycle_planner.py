@@ -7,6 +7,9 @@
   costed by the previous solution; no RRT. The target's grasped face is
   modelled ``TOUCH_ALLOWANCE`` lower, so the cup may touch (and press 2 mm
   into) that face and nothing else of the object.
+- PICK (:meth:`CyclePlanner.plan_pick`, :mod:`.pick`): APPROACH and REACH
+  blended into one path without a stop at the approach pose, after a
+  vertical retreat from an object just placed.
 - MOVE: the object attached to the cup, through four anchors: grasp, lift
   (the grasp raised by ``approach_offset``; the IK line of the REACH passed
   in, reversed, when that REACH came down from there), above the place pose
@@ -44,6 +47,7 @@ from rt_drake.planning.errors import (
 )
 from rt_drake.planning.geometry import face_under_cup
 from rt_drake.planning.ik import CupIk, initial_guesses, nearest_valid_solution
+from rt_drake.planning.pick import PlannedPick, plan_pick
 from rt_drake.planning.result import PlannedPath
 from rt_drake.planning.scene import PlanningScene
 from rt_drake.plant import home_configuration
@@ -157,6 +161,16 @@ class CyclePlanner:
             )
         planned = through(self.scene, self.ik, list(chain), X_OC, attempt)
         return dataclasses.replace(planned, descent=chain)
+
+    def plan_pick(
+        self, q_start: np.ndarray, name: str, retreat: bool = False
+    ) -> PlannedPick:
+        """APPROACH and REACH of ``name`` as one path, after a retreat if asked.
+
+        ``retreat``: the cup rests on a placed object at ``q_start`` and first
+        rises vertically off it (:mod:`.pick`).
+        """
+        return plan_pick(self, q_start, name, retreat)
 
     def plan_move(
         self,
