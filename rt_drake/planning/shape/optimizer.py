@@ -1,0 +1,334 @@
+"""optimize_move: a faster MOVE path than the planner's spline, within a budget.
+
+Stages (wall time of each in :attr:`OptimizedMove.timings`, s):
+
+1. ``spline_plan``: the planner's spline MOVE, unless given (outside the
+   budget: the cycle plans it anyway).
+2. ``baseline``: the spline path retimed on the adaptive grid of
+   :mod:`.finish`: the duration to beat.
+3. ``setup``: the path family (:mod:`.family`), the coarse retimer and its
+   first grasp rows, the clearance model of the scene with the load.
+4. ``search``: CMA-ES (:mod:`.search`) until the budget, less the time the
+   finish needs (estimated from the baseline's retime and dense check).
+5. ``finish``: the best candidates, best first: dense tilt and vertical-end
+   checks, the planner's continuous collision check with the load
+   (:func:`rt_drake.planning.dense_check.check_path`) and the adaptive
+   retime; the first that passes and beats the baseline is returned, else
+   the spline path (``improved`` False), not an error.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import time
+
+import numpy as np
+from pydrake.math import RigidTransform
+from pydrake.multibody.plant import MultibodyPlant
+
+from rt_drake.errors import RtDrakeError
+from rt_drake.planning.dense_check import check_path
+from rt_drake.planning.path import GeometricPath
+from rt_drake.planning.result import PlannedPath
+from rt_drake.planning.shape.clearance import ClearanceModel
+from rt_drake.planning.shape.family import FamilyError, PathFamily, corners
+from rt_drake.planning.shape.finish import retime_adaptive, vertical_drift
+from rt_drake.planning.shape.kinematics import CupChain
+from rt_drake.planning.shape.objective import Objective
+from rt_drake.planning.shape.search import cma_search
+from rt_drake.planning.shape.surrogate import CoarseRetimer
+from rt_drake.plant import CUP_FRAME
+from rt_drake.retime import RetimeError, RetimeResult
+from rt_drake.retiming.limits import GraspConstraint, JointLimits
+
+#: deg: the tilt allowed when ``max_tilt_deg`` is 0 (cup kept vertical).
+VERTICAL_TOLERANCE_DEG = 0.5
+#: m: largest horizontal drift of the cup along a vertical end segment.
+VERTICAL_DRIFT = 1e-3
+#: Samples of the final path's tilt check.
+TILT_SAMPLES = 1000
+
+
+class MoveOptimizerError(RtDrakeError, ValueError):
+    """Bad optimiser options."""
+
+
+class Clock(enum.Enum):
+    """What the budget counts: wall time, or this process's CPU time."""
+
+    WALL = "wall"
+    PROCESS = "process"
+
+
+@dataclasses.dataclass(frozen=True)
+class MoveOptimizerOptions:
+    """Settings of :func:`optimize_move`.
+
+    Attributes:
+        max_tilt_deg: Largest angle (deg) between the cup axis and gravity on
+            the path; 0 keeps the cup vertical (within 0.5 deg).
+        budget_s: Time budget (s) of the optimisation, the spline path's
+            planning excluded.
+        clock: What the budget counts (wall time in a cell; CPU time gives
+            repeatable benchmarks on a shared machine).
+        vertical_height: Length (m) of the vertical segment at each end.
+        vertical_points: Waypoints on each vertical segment.
+        via_points: Free via points K (n K parameters).
+        joint_scale: rad per unit of the search's parameters.
+        sigma: CMA-ES's initial step size (units of the parameters).
+        search_gridpoints: Uniform grid of the search's TOPP-RA.
+        final_gridpoints: Points of the final adaptive grid.
+        clearance_margin: Clearance (m) the search keeps (estimate).
+        seed: Seed of CMA-ES.
+        max_evaluations: Stop the search after this many paths as well.
+    """
+
+    max_tilt_deg: float = 45.0
+    budget_s: float = 0.12
+    clock: Clock = Clock.WALL
+    vertical_height: float = 0.03
+    vertical_points: int = 3
+    via_points: int = 2
+    joint_scale: float = 0.1
+    sigma: float = 0.5
+    search_gridpoints: int = 24
+    final_gridpoints: int = 350
+    clearance_margin: float = 0.01
+    seed: int = 0
+    max_evaluations: int | None = None
+
+    def __post_init__(self) -> None:
+        checks = {
+            "max_tilt_deg": 0.0 <= self.max_tilt_deg < 90.0,
+            "budget_s": self.budget_s > 0.0,
+            "clock": isinstance(self.clock, Clock),
+            "vertical_height": self.vertical_height > 0.0,
+            "vertical_points": self.vertical_points >= 1,
+            "via_points": self.via_points >= 1,
+            "joint_scale": self.joint_scale > 0.0,
+            "sigma": self.sigma > 0.0,
+            "search_gridpoints": self.search_gridpoints >= 4,
+            "final_gridpoints": self.final_gridpoints >= 4,
+            "clearance_margin": self.clearance_margin >= 0.0,
+            "max_evaluations": self.max_evaluations is None
+            or self.max_evaluations >= 1,
+        }
+        for name, ok in checks.items():
+            if not ok:
+                raise MoveOptimizerError(
+                    f"MoveOptimizerOptions.{name} out of range: {getattr(self, name)!r}"
+                )
+
+    @property
+    def tilt_bound(self) -> float:
+        """rad: the tilt the path may reach (0.5 deg for max_tilt_deg 0)."""
+        return float(np.radians(max(self.max_tilt_deg, VERTICAL_TOLERANCE_DEG)))
+
+
+@dataclasses.dataclass(frozen=True)
+class OptimizedMove:
+    """Result of :func:`optimize_move`.
+
+    Attributes:
+        path: The returned path (the spline path if ``improved`` is False).
+        retimed: Its retime under the grasp constraint (adaptive grid).
+        spline: The planner's spline MOVE.
+        spline_retimed: The spline path's retime on the same scheme.
+        improved: Whether ``path`` is an optimised one.
+        max_tilt_deg: Largest cup tilt along ``path`` (deg).
+        evaluations: Candidate paths the search scored.
+        wall_s: Wall time (s) of the optimisation (spline planning excluded).
+        cpu_s: This process's CPU time (s) over the same span.
+        timings: Wall time (s) per stage (module docstring).
+        rejected: Why better candidates were turned down in the finish.
+    """
+
+    path: GeometricPath
+    retimed: RetimeResult
+    spline: PlannedPath
+    spline_retimed: RetimeResult
+    improved: bool
+    max_tilt_deg: float
+    evaluations: int
+    wall_s: float
+    cpu_s: float
+    timings: dict[str, float]
+    rejected: tuple[str, ...] = ()
+
+    @property
+    def duration(self) -> float:
+        """s, duration of the returned path."""
+        return self.retimed.duration
+
+    @property
+    def spline_duration(self) -> float:
+        """s, duration of the spline path (same retime scheme)."""
+        return self.spline_retimed.duration
+
+
+def optimize_move(
+    planner,
+    plant: MultibodyPlant,
+    q_grasp: np.ndarray,
+    name: str,
+    grasp: GraspConstraint,
+    limits: JointLimits,
+    options: MoveOptimizerOptions | None = None,
+    X_WO_goal: RigidTransform | None = None,
+    spline: PlannedPath | None = None,
+    context=None,
+) -> OptimizedMove:
+    """A MOVE of object ``name`` from ``q_grasp`` to its place, as fast as found.
+
+    Args:
+        planner: The :class:`~rt_drake.planning.CyclePlanner` (uses its
+            ``plan_move``, ``prepare`` and ``scene``).
+        plant: The retimer's arm plant (positions = the path's joints).
+        q_grasp: Grasp configuration (rad), the MOVE's start.
+        name: The carried object.
+        grasp: Its grasp constraint ``F w <= g``.
+        limits: Joint velocity and acceleration limits.
+        options: Settings (defaults if None).
+        X_WO_goal: Place pose of the object (default: its scenario goal).
+        spline: The planner's MOVE from ``q_grasp`` if already planned.
+        context: Scratch context of ``plant``.
+
+    Raises:
+        PlanningError: the spline MOVE could not be planned.
+        RetimeError: the spline path cannot be retimed.
+    """
+    options = options or MoveOptimizerOptions()
+    context = context or plant.CreateDefaultContext()
+    timings = dict.fromkeys(("spline_plan", "baseline", "setup", "search", "finish"))
+    watch = _Stopwatch(timings)
+    with watch("spline_plan"):
+        if spline is None:
+            spline = planner.plan_move(q_grasp, name, X_WO_goal)
+        else:
+            planner.prepare("MOVE", name, q_grasp, spline.X_OC)
+    clock = time.perf_counter if options.clock is Clock.WALL else time.process_time
+    start, wall, cpu = clock(), time.perf_counter(), time.process_time()
+
+    def result(path, retimed, improved, evaluations=0, rejected=()):
+        tilt = float(np.degrees(chain.tilt(path.value(_s())).max()))
+        return OptimizedMove(
+            path, retimed, spline, baseline, improved, tilt, evaluations,
+            time.perf_counter() - wall, time.process_time() - cpu, timings,
+            tuple(rejected),
+        )  # fmt: skip
+
+    retime = _retimer(plant, limits, grasp, options, context)
+    with watch("baseline"):
+        baseline = retime(spline.path)
+    finish_cost = 1.5 * timings["baseline"] + 1.2 * spline.timing.check_s
+    chain = CupChain(plant, plant.GetFrameByName(CUP_FRAME))
+    with watch("setup"):
+        try:
+            family = _family(chain, spline, options)
+        except FamilyError as error:
+            return result(spline.path, baseline, False, rejected=[str(error)])
+        surrogate = CoarseRetimer(chain, limits, grasp, options.search_gridpoints)
+        surrogate.select_rows(spline.path.waypoints[None])
+        objective = Objective(
+            family, surrogate, ClearanceModel(planner.scene, chain),
+            planner.scene.lower, planner.scene.upper, options.tilt_bound,
+            options.clearance_margin, spline.path,
+        )  # fmt: skip
+    with watch("search"):
+        found = cma_search(
+            objective, family.dim,
+            lambda: clock() > start + options.budget_s - finish_cost,
+            options.sigma, options.seed, max_evaluations=options.max_evaluations,
+        )  # fmt: skip
+    rejected: list[str] = []
+    with watch("finish"):
+        for index, candidate in enumerate(found.candidates):
+            late = clock() + 0.5 * finish_cost > start + options.budget_s
+            if candidate.duration >= baseline.duration or (index and late):
+                break
+            path = GeometricPath.from_waypoints(family.waypoints(candidate.x)[0])
+            reason = _certify(chain, family, planner.scene, path, options)
+            if reason is None:
+                try:
+                    retimed = retime(path)
+                except RetimeError as error:
+                    reason = f"retime: {error}"
+                else:
+                    if retimed.duration < baseline.duration:
+                        return result(path, retimed, True, found.evaluations, rejected)
+                    reason = f"retimed {retimed.duration:.3f} s, not shorter"
+            rejected.append(reason)
+    return result(spline.path, baseline, False, found.evaluations, rejected)
+
+
+class _Stopwatch:
+    """``with watch("stage"):`` adds the block's wall time to timings[stage]."""
+
+    def __init__(self, timings: dict) -> None:
+        self.timings = timings
+        for key in timings:
+            timings[key] = 0.0
+
+    def __call__(self, stage: str) -> _Stopwatch:
+        self._stage = stage
+        return self
+
+    def __enter__(self) -> _Stopwatch:
+        self._start = time.perf_counter()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.timings[self._stage] += time.perf_counter() - self._start
+
+
+def _s() -> np.ndarray:
+    return np.linspace(0.0, 1.0, TILT_SAMPLES)
+
+
+def _retimer(plant, limits, grasp, options, context):
+    def retime(path: GeometricPath) -> RetimeResult:
+        return retime_adaptive(
+            plant, path, limits, grasp, options.final_gridpoints, context=context
+        )
+
+    return retime
+
+
+def _family(chain: CupChain, spline: PlannedPath, options) -> PathFamily:
+    return PathFamily(
+        chain,
+        spline.path.waypoints[0],
+        spline.path.waypoints[-1],
+        corners(spline.path, options.via_points),
+        options.vertical_height,
+        options.vertical_points,
+        np.full(chain.num_joints, options.joint_scale),
+        vertical=options.max_tilt_deg < VERTICAL_TOLERANCE_DEG,
+    )
+
+
+def _certify(chain, family, scene, path: GeometricPath, options) -> str | None:
+    """None if the path passes the tilt, vertical-end and collision checks."""
+    tilt = chain.tilt(path.value(_s())).max()
+    if tilt > options.tilt_bound + 1e-9:
+        return f"tilt {np.degrees(tilt):.2f} deg above the bound"
+    s_up, s_down = family.segment_ends(path.knots)
+    drift = max(
+        vertical_drift(chain, path, 0.0, s_up), vertical_drift(chain, path, s_down, 1.0)
+    )
+    if drift > VERTICAL_DRIFT:
+        return f"a vertical end segment drifts {1e3 * drift:.2f} mm"
+    check = check_path(scene, path)
+    if not check.ok:
+        return f"{check.reason} at s = {check.s:.3f}"
+    return None
+
+
+__all__ = [
+    "Clock",
+    "MoveOptimizerError",
+    "MoveOptimizerOptions",
+    "OptimizedMove",
+    "optimize_move",
+]
