@@ -167,11 +167,6 @@ def _clearance(R, p, centres, radii, box_R, box_p, box_half, reach, cutoff, out)
     """Minimum over spheres and boxes of the sphere-box signed distance."""
     spheres = centres.shape[0]
     boxes = box_p.shape[0]
-    box_reach = np.empty(boxes)
-    for b in range(boxes):
-        box_reach[b] = math.sqrt(
-            box_half[b, 0] ** 2 + box_half[b, 1] ** 2 + box_half[b, 2] ** 2
-        )
     world = np.empty((spheres, 3))
     for i in range(p.shape[0]):
         for k in range(spheres):
@@ -184,12 +179,17 @@ def _clearance(R, p, centres, radii, box_R, box_p, box_half, reach, cutoff, out)
                 )
         best = cutoff
         for b in range(boxes):
-            dx = p[i, 0] - box_p[b, 0]
-            dy = p[i, 1] - box_p[b, 1]
-            dz = p[i, 2] - box_p[b, 2]
-            if math.sqrt(dx * dx + dy * dy + dz * dz) > reach + box_reach[b] + best:
-                continue
             B = box_R[b]
+            w0 = p[i, 0] - box_p[b, 0]
+            w1 = p[i, 1] - box_p[b, 1]
+            w2 = p[i, 2] - box_p[b, 2]
+            # broad phase: the box's distance to the spheres' bounding ball
+            e0 = abs(B[0, 0] * w0 + B[1, 0] * w1 + B[2, 0] * w2) - box_half[b, 0]
+            e1 = abs(B[0, 1] * w0 + B[1, 1] * w1 + B[2, 1] * w2) - box_half[b, 1]
+            e2 = abs(B[0, 2] * w0 + B[1, 2] * w1 + B[2, 2] * w2) - box_half[b, 2]
+            far = math.sqrt(max(e0, 0.0) ** 2 + max(e1, 0.0) ** 2 + max(e2, 0.0) ** 2)
+            if far - reach > best:
+                continue
             h0, h1, h2 = box_half[b, 0], box_half[b, 1], box_half[b, 2]
             for k in range(spheres):
                 w0 = world[k, 0] - box_p[b, 0]

@@ -16,7 +16,9 @@ estimate of the spline path (between its first and last waypoint
 intervals) and of the tops of the vertical segments if that is smaller: a
 grasp close to a wall cannot keep the margin at the start. Clearance is
 estimated only for the better half of a batch (by the other terms): the
-worse half ranks low anyway and is not reported feasible.
+worse half ranks low anyway and is not reported feasible. Paths whose coarse
+duration with the grasp rows found so far already exceeds the best feasible
+one are not checked for missed rows (:meth:`CoarseRetimer.evaluate`).
 """
 
 from __future__ import annotations
@@ -77,11 +79,14 @@ class Objective:
         )
         self.threshold = min(margin, 0.8 * float(reference.min()))
         self._down = family.chain.gravity_W / np.linalg.norm(family.chain.gravity_W)
+        #: s, the shortest feasible duration so far: worse paths are not
+        #: checked for missed grasp rows (their duration is a lower bound).
+        self.best = np.inf
 
     def __call__(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Values (s) and feasibility of the paths at parameters x (P, d)."""
         W = self.family.waypoints(x)
-        durations, used = self.surrogate.evaluate(W)
+        durations, exact, used = self.surrogate.evaluate(W, self.best)
         q = evaluate_splines(W, self.s)[0]
         R_WC, p_WC = self.family.chain.cup_pose(q)
         tilt = np.arccos(np.clip(R_WC[..., :, 2] @ self._down, -1.0, 1.0)).max(1)
@@ -102,7 +107,10 @@ class Objective:
         values[better] += extra
         feasible = np.zeros(len(W), dtype=bool)
         feasible[better] = (penalty[better] + extra == 0.0) & ~rejected[better]
+        feasible &= exact
         self.surrogate.share_rows(used[feasible])
+        if feasible.any():
+            self.best = min(self.best, float(durations[feasible].min()))
         return values, feasible
 
 

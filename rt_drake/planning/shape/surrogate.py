@@ -94,18 +94,34 @@ class CoarseRetimer:
         """Durations (s) of the paths through waypoints (P, K, n); inf: rejected."""
         return self.evaluate(waypoints)[0]
 
-    def evaluate(self, waypoints: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Durations (P,) and the grasp rows each path's solve used (P, R) bool."""
+    def evaluate(
+        self, waypoints: np.ndarray, bound: float = np.inf
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Durations of the paths through waypoints (P, K, n), with details.
+
+        Args:
+            waypoints: (P, K, n) joint waypoints (rad).
+            bound: s; a path whose duration with the rows so far is already
+                at least this is not checked for missed rows (adding rows
+                only lengthens it): its duration is then a lower bound.
+
+        Returns:
+            ``(durations (P,), exact (P,) bool, used (P, R) bool)``: inf for a
+            rejected path; whether the duration is TOPP-RA's with every row;
+            the grasp rows each solve used.
+        """
         q, dq, ddq = evaluate_splines(waypoints, self.s)
         a, b, c = self.chain.wrench_coefficients(self.grasp.held, q, dq, ddq)
         out = np.empty(len(q))
+        exact = np.zeros(len(q), dtype=np.bool_)
         used = np.zeros((len(q), len(self.rows)), dtype=np.bool_)
         _batch_durations(
             dq, ddq, *(kernel_array(x) for x in (a, b, c)),
             self._velocity, kernel_array(self._box), kernel_array(self._acceleration),
-            self._F, self._g, self._normals, self.rows, self._ds, out, used,
+            self._F, self._g, self._normals, self.rows, self._ds, float(bound),
+            out, exact, used,
         )  # fmt: skip
-        return out, used
+        return out, exact, used
 
     def share_rows(self, used: np.ndarray) -> None:
         """Add rows some paths needed (``used`` (P, R) from :meth:`evaluate`).
@@ -120,8 +136,10 @@ class CoarseRetimer:
 
 
 @njit(cache=True)
-def _batch_durations(dq, ddq, a, b, c, vel, box, acc, F, g, n, mask, ds, out, used):  # noqa: D417
-    """TOPP-RA duration of each candidate (see CoarseRetimer); grows ``mask``."""
+def _batch_durations(  # noqa: D417
+    dq, ddq, a, b, c, vel, box, acc, F, g, n, mask, ds, bound, out, exact, used
+):
+    """TOPP-RA duration of each candidate (see CoarseRetimer.evaluate)."""
     P, M, dof = dq.shape
     zeros = np.zeros((M, dof))
     rows_total = F.shape[0]
@@ -130,6 +148,7 @@ def _batch_durations(dq, ddq, a, b, c, vel, box, acc, F, g, n, mask, ds, out, us
         # at rest: every row's slack positive at every grid point
         if np.dot(np.ascontiguousarray(c[p]), n).max() >= 1.0:
             out[p] = np.inf
+            exact[p] = True
             continue
         lo = np.empty((M, 2))
         hi = np.empty((M, 2))
@@ -155,9 +174,20 @@ def _batch_durations(dq, ddq, a, b, c, vel, box, acc, F, g, n, mask, ds, out, us
             if failed >= 0:
                 if selected.shape[0] == rows_total:
                     out[p] = np.inf
+                    exact[p] = True
                     break
                 local[:] = True
                 continue
+            total = 0.0
+            for i in range(M - 1):
+                total += (
+                    2.0
+                    * ds[i]
+                    / (np.sqrt(max(x[i], 0.0)) + np.sqrt(max(x[i + 1], 0.0)))
+                )
+            out[p] = total
+            if total >= bound:
+                break  # a lower bound, already no better than the bound
             enforced = np.empty((2 * (M - 1), 6))
             for i in range(M - 1):
                 x_next = x[i] + 2.0 * ds[i] * u[i]
@@ -176,14 +206,7 @@ def _batch_durations(dq, ddq, a, b, c, vel, box, acc, F, g, n, mask, ds, out, us
                         missed = True
             if missed:
                 continue
-            total = 0.0
-            for i in range(M - 1):
-                total += (
-                    2.0
-                    * ds[i]
-                    / (np.sqrt(max(x[i], 0.0)) + np.sqrt(max(x[i + 1], 0.0)))
-                )
-            out[p] = total
+            exact[p] = True
             used[p] = local
             break
 
