@@ -36,7 +36,7 @@ from rt_drake.planning.shape.family import FamilyError, PathFamily, corners
 from rt_drake.planning.shape.finish import retime_adaptive, vertical_drift
 from rt_drake.planning.shape.kinematics import CupChain
 from rt_drake.planning.shape.objective import Objective
-from rt_drake.planning.shape.search import cma_search
+from rt_drake.planning.shape.search import Candidate, cma_search
 from rt_drake.planning.shape.surrogate import CoarseRetimer
 from rt_drake.plant import CUP_FRAME
 from rt_drake.retime import RetimeError, RetimeResult
@@ -48,6 +48,8 @@ VERTICAL_TOLERANCE_DEG = 0.5
 VERTICAL_DRIFT = 1e-3
 #: Samples of the final path's tilt check.
 TILT_SAMPLES = 1000
+#: Via points added, one at a time, to rescue a search that found nothing.
+EXTRA_VIA_POINTS = 2
 
 
 class MoveOptimizerError(RtDrakeError, ValueError):
@@ -74,12 +76,16 @@ class MoveOptimizerOptions:
             repeatable benchmarks on a shared machine).
         vertical_height: Length (m) of the vertical segment at each end.
         vertical_points: Waypoints on each vertical segment.
-        via_points: Free via points K (n K parameters).
-        joint_scale: rad per unit of the search's parameters.
+        via_points: Free via points K (n K parameters); if the search finds
+            no feasible path, the paths through K + 1 and K + 2 of the spline
+            path's corners are tried.
+        joint_scale: rad per unit of the search's parameters (one for all
+            joints, or one per joint).
         sigma: CMA-ES's initial step size (units of the parameters).
         search_gridpoints: Uniform grid of the search's TOPP-RA.
         final_gridpoints: Points of the final adaptive grid.
         clearance_margin: Clearance (m) the search keeps (estimate).
+        population: CMA-ES's candidates per generation (default 4 + 3 ln d).
         seed: Seed of CMA-ES.
         max_evaluations: Stop the search after this many paths as well.
     """
@@ -90,11 +96,12 @@ class MoveOptimizerOptions:
     vertical_height: float = 0.03
     vertical_points: int = 3
     via_points: int = 2
-    joint_scale: float = 0.1
+    joint_scale: float | tuple[float, ...] = 0.1
     sigma: float = 0.5
     search_gridpoints: int = 24
     final_gridpoints: int = 350
     clearance_margin: float = 0.01
+    population: int | None = None
     seed: int = 0
     max_evaluations: int | None = None
 
@@ -106,7 +113,7 @@ class MoveOptimizerOptions:
             "vertical_height": self.vertical_height > 0.0,
             "vertical_points": self.vertical_points >= 1,
             "via_points": self.via_points >= 1,
-            "joint_scale": self.joint_scale > 0.0,
+            "joint_scale": bool(np.all(np.asarray(self.joint_scale) > 0.0)),
             "sigma": self.sigma > 0.0,
             "search_gridpoints": self.search_gridpoints >= 4,
             "final_gridpoints": self.final_gridpoints >= 4,
@@ -229,26 +236,43 @@ def optimize_move(
     finish_cost = 1.1 * (retime_cost + to_clock * spline.timing.check_s)
     chain = CupChain(plant, plant.GetFrameByName(CUP_FRAME))
     with watch("setup"):
-        try:
-            family = _family(chain, spline, options)
-        except FamilyError as error:
-            return result(spline.path, baseline, False, rejected=[str(error)])
         surrogate = CoarseRetimer(chain, limits, grasp, options.search_gridpoints)
         surrogate.select_rows(spline.path.waypoints[None])
-        objective = Objective(
-            family, surrogate, ClearanceModel(planner.scene, chain),
-            planner.scene.lower, planner.scene.upper, options.tilt_bound,
-            options.clearance_margin, spline.path,
-        )  # fmt: skip
+        clearance = ClearanceModel(planner.scene, chain)
+
+        def objective_for(via: int) -> Objective:
+            return Objective(
+                _family(chain, spline, options, via), surrogate, clearance,
+                planner.scene.lower, planner.scene.upper, options.tilt_bound,
+                options.clearance_margin, spline.path,
+            )  # fmt: skip
+
+        try:
+            objective = objective_for(options.via_points)
+        except FamilyError as error:
+            return result(spline.path, baseline, False, rejected=[str(error)])
     with watch("search"):
         found = cma_search(
-            objective, family.dim,
+            objective, objective.family.dim,
             lambda: clock() > start + options.budget_s - finish_cost,
-            options.sigma, options.seed, max_evaluations=options.max_evaluations,
+            options.sigma, options.seed, options.population,
+            max_evaluations=options.max_evaluations,
         )  # fmt: skip
+        candidates = [(objective.family, c) for c in found.candidates]
+        # Nothing feasible (e.g. a lift close to a wall, whose corners the
+        # spline through few via points cuts): the starting paths through
+        # more of the spline path's corners follow it more closely.
+        for extra in range(1, EXTRA_VIA_POINTS + 1):
+            if candidates:
+                break
+            rescue = objective_for(options.via_points + extra)
+            x0 = np.zeros((1, rescue.family.dim))
+            values, feasible = rescue(x0)
+            if feasible[0]:
+                candidates = [(rescue.family, Candidate(x0[0], float(values[0])))]
     rejected: list[str] = []
     with watch("finish"):
-        for index, candidate in enumerate(found.candidates):
+        for index, (family, candidate) in enumerate(candidates):
             late = clock() + 0.5 * finish_cost > start + options.budget_s
             if candidate.duration >= baseline.duration or (index and late):
                 break
@@ -300,15 +324,15 @@ def _retimer(plant, limits, grasp, options, context):
     return retime
 
 
-def _family(chain: CupChain, spline: PlannedPath, options) -> PathFamily:
+def _family(chain: CupChain, spline: PlannedPath, options, via: int) -> PathFamily:
     return PathFamily(
         chain,
         spline.path.waypoints[0],
         spline.path.waypoints[-1],
-        corners(spline.path, options.via_points),
+        corners(spline.path, via),
         options.vertical_height,
         options.vertical_points,
-        np.full(chain.num_joints, options.joint_scale),
+        np.broadcast_to(np.asarray(options.joint_scale, float), chain.num_joints),
         vertical=options.max_tilt_deg < VERTICAL_TOLERANCE_DEG,
     )
 
