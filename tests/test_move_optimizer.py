@@ -202,7 +202,7 @@ def test_zero_tilt_keeps_the_cup_vertical(setup, moves):
 
 @pytest.mark.slow
 def test_discretization_loss_at_most_half_a_percent(setup, moves):
-    """The adaptive 350-point retime within 0.5 % of 1000 uniform points."""
+    """The adaptive 400-point retime within 0.5 % of 1000 uniform points."""
     for _, spline, grasp, options, result in moves:
         for path in (spline.path, result.path):
             adaptive = retime_adaptive(
