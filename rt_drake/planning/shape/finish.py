@@ -1,20 +1,23 @@
 """The final retime on an adaptive grid, and the vertical-end check.
 
 TOPP-RA's interpolation scheme constrains the grid points only, with one
-path acceleration per segment, and wastes time where a segment takes long:
-near the ends of a rest-to-rest move, where s' is small. On a uniform grid of
-100 points that left about 6 % of the duration unused against 1000 points
-on the planner's MOVE paths. :func:`retime_adaptive` spends the points where
-the time is: a first retime on a uniform coarse grid gives ``t(s)``; the
-final grid puts its N points at equal steps of the measure
+path acceleration per segment: it loses time where the profile ``x = s'^2``
+changes much within a segment (near the ends of a rest-to-rest move, and
+where the path turns sharply, e.g. at the top of a vertical end segment). On
+a uniform grid of 100 points that left about 6 % of the duration unused
+against 1000 points on the planner's MOVE paths. :func:`retime_adaptive`
+spends the points where the profile moves: a first retime on 100 uniform
+points gives ``t(s)`` and ``x(s)``; the final grid puts its N points at equal
+steps of the measure (in two passes, see :func:`retime_adaptive`)
 
-    mu(s) = w t(s) / T + (1 - w) s
+    mu(s) = w t(s) / T + (1 - w) V(s) / V(1),   V(s) = int_0^s |dx|
 
-(``w`` in [0, 1]: 1 is equal time steps, 0 the uniform grid), from a first
-retime on 100 uniform points. With N = 400 and w = 0.8 it came within
-0.26 % of a 1000-point uniform retime (0.20 % shorter on average) on 40
-spline and optimised MOVE paths, at about half the cost (350 points: up to
-0.51 % longer; see BENCHMARKS.md).
+(time, and the total variation of x). With N = 400 and w = 0.3 it was within
+0.3 % of a 1000-point uniform retime (0.6 % shorter on average) on 80
+spline and optimised MOVE paths (seeds 0 and 1), for about 60 % of the cost;
+one pass from the 100-point profile lost up to 0.54 %, and equal time steps
+(w = 1, or 0.8 with 0.2 of uniform s) up to 5 % on paths that turn sharply
+at the top of a vertical segment (see BENCHMARKS.md).
 """
 
 from __future__ import annotations
@@ -35,13 +38,18 @@ def adaptive_grid(result: RetimeResult, points: int, weight: float) -> np.ndarra
     s, sd = result.gridpoints, result.sd
     dt = 2.0 * np.diff(s) / (sd[:-1] + sd[1:])
     t = np.concatenate([[0.0], np.cumsum(dt)])
-    measure = weight * t / t[-1] + (1.0 - weight) * s
+    variation = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(sd**2)))])
+    measure = weight * t / t[-1] + (1.0 - weight) * variation / variation[-1]
     grid = np.interp(np.linspace(0.0, 1.0, points), measure, s)
-    grid[0], grid[-1] = 0.0, 1.0
-    keep = np.concatenate([[True], np.diff(grid) > 1e-9])
-    grid = grid[keep]
-    grid[-1] = 1.0
-    return grid
+    # At most ten times finer than the uniform grid: TOPP-RA's safeguards
+    # fail on steps of ~1e-5 (a 4000-point uniform grid fails at the end).
+    step = 0.1 / points
+    kept = [0.0]
+    for value in grid[1:-1]:
+        if value - kept[-1] >= step and 1.0 - value >= step:
+            kept.append(float(value))
+    kept.append(1.0)
+    return np.array(kept)
 
 
 def retime_adaptive(
@@ -50,20 +58,25 @@ def retime_adaptive(
     limits: JointLimits,
     grasp: GraspConstraint | None,
     points: int = 400,
-    weight: float = 0.8,
+    weight: float = 0.3,
     context=None,
 ) -> RetimeResult:
-    """Retime ``path`` on the adaptive grid of :func:`adaptive_grid`.
+    """Retime ``path`` on the adaptive grid of :func:`adaptive_grid`, in two passes.
 
-    Falls back to the uniform grid of ``points`` if the adaptive one fails
-    numerically. Raises the retimer's errors if the path cannot be retimed.
+    The profile of a 100-point uniform retime sizes a grid of ``points / 2``,
+    whose profile sizes the final grid of ``points`` (the coarse profile
+    misplaces sharp features). A pass that fails numerically falls back to
+    the previous grid. Raises the retimer's errors if the path cannot be
+    retimed at all.
     """
-    coarse = retime(plant, path, limits, grasp, COARSE_POINTS, context=context)
-    grid = adaptive_grid(coarse, points, weight)
-    try:
-        return retime(plant, path, limits, grasp, grid, context=context)
-    except RetimeError:
-        return retime(plant, path, limits, grasp, points, context=context)
+    result = retime(plant, path, limits, grasp, COARSE_POINTS, context=context)
+    for count in (points // 2, points):
+        grid = adaptive_grid(result, count, weight)
+        try:
+            result = retime(plant, path, limits, grasp, grid, context=context)
+        except RetimeError:
+            result = retime(plant, path, limits, grasp, count, context=context)
+    return result
 
 
 def vertical_drift(chain: CupChain, path, s_start: float, s_end: float) -> float:
