@@ -14,7 +14,8 @@ steps of the measure (in two passes, see :func:`retime_adaptive`)
 
 (time, and the total variation of x). With N = 400 and w = 0.3 it was within
 0.3 % of a 1000-point uniform retime (0.6 % shorter on average) on 80
-spline and optimised MOVE paths (seeds 0 and 1), for about 60 % of the cost;
+spline and optimised MOVE paths (random_transport, seeds 0 and 1; 27 of
+random_transport_paper: +0.07 % at most), for about 60 % of the cost;
 one pass from the 100-point profile lost up to 0.54 %, and equal time steps
 (w = 1, or 0.8 with 0.2 of uniform s) up to 5 % on paths that turn sharply
 at the top of a vertical segment (see BENCHMARKS.md).
@@ -31,6 +32,8 @@ from rt_drake.retiming.limits import GraspConstraint, JointLimits
 
 #: Points of the coarse uniform retime that sizes the grid.
 COARSE_POINTS = 100
+#: Uniform points if an adaptive pass fails numerically.
+FALLBACK_POINTS = 1000
 
 
 def adaptive_grid(result: RetimeResult, points: int, weight: float) -> np.ndarray:
@@ -41,8 +44,10 @@ def adaptive_grid(result: RetimeResult, points: int, weight: float) -> np.ndarra
     variation = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(sd**2)))])
     measure = weight * t / t[-1] + (1.0 - weight) * variation / variation[-1]
     grid = np.interp(np.linspace(0.0, 1.0, points), measure, s)
-    # At most ten times finer than the uniform grid: TOPP-RA's safeguards
-    # fail on steps of ~1e-5 (a 4000-point uniform grid fails at the end).
+    # At most ten times finer than the uniform grid (three times: the loss
+    # against 1000 points grew from +0.30 % to +0.62 % at most). TOPP-RA's
+    # safeguards can fail on such steps at the end of a MOVE (as on a
+    # 4000-point uniform grid): retime_adaptive falls back then.
     step = 0.1 / points
     kept = [0.0]
     for value in grid[1:-1]:
@@ -65,17 +70,18 @@ def retime_adaptive(
 
     The profile of a 100-point uniform retime sizes a grid of ``points / 2``,
     whose profile sizes the final grid of ``points`` (the coarse profile
-    misplaces sharp features). A pass that fails numerically falls back to
-    the previous grid. Raises the retimer's errors if the path cannot be
-    retimed at all.
+    misplaces sharp features). If an adaptive pass fails numerically, the
+    path is retimed on :data:`FALLBACK_POINTS` uniform points instead (the
+    discretization target's reference). Raises the retimer's errors if the
+    path cannot be retimed at all.
     """
     result = retime(plant, path, limits, grasp, COARSE_POINTS, context=context)
-    for count in (points // 2, points):
-        grid = adaptive_grid(result, count, weight)
-        try:
+    try:
+        for count in (points // 2, points):
+            grid = adaptive_grid(result, count, weight)
             result = retime(plant, path, limits, grasp, grid, context=context)
-        except RetimeError:
-            result = retime(plant, path, limits, grasp, count, context=context)
+    except RetimeError:
+        result = retime(plant, path, limits, grasp, FALLBACK_POINTS, context=context)
     return result
 
 
@@ -96,4 +102,10 @@ def vertical_drift(chain: CupChain, path, s_start: float, s_end: float) -> float
     return float(np.linalg.norm(horizontal, axis=1).max())
 
 
-__all__ = ["COARSE_POINTS", "adaptive_grid", "retime_adaptive", "vertical_drift"]
+__all__ = [
+    "COARSE_POINTS",
+    "FALLBACK_POINTS",
+    "adaptive_grid",
+    "retime_adaptive",
+    "vertical_drift",
+]
