@@ -6,7 +6,8 @@ limits and the exact grasp polytope ``F w <= g``) is as short as it finds
 within a time budget. It starts from the planner's spline path and never
 returns a slower one. Modules:
 
-- :mod:`.optimizer`: the public function, its options and result;
+- :mod:`.optimizer`: the public function; :mod:`.options`: its options and
+  result;
 - :mod:`.family`: the paths searched (vertical end segments, free via
   points in joint space starting at the spline path's corners);
 - :mod:`.search`: CMA-ES until a deadline; :mod:`.objective`: its objective;
@@ -20,12 +21,13 @@ returns a slower one. Modules:
 
 from rt_drake.planning.shape.family import FamilyError
 from rt_drake.planning.shape.finish import retime_adaptive, vertical_drift
-from rt_drake.planning.shape.optimizer import (
+from rt_drake.planning.shape.optimizer import optimize_move
+from rt_drake.planning.shape.options import (
     Clock,
     MoveOptimizerError,
     MoveOptimizerOptions,
+    MovePlanner,
     OptimizedMove,
-    optimize_move,
 )
 from rt_drake.planning.shape.warm import warm_up
 
@@ -34,6 +36,7 @@ __all__ = [
     "FamilyError",
     "MoveOptimizerError",
     "MoveOptimizerOptions",
+    "MovePlanner",
     "OptimizedMove",
     "optimize_move",
     "retime_adaptive",
