@@ -3,7 +3,7 @@
 For each of n transports sampled from a scenario's ``random_transport``
 regions (``sample_transports(scenario, n, seed)``), the grasp configuration
 comes from APPROACH and REACH from home, as in
-``rt_drake.experiment.transport_trial`` (planner seed ``seed + index``), or,
+``rt_drake.experiments.transport_trial`` (planner seed ``seed + index``), or,
 with ``--free-space``, from IK at the start pose with the object already on
 the cup (the grasp yaw flip whose MOVE plans). Then the planner's spline MOVE
 is planned and :func:`rt_drake.planning.shape.optimize_move` shortens it.
@@ -32,20 +32,27 @@ from pathlib import Path
 import numpy as np
 from pydrake.common.schema import Transform
 
-from rt_drake.contact import cached_wrench_polytope
-from rt_drake.dynamics import HeldObject
-from rt_drake.planning import CyclePlanner, PlanningError, sample_transports
+from rt_drake import (
+    CupFrame,
+    CyclePlanner,
+    GraspConstraint,
+    HeldObject,
+    JointLimits,
+    PlanningError,
+    cached_wrench_polytope,
+    load_scenario,
+    make_arm_plant,
+    retime,
+)
+from rt_drake.phase import Phase
+from rt_drake.planning import sample_transports
 from rt_drake.planning.shape import (
     Clock,
     MoveOptimizerOptions,
     optimize_move,
     warm_up,
 )
-from rt_drake.plant import make_arm_plant
 from rt_drake.resources import scenarios_dir
-from rt_drake.retime import retime
-from rt_drake.retiming.limits import GraspConstraint, JointLimits
-from rt_drake.scenario import load_scenario
 
 
 def grasp_configuration(planner, name, X_start, X_goal, free_space):
@@ -53,14 +60,15 @@ def grasp_configuration(planner, name, X_start, X_goal, free_space):
     planner.set_object_pose(name, X_start)
     if not free_space:
         approach = planner.plan_approach(planner.q_home, name)
-        q_grasp = planner.plan_reach(approach.q_goal, name).q_goal
+        reach = planner.plan_reach(approach.q_goal, name)
+        q_grasp = reach.q_goal
         start = time.perf_counter()
-        move = planner.plan_move(q_grasp, name, X_goal)
+        move = planner.plan_move(q_grasp, name, X_goal, reach=reach)
         return q_grasp, move, time.perf_counter() - start
     error = None
     for X_OC in planner.grasps(name):
         try:
-            planner.prepare("MOVE", name, planner.q_home, X_OC)
+            planner.prepare(Phase.MOVE, name, planner.q_home, X_OC)
             q = planner.configuration_for(X_start @ X_OC, planner.q_home, name)
             start = time.perf_counter()
             move = planner.plan_move(q, name, X_goal)
@@ -92,6 +100,7 @@ def main() -> None:
     obj = scenario.object(name)
     plant = make_arm_plant(scenario)
     context = plant.CreateDefaultContext()
+    cup = CupFrame.of(plant)
     limits = JointLimits.from_plant(plant, scenario.robot)
     polytope = cached_wrench_polytope(scenario.cup)
     defaults = MoveOptimizerOptions()
@@ -117,7 +126,7 @@ def main() -> None:
         grasp = GraspConstraint(held, polytope.F, polytope.g, scenario.cup)
         result = optimize_move(
             planner, plant, q_grasp, name, grasp, limits, options, X_goal,
-            spline=move, context=context,
+            spline=move, context=context, cup=cup,
         )  # fmt: skip
         return move, grasp, result, plan_s
 
@@ -135,7 +144,7 @@ def main() -> None:
         except PlanningError as error:
             print(f"{index:3d} planning failed: {error}")
             continue
-        today = retime(plant, move.path, limits, grasp, 100, context=context)
+        today = retime(plant, move.path, limits, grasp, 100, context=context, cup=cup)
         row = {
             "index": index,
             "spline100_s": today.duration,
@@ -160,7 +169,9 @@ def main() -> None:
             f"{result.max_tilt_deg:9.1f}  {result.improved!s:>8}"
         )
         if args.discretization:
-            fine = retime(plant, result.path, limits, grasp, 1000, context=context)
+            fine = retime(
+                plant, result.path, limits, grasp, 1000, context=context, cup=cup
+            )
             row["loss_pct"] = 100.0 * (result.duration / fine.duration - 1.0)
             line += f"  {row['loss_pct']:+6.2f}"
         print(line, flush=True)

@@ -24,12 +24,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from rt_drake.errors import RtDrakeError
 from rt_drake.planning.path import GeometricPath
 from rt_drake.planning.shape.kinematics import CupChain
 
 
-class FamilyError(ValueError):
-    """A vertical end segment could not be solved."""
+class FamilyError(RtDrakeError):
+    """A vertical end segment could not be solved (the search keeps the spline)."""
 
 
 def corners(path: GeometricPath, count: int, samples: int = 200) -> np.ndarray:

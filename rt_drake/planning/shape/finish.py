@@ -26,9 +26,15 @@ from __future__ import annotations
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 
+from rt_drake.cup_frame import CupFrame
 from rt_drake.planning.shape.kinematics import CupChain
-from rt_drake.retime import RetimeError, RetimeResult, retime
-from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming import (
+    GraspConstraint,
+    JointLimits,
+    RetimeError,
+    RetimeResult,
+    retime,
+)
 
 #: Points of the coarse uniform retime that sizes the grid.
 COARSE_POINTS = 100
@@ -65,6 +71,7 @@ def retime_adaptive(
     points: int = 400,
     weight: float = 0.3,
     context=None,
+    cup: CupFrame | None = None,
 ) -> RetimeResult:
     """Retime ``path`` on the adaptive grid of :func:`adaptive_grid`, in two passes.
 
@@ -75,13 +82,16 @@ def retime_adaptive(
     discretization target's reference). Raises the retimer's errors if the
     path cannot be retimed at all.
     """
-    result = retime(plant, path, limits, grasp, COARSE_POINTS, context=context)
+    cup = cup or CupFrame.of(plant)
+    result = retime(plant, path, limits, grasp, COARSE_POINTS, context=context, cup=cup)
     try:
         for count in (points // 2, points):
             grid = adaptive_grid(result, count, weight)
-            result = retime(plant, path, limits, grasp, grid, context=context)
+            result = retime(plant, path, limits, grasp, grid, context=context, cup=cup)
     except RetimeError:
-        result = retime(plant, path, limits, grasp, FALLBACK_POINTS, context=context)
+        result = retime(
+            plant, path, limits, grasp, FALLBACK_POINTS, context=context, cup=cup
+        )
     return result
 
 

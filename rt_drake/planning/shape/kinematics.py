@@ -3,7 +3,7 @@
 The optimiser scores hundreds of candidate paths per MOVE; Drake's Jacobian
 and bias queries cost about 20 us per configuration from Python, so the
 search evaluates the same quantities here, batched over every candidate and
-grid point. The final path is retimed by :func:`rt_drake.retime.retime`
+grid point. The final path is retimed by :func:`rt_drake.retime`
 with Drake's own kinematics; the tests compare both.
 
 Chain: the revolute (and weld) joints from the world to the body of the cup
@@ -38,15 +38,19 @@ with ``(.)_C = R_WC^T (.)`` and ``g_C = R_WC^T g_W``.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
-from pydrake.multibody.tree import Frame, RevoluteJoint, WeldJoint
+from pydrake.multibody.tree import RevoluteJoint, WeldJoint
 
+from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import HeldObject
+from rt_drake.errors import InputError
 from rt_drake.planning.shape._fk import accelerations, frames
 
 
-class KinematicsError(ValueError):
+class KinematicsError(InputError):
     """The plant's chain to the cup is not a serial chain of revolute joints."""
 
 
@@ -80,10 +84,11 @@ class CupChain:
     Args:
         plant: Finalized plant whose positions are exactly the chain's
             revolute joints (the retimer's arm plant or the planner's).
-        cup_frame: The cup frame C.
+        cup: The cup frame C (:class:`rt_drake.CupFrame`).
     """
 
-    def __init__(self, plant: MultibodyPlant, cup_frame: Frame) -> None:
+    def __init__(self, plant: MultibodyPlant, cup: CupFrame) -> None:
+        cup_frame = cup.frame
         body = cup_frame.body()
         inboard = {
             plant.get_joint(j).child_body().index(): plant.get_joint(j)
@@ -97,7 +102,7 @@ class CupChain:
             steps.append(joint)
             body = joint.parent_body()
         steps.reverse()
-        self._steps = []
+        self._steps: list[tuple[np.ndarray, np.ndarray | None, int, Any]] = []
         revolute = 0
         for joint in steps:
             X_PF = joint.frame_on_parent().GetFixedPoseInBodyFrame().GetAsMatrix4()

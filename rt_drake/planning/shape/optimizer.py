@@ -25,6 +25,8 @@ import numpy as np
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 
+from rt_drake.cup_frame import CupFrame
+from rt_drake.phase import Phase
 from rt_drake.planning.dense_check import check_path
 from rt_drake.planning.path import GeometricPath
 from rt_drake.planning.result import PlannedPath
@@ -43,9 +45,7 @@ from rt_drake.planning.shape.options import (
 )
 from rt_drake.planning.shape.search import Candidate, cma_search
 from rt_drake.planning.shape.surrogate import CoarseRetimer
-from rt_drake.plant import CUP_FRAME
-from rt_drake.retime import RetimeError, RetimeResult
-from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming import GraspConstraint, JointLimits, RetimeError, RetimeResult
 
 #: Samples of the final path's tilt check.
 TILT_SAMPLES = 1000
@@ -64,6 +64,7 @@ def optimize_move(
     X_WO_goal: RigidTransform | None = None,
     spline: PlannedPath | None = None,
     context=None,
+    cup: CupFrame | None = None,
 ) -> OptimizedMove:
     """A MOVE of object ``name`` from ``q_grasp`` to its place, as fast as found.
 
@@ -79,6 +80,7 @@ def optimize_move(
         X_WO_goal: Place pose of the object (default: its scenario goal).
         spline: The planner's MOVE from ``q_grasp`` if already planned.
         context: Scratch context of ``plant``.
+        cup: The cup frame C of ``plant`` (default ``CupFrame.of(plant)``).
 
     Raises:
         PlanningError: the spline MOVE could not be planned.
@@ -86,13 +88,14 @@ def optimize_move(
     """
     options = options or MoveOptimizerOptions()
     context = context or plant.CreateDefaultContext()
-    timings = dict.fromkeys(("spline_plan", "baseline", "setup", "search", "finish"))
+    cup = cup or CupFrame.of(plant)
+    timings = {k: 0.0 for k in ("spline_plan", "baseline", "setup", "search", "finish")}
     watch = _Stopwatch(timings)
     with watch("spline_plan"):
         if spline is None:
             spline = planner.plan_move(q_grasp, name, X_WO_goal)
         else:
-            planner.prepare("MOVE", name, q_grasp, spline.X_OC)
+            planner.prepare(Phase.MOVE, name, q_grasp, spline.X_OC)
     clock = time.perf_counter if options.clock is Clock.WALL else time.process_time
     start, wall, cpu = clock(), time.perf_counter(), time.process_time()
 
@@ -104,7 +107,7 @@ def optimize_move(
             tuple(rejected),
         )  # fmt: skip
 
-    retime = _retimer(plant, limits, grasp, options, context)
+    retime = _retimer(plant, limits, grasp, options, context, cup)
     with watch("baseline"):
         before = clock()
         baseline = retime(spline.path)
@@ -113,7 +116,7 @@ def optimize_move(
     # retime, and the planner's dense check (wall time, scaled to the clock).
     to_clock = retime_cost / max(timings["baseline"], 1e-9)
     finish_cost = 1.1 * (retime_cost + to_clock * spline.timing.check_s)
-    chain = CupChain(plant, plant.GetFrameByName(CUP_FRAME))
+    chain = CupChain(plant, cup)
     with watch("setup"):
         surrogate = CoarseRetimer(chain, limits, grasp, options.search_gridpoints)
         surrogate.select_rows(spline.path.waypoints[None])
@@ -197,11 +200,12 @@ def _s() -> np.ndarray:
     return np.linspace(0.0, 1.0, TILT_SAMPLES)
 
 
-def _retimer(plant, limits, grasp, options, context):
+def _retimer(plant, limits, grasp, options, context, cup):
     def retime(path: GeometricPath) -> RetimeResult:
         return retime_adaptive(
-            plant, path, limits, grasp, options.final_gridpoints, context=context
-        )
+            plant, path, limits, grasp, options.final_gridpoints, context=context,
+            cup=cup,
+        )  # fmt: skip
 
     return retime
 

@@ -9,11 +9,12 @@ from typing import Protocol
 import numpy as np
 from pydrake.math import RigidTransform
 
-from rt_drake.errors import RtDrakeError
+from rt_drake.errors import InputError
+from rt_drake.phase import Phase
 from rt_drake.planning.path import GeometricPath
 from rt_drake.planning.result import PlannedPath
 from rt_drake.planning.scene import PlanningScene
-from rt_drake.retime import RetimeResult
+from rt_drake.retiming import RetimeResult
 
 #: deg: the tilt allowed when ``max_tilt_deg`` is 0 (cup kept vertical).
 VERTICAL_TOLERANCE_DEG = 0.5
@@ -21,8 +22,8 @@ VERTICAL_TOLERANCE_DEG = 0.5
 VERTICAL_DRIFT = 1e-3
 
 
-class MoveOptimizerError(RtDrakeError, ValueError):
-    """Bad optimiser options."""
+class MoveOptimizerError(InputError):
+    """Bad optimiser options (an :class:`~rt_drake.errors.InputError`)."""
 
 
 class MovePlanner(Protocol):
@@ -31,12 +32,20 @@ class MovePlanner(Protocol):
     scene: PlanningScene
 
     def plan_move(
-        self, q_grasp: np.ndarray, name: str, X_WO_goal: RigidTransform | None
+        self,
+        q_grasp: np.ndarray,
+        name: str,
+        X_WO_goal: RigidTransform | None = None,
+        reach: PlannedPath | None = None,
     ) -> PlannedPath:
         """The spline MOVE of ``name`` from ``q_grasp`` (scene left prepared)."""
 
     def prepare(
-        self, phase: str, name: str, q_start: np.ndarray, X_OC: RigidTransform
+        self,
+        phase: Phase,
+        name: str,
+        q_start: np.ndarray,
+        X_OC: RigidTransform | None = None,
     ) -> PlanningScene:
         """Set the scene's objects for a phase (MOVE: ``name`` carried at X_OC)."""
 

@@ -1,21 +1,27 @@
 """The search's objective: TOPP-RA durations of many paths on a coarse grid.
 
 For each candidate path (clamped chord-length spline through waypoints) this
-is what :func:`rt_drake.retime.retime` computes on a uniform grid of ``M``
-points, under the joint velocity and acceleration limits and the exact grasp
-constraint ``F (a u + b x + c) <= g``: the same rows (ray shooting, then the
-exactness check that adds any violated row and solves again) and the same
-compiled TOPP-RA passes. Only the kinematics differ: the path and the wrench
-coefficients of all candidates come from one batched evaluation
-(:mod:`.spline`, :mod:`.kinematics`) instead of Drake queries per grid
-point, about ten times cheaper per candidate.
+is classic TOPP-RA on a uniform grid of ``M`` points, under the joint
+velocity and acceleration limits and the exact grasp constraint ``F (a u + b
+x + c) <= g`` at the grid points: the retimer's rows (ray shooting, then the
+exactness check that adds any violated row and solves again) and its
+compiled passes, with the path and the wrench coefficients of all
+candidates from one batched evaluation (:mod:`.spline`, :mod:`.kinematics`)
+instead of Drake queries per grid point, about ten times cheaper per
+candidate.
+
+It ranks candidates; it does not certify them. :func:`rt_drake.retime`,
+which retimes the returned path, also holds the limits between grid points
+(the path's knots in its grid, joint rows inside segments, the grasp at
+midpoints), so its durations are a little longer than these on the same
+grid (equal when nothing binds between grid points; tested).
 
 The duration of a profile ``x_i = s'(s_i)^2`` is ``T = sum_i 2 ds_i /
 (sqrt(x_i) + sqrt(x_{i+1}))`` (s). A candidate the retimer would reject
 (grasp lost at rest, not controllable) gets ``inf``.
 
 This module is the one place that uses the retimer's internals
-(``rt_drake.retiming.passes`` and ``.rows``).
+(``rt_drake.retiming.seidel``, ``.passes`` and ``.rows``).
 """
 
 from __future__ import annotations

@@ -1,8 +1,9 @@
 """Compile (or load from numba's cache) the optimiser's kernels ahead of time.
 
-As :mod:`rt_drake.retiming.warm`: the first call of a numba kernel compiles
-it (seconds); :func:`warm_up` makes that call on tiny inputs of the types the
-optimiser uses, so that the first timed MOVE costs what the others cost.
+As the retimer's ``rt_drake.retiming.warm_up``: the first call of a numba
+kernel compiles it (seconds); :func:`warm_up` makes that call on tiny inputs
+of the types the optimiser uses, so that the first timed MOVE costs what the
+others cost.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from rt_drake.planning.shape import _fk
 from rt_drake.planning.shape.clearance import _clearance
 from rt_drake.planning.shape.spline import evaluate_splines
 from rt_drake.planning.shape.surrogate import _batch_durations
-from rt_drake.retiming.warm import warm_up as warm_up_retimer
+from rt_drake.retiming import warm_up as warm_up_retimer
 
 
 @functools.cache

@@ -16,28 +16,28 @@ import numpy as np
 import pytest
 from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
-from scipy.interpolate import CubicSpline
 
-from rt_drake.contact import cached_wrench_polytope
-from rt_drake.dynamics import HeldObject, path_wrench_coefficients
-from rt_drake.planning import CyclePlanner, GeometricPath, sample_transports
-from rt_drake.planning.result import PlannedPath, PlanTiming
+from rt_drake import (
+    CyclePlanner,
+    GeometricPath,
+    GraspConstraint,
+    HeldObject,
+    JointLimits,
+    PlannedPath,
+    cached_wrench_polytope,
+    load_scenario,
+    make_arm_plant,
+    retime,
+)
+from rt_drake.phase import Phase
+from rt_drake.planning import PlanTiming, sample_transports
 from rt_drake.planning.shape import (
     Clock,
-    MoveOptimizerError,
     MoveOptimizerOptions,
     optimize_move,
     retime_adaptive,
     warm_up,
 )
-from rt_drake.planning.shape.kinematics import CupChain
-from rt_drake.planning.shape.spline import evaluate_splines
-from rt_drake.planning.shape.surrogate import CoarseRetimer
-from rt_drake.plant import make_arm_plant
-from rt_drake.retime import RetimeError, retime
-from rt_drake.retiming.limits import GraspConstraint, JointLimits
-from rt_drake.retiming.path import chord_knots
-from rt_drake.scenario import load_scenario
 
 CUP_STEP = 1e-3  # m
 OPTIONS = MoveOptimizerOptions(
@@ -83,8 +83,9 @@ def reach(setup: Setup, X_start) -> PlannedPath:
 
 
 def plan(setup: Setup, X_start, X_goal) -> tuple[np.ndarray, PlannedPath]:
-    q_grasp = reach(setup, X_start).q_goal
-    return q_grasp, setup.planner.plan_move(q_grasp, setup.name, X_goal)
+    reached = reach(setup, X_start)
+    q_grasp = reached.q_goal
+    return q_grasp, setup.planner.plan_move(q_grasp, setup.name, X_goal, reach=reached)
 
 
 @pytest.fixture(scope="module")
@@ -138,7 +139,7 @@ def test_optimiser_shortens_these_moves(moves):
 def test_path_is_collision_free_with_the_load(setup, moves):
     planner = setup.planner
     for q_grasp, spline, _, _, result in moves:
-        planner.prepare("MOVE", setup.name, q_grasp, spline.X_OC)
+        planner.prepare(Phase.MOVE, setup.name, q_grasp, spline.X_OC)
         samples = travel_samples(planner, result.path)
         assert all(planner.scene.within_limits(q) for q in samples)
         assert all(planner.scene.is_free(q) for q in samples[1:-1])
@@ -225,7 +226,7 @@ def test_no_faster_path_returns_the_spline_path(setup):
         target = RigidTransform([0.0, 0.0, height]) @ X_WC
         line.append(planner.ik.solve(target, line[-1], line[-1]))
     straight = PlannedPath(
-        "MOVE", name, GeometricPath.from_waypoints(np.array(line)), np.array(line),
+        Phase.MOVE, name, GeometricPath.from_waypoints(np.array(line)), np.array(line),
         grasped.X_OC, PlanTiming(check_s=0.02),
     )  # fmt: skip
     result = optimize_move(
@@ -235,67 +236,3 @@ def test_no_faster_path_returns_the_spline_path(setup):
     assert not result.improved
     assert result.path is straight.path
     assert result.duration == result.spline_duration
-
-
-def test_bad_options_are_rejected_with_the_name():
-    with pytest.raises(MoveOptimizerError, match="max_tilt_deg"):
-        MoveOptimizerOptions(max_tilt_deg=-1.0)
-    with pytest.raises(MoveOptimizerError, match="budget_s"):
-        MoveOptimizerOptions(budget_s=0.0)
-
-
-def test_batched_splines_match_scipy():
-    rng = np.random.default_rng(0)
-    for count in (2, 3, 9):
-        W = np.cumsum(rng.normal(size=(4, count, 6)), axis=1)
-        s = np.linspace(0.0, 1.0, 57)
-        q, dq, ddq = evaluate_splines(W, s)
-        for p in range(4):
-            spline = CubicSpline(chord_knots(W[p]), W[p], bc_type="clamped")
-            np.testing.assert_allclose(q[p], spline(s), atol=1e-12)
-            np.testing.assert_allclose(dq[p], spline(s, 1), atol=1e-10)
-            np.testing.assert_allclose(ddq[p], spline(s, 2), atol=1e-9)
-
-
-def test_batched_wrench_coefficients_match_drake(scenario):
-    plant = make_arm_plant(scenario)
-    chain = CupChain(plant, plant.GetFrameByName("suction_cup"))
-    held = HeldObject.from_scenario_object(scenario.objects[0])
-    rng = np.random.default_rng(1)
-    q, dq, ddq = (rng.uniform(-1.5, 1.5, (9, 6)) for _ in range(3))
-    expected = path_wrench_coefficients(plant, held, q, dq, ddq)
-    mine_all = chain.wrench_coefficients(held, q, dq, ddq)
-    for mine, drake in zip(mine_all, expected, strict=True):
-        np.testing.assert_allclose(mine, drake, atol=1e-12)
-    R, p = chain.cup_pose(q[0])
-    context = plant.CreateDefaultContext()
-    plant.SetPositions(context, q[0])
-    X = plant.CalcRelativeTransform(
-        context, plant.world_frame(), plant.GetFrameByName("suction_cup")
-    )
-    np.testing.assert_allclose(R, X.rotation().matrix(), atol=1e-12)
-    np.testing.assert_allclose(p, X.translation(), atol=1e-12)
-
-
-def test_coarse_retimer_equals_the_retimer_on_its_grid(scenario):
-    """Same grid, same rows after the exactness check: the same duration."""
-    plant = make_arm_plant(scenario)
-    chain = CupChain(plant, plant.GetFrameByName("suction_cup"))
-    obj = scenario.objects[2]
-    polytope = cached_wrench_polytope(scenario.cup)
-    grasp = GraspConstraint(
-        HeldObject.from_scenario_object(obj), polytope.F, polytope.g
-    )
-    limits = JointLimits.from_plant(plant, scenario.robot)
-    q_home = np.array(scenario.robot.home)
-    rng = np.random.default_rng(2)
-    W = q_home + np.cumsum(rng.normal(scale=0.15, size=(3, 5, 6)), axis=1)
-    surrogate = CoarseRetimer(chain, limits, grasp, 24)
-    durations, exact, _ = surrogate.evaluate(W)
-    assert exact.all()
-    for p in range(3):
-        try:
-            expected = retime(plant, W[p], limits, grasp, 24).duration
-        except RetimeError:
-            expected = np.inf
-        assert durations[p] == pytest.approx(expected, rel=1e-9)
