@@ -88,11 +88,41 @@ class Region:
 
 @dataclasses.dataclass
 class RandomTransport:
-    """Where Table I's random start and goal poses of ``object`` are sampled."""
+    """Where Table I's random start and goal poses of ``object`` are sampled.
+
+    Attributes:
+        object: The object carried.
+        start_region, goal_region: Where its start and goal poses are drawn.
+        start_on_cup: Start each trial with the object already sealed on the
+            cup at its start pose (an object in free space, as the paper's
+            regions): the arm starts at a grasp configuration found by IK
+            instead of picking the object from home.
+    """
 
     object: str = ""
     start_region: Region = dataclasses.field(default_factory=Region)
     goal_region: Region = dataclasses.field(default_factory=Region)
+    start_on_cup: bool = False
+
+
+@dataclasses.dataclass
+class PlanningConfig:
+    """How MOVEs are planned (issue 13).
+
+    Attributes:
+        optimize_move: Shape each MOVE path for speed under the grasp
+            constraint (:func:`rt_drake.planning.shape.optimize_move`)
+            instead of keeping the planner's spline through its anchors.
+        max_tilt_deg: Largest angle (deg) between the cup axis and gravity
+            an optimised MOVE may reach, in [0, 90); 0 keeps the cup
+            vertical (open containers).
+        budget_s: Wall time (s) the optimisation may take per MOVE, the
+            spline MOVE's planning excluded.
+    """
+
+    optimize_move: bool = False
+    max_tilt_deg: float = 45.0
+    budget_s: float = 0.15
 
 
 @dataclasses.dataclass
@@ -105,6 +135,7 @@ class Scenario:
     objects: list[ObjectConfig] = dataclasses.field(default_factory=list)
     timing: Timing = dataclasses.field(default_factory=Timing)
     random_transport: RandomTransport | None = None
+    planning: PlanningConfig = dataclasses.field(default_factory=PlanningConfig)
 
     def object(self, name: str) -> ObjectConfig:
         """Return the object called ``name``; ScenarioError if there is none."""
@@ -251,6 +282,16 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
         scenario.cup.validate()
     except ValueError as error:
         raise ScenarioError(f"{path}: key 'cup': {error}") from None
+    planning = scenario.planning
+    if not (math.isfinite(planning.max_tilt_deg) and 0 <= planning.max_tilt_deg < 90):
+        raise ScenarioError(
+            f"{path}: key 'planning.max_tilt_deg': must be in [0, 90) deg, got "
+            f"{planning.max_tilt_deg}"
+        )
+    if not (math.isfinite(planning.budget_s) and planning.budget_s > 0):
+        raise ScenarioError(
+            f"{path}: key 'planning.budget_s': must be > 0 s, got {planning.budget_s}"
+        )
     for field in ("attach_s", "detach_s"):
         value = getattr(scenario.timing, field)
         if not (math.isfinite(value) and value >= 0):

@@ -29,4 +29,14 @@ def _parse(text: str, kind: type, what: str):  # noqa: ANN202
     return value
 
 
-__all__ = ["positive_int"]
+def add_optimize_flag(parser: argparse.ArgumentParser, what: str) -> None:
+    """``--optimize`` / ``--no-optimize`` (default: the scenario's ``planning``)."""
+    parser.add_argument(
+        "--optimize",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help=f"{what} (default: the scenario's planning.optimize_move)",
+    )
+
+
+__all__ = ["add_optimize_flag", "positive_int"]

@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from rt_drake.cli._args import add_optimize_flag
 from rt_drake.errors import InputError
 
 
@@ -49,6 +50,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="play every MOVE FACTOR times faster than retimed (default 1)",
     )
     parser.add_argument("--seed", type=int, default=0, help="planner seed (default 0)")
+    add_optimize_flag(parser, "shape each MOVE for speed (issue 13)")
     parser.add_argument(
         "--time-step",
         type=float,
@@ -83,6 +85,7 @@ def run(args: argparse.Namespace) -> int:
         grasp_constraint=not args.no_grasp_constraint,
         move_speed=args.speed,
         seed=args.seed,
+        optimize=args.optimize,
     )
     start = time.perf_counter()
     result = run_cycle(

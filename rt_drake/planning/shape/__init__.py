@@ -6,11 +6,12 @@ limits and the exact grasp polytope ``F w <= g``) is as short as it finds
 within a time budget. It starts from the planner's spline path and never
 returns a slower one. Modules:
 
-- :mod:`.optimizer`: the public function; :mod:`.options`: its options and
-  result;
+- :mod:`.optimizer`: :class:`MoveOptimizer` and :func:`optimize_move`;
+  :mod:`.options`: their options and result;
 - :mod:`.family`: the paths searched (vertical end segments, free via
   points in joint space starting at the spline path's corners);
 - :mod:`.search`: CMA-ES until a deadline; :mod:`.objective`: its objective;
+- :mod:`.starts`: warm starts learned on other transports (:mod:`.library`);
 - :mod:`.surrogate`: batched TOPP-RA on a coarse grid (the duration part);
 - :mod:`.kinematics`, :mod:`.spline`: batched cup kinematics, object wrench
   coefficients and clamped splines (numba);
@@ -21,7 +22,7 @@ returns a slower one. Modules:
 
 from rt_drake.planning.shape.family import FamilyError
 from rt_drake.planning.shape.finish import retime_adaptive, vertical_drift
-from rt_drake.planning.shape.optimizer import optimize_move
+from rt_drake.planning.shape.optimizer import MoveOptimizer, optimize_move
 from rt_drake.planning.shape.options import (
     Clock,
     MoveOptimizerError,
@@ -34,6 +35,7 @@ from rt_drake.planning.shape.warm import warm_up
 __all__ = [
     "Clock",
     "FamilyError",
+    "MoveOptimizer",
     "MoveOptimizerError",
     "MoveOptimizerOptions",
     "MovePlanner",

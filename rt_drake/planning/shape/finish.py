@@ -1,24 +1,25 @@
 """The final retime on an adaptive grid, and the vertical-end check.
 
-TOPP-RA's interpolation scheme constrains the grid points only, with one
-path acceleration per segment: it loses time where the profile ``x = s'^2``
+TOPP-RA's interpolation scheme constrains the grid points (and, in
+:func:`rt_drake.retime`, the limits between them) with one path
+acceleration per segment: it loses time where the profile ``x = s'^2``
 changes much within a segment (near the ends of a rest-to-rest move, and
 where the path turns sharply, e.g. at the top of a vertical end segment). On
-a uniform grid of 100 points that left about 6 % of the duration unused
-against 1000 points on the planner's MOVE paths. :func:`retime_adaptive`
-spends the points where the profile moves: a first retime on 100 uniform
-points gives ``t(s)`` and ``x(s)``; the final grid puts its N points at equal
-steps of the measure (in two passes, see :func:`retime_adaptive`)
+100 uniform points that leaves about 6 % of a MOVE's duration unused against
+1000 points. :func:`retime_adaptive` spends the points where the profile
+moves: the profile of the coarse retimer (:mod:`.surrogate`, batched
+kinematics, 100 uniform points, about 2 ms) gives ``t(s)`` and ``x(s)``; the
+final grid puts its N points at equal steps of the measure
 
     mu(s) = w t(s) / T + (1 - w) V(s) / V(1),   V(s) = int_0^s |dx|
 
-(time, and the total variation of x). With N = 400 and w = 0.3 it was within
-0.3 % of a 1000-point uniform retime (0.6 % shorter on average) on 80
-spline and optimised MOVE paths (random_transport, seeds 0 and 1; 27 of
-random_transport_paper: +0.07 % at most), for about 60 % of the cost;
-one pass from the 100-point profile lost up to 0.54 %, and equal time steps
-(w = 1, or 0.8 with 0.2 of uniform s) up to 5 % on paths that turn sharply
-at the top of a vertical segment (see BENCHMARKS.md).
+(time, and the total variation of x), and :func:`rt_drake.retime` retimes
+the path once on it (adding the path's knots and what it needs between grid
+points). With N = 500 and w = 0.3 the result was within +0.23 % of a
+1000-point uniform retime (0.09 % shorter on average) on 24 spline and
+perturbed MOVE paths, for about 60 % of the cost of the two-pass scheme it
+replaces (100 -> 200 -> 400 points by ``retime`` itself: +0.17 % at most, and
+one numerical failure); N = 400 lost up to +0.51 % (BENCHMARKS.md).
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ from pydrake.multibody.plant import MultibodyPlant
 
 from rt_drake.cup_frame import CupFrame
 from rt_drake.planning.shape.kinematics import CupChain
+from rt_drake.planning.shape.surrogate import CoarseRetimer
 from rt_drake.retiming import (
     GraspConstraint,
     JointLimits,
@@ -36,24 +38,35 @@ from rt_drake.retiming import (
     retime,
 )
 
-#: Points of the coarse uniform retime that sizes the grid.
+#: Points of the coarse uniform profile that sizes the grid.
 COARSE_POINTS = 100
-#: Uniform points if an adaptive pass fails numerically.
+#: Points of the final grid.
+FINAL_POINTS = 500
+#: Uniform points if the adaptive retime fails numerically.
 FALLBACK_POINTS = 1000
 
 
-def adaptive_grid(result: RetimeResult, points: int, weight: float) -> np.ndarray:
-    """Grid of ``points`` parameters at equal steps of ``mu(s)`` (module doc)."""
-    s, sd = result.gridpoints, result.sd
-    dt = 2.0 * np.diff(s) / (sd[:-1] + sd[1:])
+def adaptive_grid(
+    s: np.ndarray, sd: np.ndarray, points: int, weight: float
+) -> np.ndarray:
+    """Grid of ``points`` parameters at equal steps of ``mu(s)`` (module doc).
+
+    Args:
+        s: (M,) grid of a profile.
+        sd: (M,) its path velocity s' (1/s).
+        points: Size of the new grid.
+        weight: w, the share of time in the measure.
+    """
+    dt = 2.0 * np.diff(s) / np.maximum(sd[:-1] + sd[1:], 1e-12)
     t = np.concatenate([[0.0], np.cumsum(dt)])
     variation = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(sd**2)))])
-    measure = weight * t / t[-1] + (1.0 - weight) * variation / variation[-1]
+    measure = weight * t / t[-1] + (1.0 - weight) * variation / max(
+        variation[-1], 1e-12
+    )
     grid = np.interp(np.linspace(0.0, 1.0, points), measure, s)
-    # At most ten times finer than the uniform grid (three times: the loss
-    # against 1000 points grew from +0.30 % to +0.62 % at most). TOPP-RA's
-    # safeguards can fail on such steps at the end of a MOVE (as on a
-    # 4000-point uniform grid): retime_adaptive falls back then.
+    # At most ten times finer than the uniform grid: TOPP-RA's safeguards
+    # can fail on much finer steps at the end of a MOVE (as on a 4000-point
+    # uniform grid); retime_adaptive falls back then.
     step = 0.1 / points
     kept = [0.0]
     for value in grid[1:-1]:
@@ -63,36 +76,70 @@ def adaptive_grid(result: RetimeResult, points: int, weight: float) -> np.ndarra
     return np.array(kept)
 
 
+def coarse_profile(
+    chain: CupChain,
+    limits: JointLimits,
+    grasp: GraspConstraint,
+    waypoints: np.ndarray,
+    points: int = COARSE_POINTS,
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """``(s, s')`` of the coarse retimer's profile of a path, or None if rejected."""
+    surrogate = CoarseRetimer(chain, limits, grasp, points)
+    surrogate.select_rows(np.asarray(waypoints)[None])
+    duration, x = surrogate.profile(waypoints)
+    if not np.isfinite(duration):
+        return None
+    return surrogate.s, np.sqrt(np.maximum(x, 0.0))
+
+
 def retime_adaptive(
     plant: MultibodyPlant,
     path,
     limits: JointLimits,
     grasp: GraspConstraint | None,
-    points: int = 400,
+    points: int = FINAL_POINTS,
     weight: float = 0.3,
     context=None,
     cup: CupFrame | None = None,
+    chain: CupChain | None = None,
 ) -> RetimeResult:
-    """Retime ``path`` on the adaptive grid of :func:`adaptive_grid`, in two passes.
+    """Retime ``path`` (:func:`rt_drake.retime`) on an adaptive grid.
 
-    The profile of a 100-point uniform retime sizes a grid of ``points / 2``,
-    whose profile sizes the final grid of ``points`` (the coarse profile
-    misplaces sharp features). If an adaptive pass fails numerically, the
-    path is retimed on :data:`FALLBACK_POINTS` uniform points instead (the
-    discretization target's reference). Raises the retimer's errors if the
-    path cannot be retimed at all.
+    The grid is sized by the coarse retimer's profile (with a grasp; without
+    one, by a 100-point ``retime``). If the profile or the adaptive retime
+    fails numerically, the path is retimed on :data:`FALLBACK_POINTS`
+    uniform points (the discretization target's reference). Raises the
+    retimer's errors if the path cannot be retimed at all.
+
+    Args:
+        plant: The retimer's arm plant.
+        path: The path (``GeometricPath``).
+        limits: Joint limits.
+        grasp: Grasp constraint, or None.
+        points: Size of the adaptive grid (before the knots are added).
+        weight: w of the measure (module docstring).
+        context: Scratch context of ``plant``.
+        cup: The cup frame C of ``plant``.
+        chain: The batched kinematics of ``plant`` (made if None).
     """
     cup = cup or CupFrame.of(plant)
-    result = retime(plant, path, limits, grasp, COARSE_POINTS, context=context, cup=cup)
-    try:
-        for count in (points // 2, points):
-            grid = adaptive_grid(result, count, weight)
-            result = retime(plant, path, limits, grasp, grid, context=context, cup=cup)
-    except RetimeError:
-        result = retime(
-            plant, path, limits, grasp, FALLBACK_POINTS, context=context, cup=cup
-        )
-    return result
+
+    def timed(grid: int | np.ndarray) -> RetimeResult:
+        return retime(plant, path, limits, grasp, grid, context=context, cup=cup)
+
+    if grasp is None:
+        coarse = timed(COARSE_POINTS)
+        profile: tuple[np.ndarray, np.ndarray] | None = (coarse.gridpoints, coarse.sd)
+    else:
+        chain = chain or CupChain(plant, cup)
+        waypoints = np.asarray(getattr(path, "waypoints", path), dtype=float)
+        profile = coarse_profile(chain, limits, grasp, waypoints)
+    if profile is not None:
+        try:
+            return timed(adaptive_grid(*profile, points, weight))
+        except RetimeError:
+            pass
+    return timed(FALLBACK_POINTS)
 
 
 def vertical_drift(chain: CupChain, path, s_start: float, s_end: float) -> float:
@@ -115,7 +162,9 @@ def vertical_drift(chain: CupChain, path, s_start: float, s_end: float) -> float
 __all__ = [
     "COARSE_POINTS",
     "FALLBACK_POINTS",
+    "FINAL_POINTS",
     "adaptive_grid",
+    "coarse_profile",
     "retime_adaptive",
     "vertical_drift",
 ]

@@ -15,6 +15,7 @@ from rt_drake.planning.path import GeometricPath
 from rt_drake.planning.result import PlannedPath
 from rt_drake.planning.scene import PlanningScene
 from rt_drake.retiming import RetimeResult
+from rt_drake.scenario import PlanningConfig
 
 #: deg: the tilt allowed when ``max_tilt_deg`` is 0 (cup kept vertical).
 VERTICAL_TOLERANCE_DEG = 0.5
@@ -77,7 +78,10 @@ class MoveOptimizerOptions:
             joints, or one per joint).
         sigma: CMA-ES's initial step size (units of the parameters).
         search_gridpoints: Uniform grid of the search's TOPP-RA.
-        final_gridpoints: Points of the final adaptive grid.
+        final_gridpoints: Points of the final adaptive grid
+            (:func:`~.finish.retime_adaptive`).
+        starts: Warm starts from the library (:mod:`.starts`) evaluated
+            with x = 0 before the search (0: none).
         clearance_margin: Clearance (m) the search keeps (estimate).
         population: CMA-ES's candidates per generation (default 4 + 3 ln d).
         seed: Seed of CMA-ES.
@@ -85,7 +89,7 @@ class MoveOptimizerOptions:
     """
 
     max_tilt_deg: float = 45.0
-    budget_s: float = 0.13
+    budget_s: float = 0.15
     clock: Clock = Clock.WALL
     vertical_height: float = 0.03
     vertical_points: int = 2
@@ -93,11 +97,12 @@ class MoveOptimizerOptions:
     joint_scale: float | tuple[float, ...] = 0.1
     sigma: float = 0.5
     search_gridpoints: int = 24
-    final_gridpoints: int = 400
+    final_gridpoints: int = 500
     clearance_margin: float = 0.01
     population: int | None = None
     seed: int = 0
     max_evaluations: int | None = None
+    starts: int = 12
 
     def __post_init__(self) -> None:
         checks = {
@@ -114,12 +119,18 @@ class MoveOptimizerOptions:
             "clearance_margin": self.clearance_margin >= 0.0,
             "max_evaluations": self.max_evaluations is None
             or self.max_evaluations >= 1,
+            "starts": self.starts >= 0,
         }
         for name, ok in checks.items():
             if not ok:
                 raise MoveOptimizerError(
                     f"MoveOptimizerOptions.{name} out of range: {getattr(self, name)!r}"
                 )
+
+    @classmethod
+    def from_config(cls, planning: PlanningConfig) -> MoveOptimizerOptions:
+        """The defaults with a scenario's ``planning`` tilt and budget."""
+        return cls(max_tilt_deg=planning.max_tilt_deg, budget_s=planning.budget_s)
 
     @property
     def tilt_bound(self) -> float:
@@ -141,7 +152,10 @@ class OptimizedMove:
         evaluations: Candidate paths the search scored.
         wall_s: Wall time (s) of the optimisation (spline planning excluded).
         cpu_s: This process's CPU time (s) over the same span.
-        timings: Wall time (s) per stage (module docstring).
+        retime_wall_s: Wall time (s) of the retime of ``path`` (part of
+            ``wall_s``; the baseline's if ``path`` is the spline path).
+        timings: Wall time (s) per stage (:mod:`.optimizer`), and this
+            process's CPU time (s) per stage (``cpu_`` + stage).
         rejected: Why better candidates were turned down in the finish.
     """
 
@@ -154,6 +168,7 @@ class OptimizedMove:
     evaluations: int
     wall_s: float
     cpu_s: float
+    retime_wall_s: float
     timings: dict[str, float]
     rejected: tuple[str, ...] = ()
 

@@ -7,9 +7,10 @@ gradients, which suits TOPP-RA's piecewise-smooth duration: finite-difference
 descent on the same objective stalled at 0.79-0.82 of the spline path's
 duration where CMA-ES reached 0.73-0.80 with as many evaluations.
 
-The search starts at x = 0 (the via points at the spline path's corners),
-stops at the deadline (or after ``max_evaluations``) and returns the
-feasible candidates with the lowest durations, best first.
+The search evaluates x = 0 (the via points at the spline path's corners)
+and the warm starts (:mod:`.starts`), starts at the best of them, stops at
+the deadline (or after ``max_evaluations``) and returns the feasible
+candidates with the lowest durations, best first.
 """
 
 from __future__ import annotations
@@ -47,8 +48,9 @@ def cma_search(
     population: int | None = None,
     keep: int = 4,
     max_evaluations: int | None = None,
+    x0: np.ndarray | None = None,
 ) -> SearchResult:
-    """Minimise ``objective`` from x = 0 until ``expired()``.
+    """Minimise ``objective`` from the best of x = 0 and ``x0`` until ``expired()``.
 
     Args:
         objective: Maps a batch x (P, dim) to (values (P,), feasible (P,)).
@@ -59,14 +61,20 @@ def cma_search(
         population: Candidates per generation (default: 4 + 3 ln dim).
         keep: How many feasible candidates to return.
         max_evaluations: Stop after this many evaluations as well.
+        x0: (S, dim) warm starts evaluated with x = 0 in the first batch;
+            CMA-ES starts at the best of them.
     """
-    optimizer = CMA(
-        mean=np.zeros(dim), sigma=sigma, seed=seed, population_size=population
+    start = (
+        np.zeros((1, dim))
+        if x0 is None
+        else np.vstack([np.zeros(dim), np.reshape(x0, (-1, dim))])
     )
-    x0 = np.zeros((1, dim))
-    values, feasible = objective(x0)
-    best = [Candidate(x0[0], float(values[0]))] if feasible[0] else []
-    evaluations, generations = 1, 0
+    values, feasible = objective(start)
+    mean = start[int(np.argmin(values))]
+    optimizer = CMA(mean=mean, sigma=sigma, seed=seed, population_size=population)
+    best = [Candidate(start[i], float(values[i])) for i in np.flatnonzero(feasible)]
+    best = sorted(best, key=lambda c: c.duration)[:keep]
+    evaluations, generations = len(start), 0
     while not expired():
         if max_evaluations is not None and evaluations >= max_evaluations:
             break

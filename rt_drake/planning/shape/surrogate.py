@@ -116,18 +116,37 @@ class CoarseRetimer:
             rejected path; whether the duration is TOPP-RA's with every row;
             the grasp rows each solve used.
         """
+        return self._solve(waypoints, bound)[:3]
+
+    def profile(self, waypoints: np.ndarray) -> tuple[float, np.ndarray]:
+        """Duration (s) and profile ``x_i = s'(s_i)^2`` (1/s^2) of one path.
+
+        Args:
+            waypoints: (K, n) joint waypoints (rad) of the path.
+
+        Returns:
+            ``(T, x (M,))``; T is inf (and x zeros) if the path is rejected.
+        """
+        durations, _, _, x = self._solve(np.asarray(waypoints, float)[None], np.inf)
+        return float(durations[0]), x[0]
+
+    def _solve(
+        self, waypoints: np.ndarray, bound: float
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`evaluate`'s results and the profiles x (P, M) (zeros: rejected)."""
         q, dq, ddq = evaluate_splines(waypoints, self.s)
         a, b, c = self.chain.wrench_coefficients(self.grasp.held, q, dq, ddq)
         out = np.empty(len(q))
         exact = np.zeros(len(q), dtype=np.bool_)
         used = np.zeros((len(q), len(self.rows)), dtype=np.bool_)
+        x = np.zeros((len(q), len(self.s)))
         _batch_durations(
-            dq, ddq, *(kernel_array(x) for x in (a, b, c)),
+            dq, ddq, *(kernel_array(v) for v in (a, b, c)),
             self._velocity, kernel_array(self._box), kernel_array(self._acceleration),
             self._F, self._g, self._normals, self.rows, self._ds, float(bound),
-            out, exact, used,
+            out, exact, used, x,
         )  # fmt: skip
-        return out, exact, used
+        return out, exact, used, x
 
     def share_rows(self, used: np.ndarray) -> None:
         """Add rows some paths needed (``used`` (P, R) from :meth:`evaluate`).
@@ -143,9 +162,9 @@ class CoarseRetimer:
 
 @njit(cache=True)
 def _batch_durations(  # noqa: D417
-    dq, ddq, a, b, c, vel, box, acc, F, g, n, mask, ds, bound, out, exact, used
+    dq, ddq, a, b, c, vel, box, acc, F, g, n, mask, ds, bound, out, exact, used, xs
 ):
-    """TOPP-RA duration of each candidate (see CoarseRetimer.evaluate)."""
+    """TOPP-RA duration (and profile ``xs``) of each candidate (see evaluate)."""
     P, M, dof = dq.shape
     zeros = np.zeros((M, dof))
     rows_total = F.shape[0]
@@ -192,6 +211,7 @@ def _batch_durations(  # noqa: D417
                     / (np.sqrt(max(x[i], 0.0)) + np.sqrt(max(x[i + 1], 0.0)))
                 )
             out[p] = total
+            xs[p] = x
             if total >= bound:
                 break  # a lower bound, already no better than the bound
             enforced = np.empty((2 * (M - 1), 6))
