@@ -114,7 +114,12 @@ def plot_optimized(trial: dict[str, Any], path: Path) -> Path:
     fig, axes = plt.subplots(3, 2, figsize=(10, 7), sharex=True, sharey="row")
     titles = {
         "spline": f"spline path: {trial['duration_constrained_s']:.3f} s (Table I)",
-        "optimized": f"optimised path: {trial['duration_optimized_s']:.3f} s",
+        "optimized": (
+            f"optimised path: {trial['duration_optimized_s']:.3f} s"
+            if trial["improved"]
+            else f"no faster path: {trial['duration_optimized_s']:.3f} s "
+            "(adaptive grid)"
+        ),
     }
     for column, key in enumerate(("spline", "optimized")):
         p = profiles[key]

@@ -137,6 +137,31 @@ class ClearanceModel:
             (np.linalg.norm(self.centres_C, axis=1) + self.radii).max(initial=0.0)
         )
 
+    @property
+    def reach(self) -> float:
+        """m, the farthest sphere centre from the cup origin Co."""
+        return float(np.linalg.norm(self.centres_C, axis=1).max(initial=0.0))
+
+    def swept(
+        self, R_WC: np.ndarray, p_WC: np.ndarray, cutoff: float = 0.05
+    ) -> np.ndarray:
+        """A lower bound (m) of the clearance between consecutive cup poses.
+
+        For poses (..., M) along a path, segment i (..., M - 1): every sphere
+        centre moves at most ``delta_i = |p_{i+1} - p_i| + r theta_i`` from
+        pose i to i + 1 (r: :attr:`reach`; theta_i: the angle of
+        ``R_i^T R_{i+1}``; chords for arcs, so for samples close enough
+        that the motion between them is nearly straight), and the clearance
+        is 1-Lipschitz in the position, so at any pose in between it is at
+        least ``min(d_i, d_{i+1}) - delta_i / 2``.
+        """
+        d = self.clearance_at(R_WC, p_WC, cutoff)
+        step = np.linalg.norm(np.diff(p_WC, axis=-2), axis=-1)
+        trace = np.einsum("...ij,...ij->...", R_WC[..., :-1, :, :], R_WC[..., 1:, :, :])
+        theta = np.arccos(np.clip(0.5 * (trace - 1.0), -1.0, 1.0))
+        delta = step + self.reach * theta
+        return np.minimum(d[..., :-1], d[..., 1:]) - 0.5 * delta
+
     def clearance(self, q: np.ndarray, cutoff: float = 0.05) -> np.ndarray:
         """Clearance (m) at configurations q (..., n), capped at ``cutoff``."""
         return self.clearance_at(*self._chain.cup_pose(q), cutoff)

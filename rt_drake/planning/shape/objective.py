@@ -8,13 +8,17 @@ so that CMA-ES still ranks infeasible candidates, evaluated at
 
 - tilt above the bound: ``1 + 10 (tilt - bound)`` (rad);
 - a joint beyond its limit: ``1 + 10 excess`` (rad);
-- clearance (:mod:`.clearance`) below the threshold between the vertical end
-  segments: ``0.5 + 20 (threshold - d)`` (m).
+- clearance below the threshold between the vertical end segments:
+  ``0.5 + 20 (threshold - d)`` (m), with d the smallest lower bound of the
+  clearance estimate between consecutive samples
+  (:meth:`.ClearanceModel.swept`: the samples' clearance less half the
+  largest motion of the carried body between them), so that a thin wall
+  between two samples is not missed.
 
-The clearance threshold is the margin, or 80 % of the smallest clearance
-estimate of the spline path (between its first and last waypoint
-intervals) and of the tops of the vertical segments if that is smaller: a
-grasp close to a wall cannot keep the margin at the start. Clearance is
+The clearance threshold is the margin, or 80 % of the same bound along the
+spline path (between its first and last waypoint intervals) and of the
+clearance at the tops of the vertical segments if that is smaller: a grasp
+close to a wall cannot keep the margin at the start. Clearance is
 estimated only for the better half of a batch (by the other terms): the
 worse half ranks low anyway and is not reported feasible. Paths whose coarse
 duration with the grasp rows found so far already exceeds the best feasible
@@ -32,7 +36,9 @@ from rt_drake.planning.shape.spline import chord_knots_batch, evaluate_splines
 from rt_drake.planning.shape.surrogate import CoarseRetimer
 
 #: Samples of s per path for the penalties.
-SAMPLES = 48
+SAMPLES = 64
+#: m, clearances above the margin plus this count as this (module docstring).
+CUTOFF_EXTRA = 0.06
 #: s, the value of a path the retimer rejects.
 REJECTED = 10.0
 
@@ -67,14 +73,17 @@ class Objective:
         self.lower, self.upper = lower, upper
         self.tilt_bound = tilt_bound
         self.s = np.linspace(0.0, 1.0, SAMPLES)
-        self.cutoff = 2.0 * margin
+        # Clearances are capped at the cutoff: far above the threshold plus
+        # half a body's motion between samples, so that the cap never binds.
+        self.cutoff = margin + CUTOFF_EXTRA
         tops = np.array([family.up[-1], family.down[0]])
         knots = spline.knots
         inner = self.s[(self.s > knots[1]) & (self.s < knots[-2])]
+        along = family.chain.cup_pose(spline.value(inner))
         reference = np.concatenate(
             [
                 clearance.clearance(tops, self.cutoff),
-                clearance.clearance(spline.value(inner), self.cutoff),
+                clearance.swept(*along, self.cutoff),
             ]
         )
         self.threshold = min(margin, 0.8 * float(reference.min()))
@@ -101,7 +110,8 @@ class Objective:
         ends = len(self.family.up)
         knots = chord_knots_batch(W[better])
         inner = (self.s > knots[:, ends, None]) & (self.s < knots[:, -1 - ends, None])
-        d = self.clearance.clearance_at(R_WC[better], p_WC[better], self.cutoff)
+        inner = inner[:, :-1] & inner[:, 1:]  # segments between inner samples
+        d = self.clearance.swept(R_WC[better], p_WC[better], self.cutoff)
         deficit = self.threshold - np.where(inner, d, np.inf).min(axis=1)
         extra = np.where(deficit > 0.0, 0.5 + 20.0 * deficit, 0.0)
         values[better] += extra
@@ -114,4 +124,4 @@ class Objective:
         return values, feasible
 
 
-__all__ = ["Objective", "REJECTED", "SAMPLES"]
+__all__ = ["CUTOFF_EXTRA", "Objective", "REJECTED", "SAMPLES"]

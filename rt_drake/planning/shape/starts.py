@@ -89,6 +89,27 @@ def _exp(w: np.ndarray) -> np.ndarray:
     return np.eye(3) + sin * K + cos * K @ K
 
 
+def offset_parameters(
+    family: PathFamily, path: GeometricPath, offsets: np.ndarray
+) -> np.ndarray:
+    """Parameters x (S', K n) of the via points at cup-pose ``offsets`` (S, K, 6).
+
+    Offsets ``(dp_T, w_T)`` from the family's reference via points in the
+    transport frame of ``path`` (module docstring); the starts whose Newton
+    solve does not converge are left out.
+    """
+    chain = family.chain
+    reference = family.reference
+    T = transport_frame(chain, path)
+    R0, p0 = chain.cup_pose(reference)
+    p1 = p0 + offsets[..., :3] @ T.T
+    R1 = _exp(offsets[..., 3:] @ T.T) @ R0
+    v, error = chain.solve_pose(R1, p1, reference, iterations=10)
+    ok = np.all(error < POSE_TOLERANCE, axis=1)
+    x = (v[ok] - reference) / family.scale
+    return x.reshape(len(x), family.dim)
+
+
 def start_parameters(family: PathFamily, path: GeometricPath, count: int) -> np.ndarray:
     """Parameters x (S, K n) of the ``count`` library starts nearest this transport.
 
@@ -98,19 +119,16 @@ def start_parameters(family: PathFamily, path: GeometricPath, count: int) -> np.
     reference = family.reference
     if count <= 0 or not len(offsets) or reference.shape[0] != offsets.shape[1]:
         return np.zeros((0, family.dim))
-    chain = family.chain
     distance = np.linalg.norm(
-        (keys - features(chain, path, reference)) / FEATURE_SCALE, axis=1
+        (keys - features(family.chain, path, reference)) / FEATURE_SCALE, axis=1
     )
-    chosen = offsets[np.argsort(distance)[:count]]
-    T = transport_frame(chain, path)
-    R0, p0 = chain.cup_pose(reference)
-    p1 = p0 + chosen[..., :3] @ T.T
-    R1 = _exp(chosen[..., 3:] @ T.T) @ R0
-    v, error = chain.solve_pose(R1, p1, reference, iterations=10)
-    ok = np.all(error < POSE_TOLERANCE, axis=1)
-    x = (v[ok] - reference) / family.scale
-    return x.reshape(len(x), family.dim)
+    return offset_parameters(family, path, offsets[np.argsort(distance)[:count]])
 
 
-__all__ = ["FEATURE_SCALE", "features", "start_parameters", "transport_frame"]
+__all__ = [
+    "FEATURE_SCALE",
+    "features",
+    "offset_parameters",
+    "start_parameters",
+    "transport_frame",
+]
