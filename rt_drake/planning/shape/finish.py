@@ -8,18 +8,25 @@ where the path turns sharply, e.g. at the top of a vertical end segment). On
 100 uniform points that leaves about 6 % of a MOVE's duration unused against
 1000 points. :func:`retime_adaptive` spends the points where the profile
 moves: the profile of the coarse retimer (:mod:`.surrogate`, batched
-kinematics, 100 uniform points, about 2 ms) gives ``t(s)`` and ``x(s)``; the
-final grid puts its N points at equal steps of the measure
+kinematics, at the grid points only; 100 uniform points) gives ``t(s)`` and
+``x(s)``; a grid of 200 points at equal steps of the measure
 
     mu(s) = w t(s) / T + (1 - w) V(s) / V(1),   V(s) = int_0^s |dx|
 
-(time, and the total variation of x), and :func:`rt_drake.retime` retimes
-the path once on it (adding the path's knots and what it needs between grid
-points). With N = 500 and w = 0.3 the result was within +0.23 % of a
-1000-point uniform retime (0.09 % shorter on average) on 24 spline and
-perturbed MOVE paths, for about 60 % of the cost of the two-pass scheme it
-replaces (100 -> 200 -> 400 points by ``retime`` itself: +0.17 % at most, and
-one numerical failure); N = 400 lost up to +0.51 % (BENCHMARKS.md).
+(time, and the total variation of x) gets the coarse retimer's profile
+again, which places the final grid of N points, and :func:`rt_drake.retime`
+retimes the path once on it (adding the path's knots and what it needs
+between grid points). Measured against 1000 uniform points with the current
+``retime`` (BENCHMARKS.md), N = 400, w = 0.3:
+
+- 24 spline and randomly perturbed MOVE paths of random_transport: at most
+  +0.16 %; 19 spline and optimised paths of random_transport_paper: at most
+  -0.16 % (shorter), for 30-35 ms of CPU;
+- one coarse pass (100 uniform points, then 500 points) lost up to +1.96 %
+  on two optimised paper paths (their sharp turns fall between the coarse
+  points); 600 uniform points up to +1.23 %; the two-pass scheme by
+  ``retime`` itself (100, 200, 400 points) was within +0.17 % for 60 % more
+  CPU, and failed numerically once.
 """
 
 from __future__ import annotations
@@ -38,10 +45,11 @@ from rt_drake.retiming import (
     retime,
 )
 
-#: Points of the coarse uniform profile that sizes the grid.
+#: Points of the coarse uniform profile, and of the grid it places.
 COARSE_POINTS = 100
+MIDDLE_POINTS = 200
 #: Points of the final grid.
-FINAL_POINTS = 500
+FINAL_POINTS = 400
 #: Uniform points if the adaptive retime fails numerically.
 FALLBACK_POINTS = 1000
 
@@ -81,10 +89,13 @@ def coarse_profile(
     limits: JointLimits,
     grasp: GraspConstraint,
     waypoints: np.ndarray,
-    points: int = COARSE_POINTS,
+    grid: int | np.ndarray = COARSE_POINTS,
 ) -> tuple[np.ndarray, np.ndarray] | None:
-    """``(s, s')`` of the coarse retimer's profile of a path, or None if rejected."""
-    surrogate = CoarseRetimer(chain, limits, grasp, points)
+    """``(s, s')`` of the coarse retimer's profile of a path, or None if rejected.
+
+    On ``grid`` (a number of uniform points, or the points).
+    """
+    surrogate = CoarseRetimer(chain, limits, grasp, grid)
     surrogate.select_rows(np.asarray(waypoints)[None])
     duration, x = surrogate.profile(waypoints)
     if not np.isfinite(duration):
@@ -105,9 +116,10 @@ def retime_adaptive(
 ) -> RetimeResult:
     """Retime ``path`` (:func:`rt_drake.retime`) on an adaptive grid.
 
-    The grid is sized by the coarse retimer's profile (with a grasp; without
-    one, by a 100-point ``retime``). If the profile or the adaptive retime
-    fails numerically, the path is retimed on :data:`FALLBACK_POINTS`
+    The grid is placed by the coarse retimer's profile, in two passes (with
+    a grasp; without one, by a 100-point ``retime``). If the profile or the
+    adaptive retime fails numerically, the path is retimed on
+    :data:`FALLBACK_POINTS`
     uniform points (the discretization target's reference). Raises the
     retimer's errors if the path cannot be retimed at all.
 
@@ -134,6 +146,9 @@ def retime_adaptive(
         chain = chain or CupChain(plant, cup)
         waypoints = np.asarray(getattr(path, "waypoints", path), dtype=float)
         profile = coarse_profile(chain, limits, grasp, waypoints)
+        if profile is not None:
+            middle = adaptive_grid(*profile, MIDDLE_POINTS, weight)
+            profile = coarse_profile(chain, limits, grasp, waypoints, middle)
     if profile is not None:
         try:
             return timed(adaptive_grid(*profile, points, weight))
@@ -163,6 +178,7 @@ __all__ = [
     "COARSE_POINTS",
     "FALLBACK_POINTS",
     "FINAL_POINTS",
+    "MIDDLE_POINTS",
     "adaptive_grid",
     "coarse_profile",
     "retime_adaptive",

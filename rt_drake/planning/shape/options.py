@@ -97,7 +97,7 @@ class MoveOptimizerOptions:
     joint_scale: float | tuple[float, ...] = 0.1
     sigma: float = 0.5
     search_gridpoints: int = 24
-    final_gridpoints: int = 500
+    final_gridpoints: int = 400
     clearance_margin: float = 0.01
     population: int | None = None
     seed: int = 0
