@@ -17,7 +17,12 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from rt_drake.cli._args import add_optimize_flag, positive_int
+from rt_drake.cli._args import add_optimize_flag, int_in, nonnegative_int
+
+#: Most random paths (each is planned, retimed twice and simulated ~12 times).
+MAX_TRIALS = 1000
+#: Most worker processes.
+MAX_WORKERS = 64
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -38,16 +43,25 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="scenario with a random_transport section",
     )
     transport.add_argument(
-        "--n", type=positive_int, default=20, help="number of random paths (default 20)"
+        "--n",
+        type=int_in(1, MAX_TRIALS),
+        default=20,
+        help=f"number of random paths (default 20, at most {MAX_TRIALS})",
     )
     transport.add_argument(
-        "--seed", type=int, default=0, help="sampling and planning seed (default 0)"
+        "--seed",
+        type=nonnegative_int,
+        default=0,
+        help="sampling and planning seed (default 0)",
     )
     transport.add_argument(
         "--object", default=None, help="object to carry (default: the scenario's)"
     )
     transport.add_argument(
-        "--workers", type=positive_int, default=1, help="parallel processes (default 1)"
+        "--workers",
+        type=int_in(1, MAX_WORKERS),
+        default=1,
+        help=f"parallel processes (default 1, at most {MAX_WORKERS})",
     )
     add_optimize_flag(transport, "also optimise each MOVE and play it")
     transport.add_argument("--out", type=Path, required=True, help="output directory")
@@ -69,7 +83,10 @@ def run_transport(args: argparse.Namespace) -> int:
     """Run the transport experiment and write its outputs; return 0."""
     import time
 
+    from rt_drake.cli._output import output_directory
+    from rt_drake.cli._progress import Progress
     from rt_drake.experiments import (
+        TRANSPORT_FILES,
         optimized_summary,
         run_transport_experiment,
         transport_table,
@@ -77,16 +94,23 @@ def run_transport(args: argparse.Namespace) -> int:
     )
     from rt_drake.resources import resolve_scenario_path
 
+    path = resolve_scenario_path(args.scenario)
+    output_directory(args.out, "--out", TRANSPORT_FILES, {"scenario file": path})
+    progress = Progress("rt-drake experiment transport", args.n, "trial", eta=True)
     start = time.perf_counter()
-    results = run_transport_experiment(
-        resolve_scenario_path(args.scenario),
-        n=args.n,
-        seed=args.seed,
-        object_name=args.object,
-        workers=args.workers,
-        optimize=args.optimize,
-        out_dir=args.out,
-    )
+    try:
+        results = run_transport_experiment(
+            path,
+            n=args.n,
+            seed=args.seed,
+            object_name=args.object,
+            workers=args.workers,
+            optimize=args.optimize,
+            out_dir=args.out,
+            progress=lambda done, n: progress.step(done, "trials done"),
+        )
+    finally:
+        progress.close()
     results["wall_s"] = time.perf_counter() - start
     written = write_transport_report(results, args.out)
     s = results["summary"]
@@ -112,6 +136,7 @@ def run_cycle_experiment(args: argparse.Namespace) -> int:
         meshcat=False,
         no_grasp_constraint=False,
         speed=1.0,
+        sequential_planning=False,
         seed=0,
         time_step=1e-3,
         optimize=None,

@@ -27,6 +27,7 @@ import numpy as np
 from pydrake.geometry import StartMeshcat
 from pydrake.trajectories import Trajectory
 
+from rt_drake.atomic_file import write_text_atomically
 from rt_drake.experiments.rollout import critical_speed, simulate_move
 from rt_drake.planning import CyclePlanner, PlannedPath
 from rt_drake.planning.shape import (
@@ -80,8 +81,7 @@ def optimized_trial(
     if replay_path is not None:
         meshcat = StartMeshcat()
         simulate_move(rollout_world, q_grasp, trajectory, meshcat=meshcat)
-        replay_path.parent.mkdir(parents=True, exist_ok=True)
-        replay_path.write_text(meshcat.StaticHtml())
+        write_text_atomically(replay_path, meshcat.StaticHtml())
     chain = optimizer.chain
     return {
         "duration_optimized_s": result.duration,

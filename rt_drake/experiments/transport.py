@@ -19,7 +19,8 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
-from concurrent.futures import ProcessPoolExecutor
+from collections.abc import Callable
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from multiprocessing import get_context
 from pathlib import Path
 from typing import Any
@@ -210,6 +211,7 @@ def run_transport_experiment(
     workers: int = 1,
     optimize: bool | None = None,
     out_dir: Path | None = None,
+    progress: Callable[[int, int], None] | None = None,
 ) -> dict[str, Any]:
     """Run n trials (in ``workers`` processes); return results and a summary.
 
@@ -217,6 +219,7 @@ def run_transport_experiment(
     each trial also optimises its MOVE and plays it; the
     first trial's optimised MOVE is replayed in Meshcat into
     ``out_dir / REPLAY_FILE`` if ``out_dir`` is given.
+    ``progress(done, n)`` is called as each trial finishes (and with 0 first).
 
     Raises:
         InputError: fewer than one trial or one worker.
@@ -252,11 +255,19 @@ def run_transport_experiment(
         )  # fmt: skip
         for i, (X_s, X_g) in enumerate(pairs)
     ]
+    report = progress or (lambda done, total: None)
+    report(0, n)
+    trials: list[dict[str, Any]] = []
     if workers == 1:
-        trials = [_trial_job(job) for job in jobs]
+        for job in jobs:
+            trials.append(_trial_job(job))
+            report(len(trials), n)
     else:
         with ProcessPoolExecutor(workers, mp_context=get_context("spawn")) as pool:
-            trials = list(pool.map(_trial_job, jobs))
+            for future in as_completed([pool.submit(_trial_job, j) for j in jobs]):
+                trials.append(future.result())
+                report(len(trials), n)
+        trials.sort(key=lambda trial: trial["index"])
     return {
         "object": name,
         "seed": seed,

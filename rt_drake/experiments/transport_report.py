@@ -10,12 +10,25 @@ import json
 from pathlib import Path
 from typing import Any
 
+from rt_drake.atomic_file import write_text_atomically
 from rt_drake.experiments.optimized_transport import REPLAY_FILE
 from rt_drake.experiments.plots import (
     plot_durations,
     plot_margins,
     plot_optimized,
     plot_profiles,
+)
+
+#: The files :func:`write_transport_report` writes into its directory (the
+#: last two only for an ``optimize`` run; the replay is written by the trial).
+TRANSPORT_FILES = (
+    "results.json",
+    "sd_profiles.png",
+    "grasp_margin.png",
+    "durations.png",
+    "report.md",
+    "optimized.png",
+    REPLAY_FILE,
 )
 
 
@@ -73,11 +86,13 @@ def optimized_summary(summary: dict[str, Any]) -> str:
 
 
 def write_transport_report(results: dict[str, Any], out_dir: Path) -> list[Path]:
-    """Write results.json, report.md and the PNG plots; return the paths."""
-    out_dir.mkdir(parents=True, exist_ok=True)
+    """Write results.json, report.md and the PNG plots; return the paths.
+
+    The files are :data:`TRANSPORT_FILES`, each written atomically.
+    """
     s = results["summary"]
     written = [out_dir / "results.json"]
-    written[0].write_text(json.dumps(results, indent=1) + "\n")
+    write_text_atomically(written[0], json.dumps(results, indent=1) + "\n")
     first = results["trials"][0]
     written += [
         plot_profiles(first, out_dir / "sd_profiles.png"),
@@ -135,8 +150,13 @@ def write_transport_report(results: dict[str, Any], out_dir: Path) -> list[Path]
             f"(replay: [{REPLAY_FILE}]({REPLAY_FILE}))",
         ]
     written.append(out_dir / "report.md")
-    written[-1].write_text("\n".join(text) + "\n")
+    write_text_atomically(written[-1], "\n".join(text) + "\n")
     return written
 
 
-__all__ = ["optimized_summary", "transport_table", "write_transport_report"]
+__all__ = [
+    "TRANSPORT_FILES",
+    "optimized_summary",
+    "transport_table",
+    "write_transport_report",
+]
