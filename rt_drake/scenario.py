@@ -185,7 +185,8 @@ class Scenario:
         Raises:
             ScenarioError: the scenario's ``tool`` has several cups (or one
                 cup away from the tool frame): ``what`` does not take them
-                yet; retime such a tool with ``GraspConstraint.for_tool``.
+                yet; retime such a tool with ``rt-drake retime`` or
+                ``GraspConstraint.for_tool``.
         """
         if self.tool is None:
             return self.cup
@@ -196,7 +197,7 @@ class Scenario:
         raise ScenarioError(
             f"{self.key('tool')}: {what} takes one cup at the tool frame, got "
             f"{len(tool.cups)} cup(s); retime a multi-cup tool with "
-            "GraspConstraint.for_tool"
+            "rt-drake retime or GraspConstraint.for_tool"
         )
 
     def object(self, name: str) -> ObjectConfig:
