@@ -9,7 +9,11 @@ scenario -> plant -> (IK, planner) -> path -> (dynamics + grasp constraint)
 
 - grasp stability (numpy, scipy, cdd; no Drake): ``CupParameters``,
   ``WrenchPolytope``, ``contact_wrench_polytope``, ``cached_wrench_polytope``,
-  ``is_realizable``, ``is_realizable_lp``;
+  ``is_realizable``, ``is_realizable_lp``; multi-cup tools:
+  ``ToolParameters`` of ``CupMount`` (cup and pose in the tool frame),
+  ``tool_wrench_polytope`` (exact W_T), ``ToolWrenchSet`` (support function
+  and LP, for inner approximations); retime under them with
+  ``GraspConstraint.for_tool`` or ``GraspConstraint.inner_for_tool``;
 - dynamics: ``HeldObject``, ``CupFrame`` (the cup frame of a plant),
   ``object_wrench``, ``make_arm_plant``;
 - retiming: ``retime``, ``RetimeResult``, ``JointLimits``,
@@ -34,12 +38,16 @@ from rt_drake._version import __version__
 
 if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
     from rt_drake.contact import (
+        CupMount,
         CupParameters,
+        ToolParameters,
+        ToolWrenchSet,
         WrenchPolytope,
         cached_wrench_polytope,
         contact_wrench_polytope,
         is_realizable,
         is_realizable_lp,
+        tool_wrench_polytope,
     )
     from rt_drake.cup_frame import CupFrame
     from rt_drake.dynamics import HeldObject, object_wrench
@@ -76,7 +84,11 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
 
 #: Public name -> module defining it, imported on first access.
 _LAZY: dict[str, str] = {
+    "CupMount": "rt_drake.contact",
     "CupParameters": "rt_drake.contact",
+    "ToolParameters": "rt_drake.contact",
+    "ToolWrenchSet": "rt_drake.contact",
+    "tool_wrench_polytope": "rt_drake.contact",
     "WrenchPolytope": "rt_drake.contact",
     "cached_wrench_polytope": "rt_drake.contact",
     "contact_wrench_polytope": "rt_drake.contact",
@@ -120,6 +132,7 @@ _LAZY: dict[str, str] = {
 __all__ = [
     "__version__",
     "CupFrame",
+    "CupMount",
     "CupParameters",
     "CyclePlanner",
     "GeometricPath",
@@ -142,6 +155,8 @@ __all__ = [
     "Scenario",
     "ScenarioError",
     "TooLargeError",
+    "ToolParameters",
+    "ToolWrenchSet",
     "TrajectoryCheck",
     "WrenchPolytope",
     "cached_wrench_polytope",
@@ -158,6 +173,7 @@ __all__ = [
     "run_cycle",
     "sample_trajectory",
     "save_trajectory",
+    "tool_wrench_polytope",
 ]
 
 

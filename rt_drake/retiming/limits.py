@@ -8,7 +8,8 @@ from collections.abc import Sequence
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 
-from rt_drake.contact import CupParameters, cached_wrench_polytope
+from rt_drake.contact import CupParameters, ToolParameters, cached_wrench_polytope
+from rt_drake.contact.tool_polytope import DEFAULT_MAX_FACETS
 from rt_drake.contact.wrench_polytope import check_h_representation
 from rt_drake.dynamics import HeldObject
 from rt_drake.errors import InputError
@@ -150,17 +151,22 @@ class GraspConstraint:
     object about the cup origin Co, in the cup frame C (:mod:`rt_drake.contact`
     conventions). ``g > 0`` row-wise: the zero wrench is strictly inside.
 
+    For a tool of several cups (:class:`~rt_drake.contact.ToolParameters`)
+    the frame the retimer is given (``cup=``, default ``suction_cup``) is the
+    tool frame T: ``held`` is the object's inertia in T, and F, g describe
+    the tool's set W_T about T's origin, in T (:meth:`for_tool`).
+
     Attributes:
-        held: Inertia of the object in C.
+        held: Inertia of the object in C (or T).
         F: (R, 6) rows (unit norm from :mod:`rt_drake.contact`).
         g: (R,) offsets.
-        cup: The cup the polytope belongs to (for messages), if known.
+        cup: The cup or tool the polytope belongs to (for messages), if known.
     """
 
     held: HeldObject
     F: np.ndarray
     g: np.ndarray
-    cup: CupParameters | None = None
+    cup: CupParameters | ToolParameters | None = None
 
     def __post_init__(self) -> None:
         F = np.array(self.F, dtype=float)
@@ -184,10 +190,66 @@ class GraspConstraint:
         polytope = cached_wrench_polytope(cup)
         return cls(held=held, F=polytope.F, g=polytope.g, cup=cup)
 
+    @classmethod
+    def for_tool(
+        cls,
+        held: HeldObject,
+        tool: ToolParameters,
+        max_facets: int | None = DEFAULT_MAX_FACETS,
+    ) -> GraspConstraint:
+        """The exact set W_T of a multi-cup ``tool`` (cached on disk).
+
+        ``held`` is the object's inertia in the tool frame T, which is the
+        frame given to the retimer. Two paper cups take about a minute the
+        first time (47,728 rows); a tool whose set has more than
+        ``max_facets`` facets raises ``TooManyFacetsError`` (a
+        ``TooLargeError``): use :meth:`inner_for_tool` instead.
+        """
+        if not isinstance(tool, ToolParameters):
+            raise RetimeInputError(
+                f"for_tool needs a ToolParameters, got {type(tool).__name__}"
+            )
+        polytope = cached_wrench_polytope(tool, max_facets=max_facets)
+        return cls(held=held, F=polytope.F, g=polytope.g, cup=tool)
+
+    @classmethod
+    def inner_for_tool(
+        cls,
+        held: HeldObject,
+        tool: ToolParameters,
+        guiding_samples: np.ndarray,
+        max_vertices: int = 60,
+        seed: int = 0,
+    ) -> GraspConstraint:
+        """A sound inner approximation of a tool's W_T, without its facets.
+
+        The hull of at most ``max_vertices`` support points of W_T chosen to
+        cover ``guiding_samples`` ((N, 6) wrenches in T, e.g. the wrenches of
+        the motions to come; the zero wrench is added): every wrench it
+        accepts is realizable (the paper's guided approximation over
+        :class:`~rt_drake.contact.ToolWrenchSet`).
+        For tools whose exact set is too large (four cups: > 1.5 million
+        facets).
+        """
+        from rt_drake.contact import ToolWrenchSet, guided_approximation
+
+        if not isinstance(tool, ToolParameters):
+            raise RetimeInputError(
+                f"inner_for_tool needs a ToolParameters, got {type(tool).__name__}"
+            )
+        samples = np.vstack([np.zeros(6), np.asarray(guiding_samples, float)])
+        inner = guided_approximation(
+            ToolWrenchSet(tool), samples, max_vertices, seed=seed
+        )
+        return cls(held=held, F=inner.F, g=inner.g, cup=tool)
+
     def describe(self) -> str:
-        """E.g. ``object 0.551 kg, suction 20 N``."""
+        """E.g. ``object 0.551 kg, suction 20 N`` (a tool: ``2 cups, 20 + 20 N``)."""
         text = f"object {self.held.mass:.3g} kg"
-        if self.cup is not None:
+        if isinstance(self.cup, ToolParameters):
+            forces = " + ".join(f"{m.cup.suction_force:.3g}" for m in self.cup.cups)
+            text += f", {len(self.cup.cups)} cups, suction {forces} N"
+        elif self.cup is not None:
             text += f", suction {self.cup.suction_force:.3g} N"
         return text
 

@@ -94,12 +94,14 @@ class OnlineMotions:
         self._gridpoints = gridpoints
         self._polytope = None
         if grasp_constraint:
-            full = cached_wrench_polytope(scenario.cup)
+            full = cached_wrench_polytope(scenario.single_cup("the cycle"))
             fraction = scenario.vacuum.move_force_fraction
             self._polytope = (
                 full
                 if fraction == 1.0
-                else with_suction_force(full, fraction * scenario.cup.suction_force)
+                else with_suction_force(
+                    full, fraction * scenario.single_cup("the cycle").suction_force
+                )
             )
         warm_up()  # compile the retimer here, not in the first timed MOVE
         if optimize is None:
