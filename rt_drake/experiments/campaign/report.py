@@ -147,8 +147,9 @@ def _counts(rows: list[dict[str, Any]]) -> VariantCounts:
     )
 
 
-def _fmt(value: float | None, digits: int = 2) -> str:
-    return "-" if value is None else f"{value:.{digits}f}"
+def _held_sweep(group: GroupSummary) -> str:
+    sweeps = group.variants.get(Variant.SPEED_SWEEP.value)
+    return "-" if sweeps is None else str(group.held_through_sweep)
 
 
 def _held(group: GroupSummary, variant: Variant) -> str:
@@ -160,21 +161,25 @@ def summary_table(groups: list[GroupSummary]) -> str:
     """The Markdown table: one line per object and cup."""
     lines = [
         "| object | cup | held with constraint | held without | infeasible | "
-        "failed | time ext. % mean (min-max) | critical speed median (min) | "
-        "held to the end of the sweep |",
+        "failed | time ext. % mean (min to max) | critical speed median (min) | "
+        "sweeps that never slipped |",
         "|---|---|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for group in groups:
         d = group.as_dict()
         counts = list(group.variants.values())
         ext, crit = d["time_extension_pct"], d["critical_speed"]
+        extension = "-"
+        if ext["n"]:
+            extension = f"{ext['mean']:.2f} ({ext['min']:.2f} to {ext['max']:.2f})"
+        critical = "-"
+        if crit["n"]:
+            critical = f"{crit['median']:.1f}x ({crit['min']:.1f}x)"
         lines.append(
             f"| {group.object} | {group.cup} | {_held(group, Variant.CONSTRAINED)} | "
             f"{_held(group, Variant.UNCONSTRAINED)} | "
-            f"{sum(c.infeasible for c in counts)} | "
-            f"{sum(c.failed for c in counts)} | {_fmt(ext['mean'])} "
-            f"({_fmt(ext['min'])}-{_fmt(ext['max'])}) | {_fmt(crit['median'], 1)}x "
-            f"({_fmt(crit['min'], 1)}x) | {crit['held_through_sweep']} |"
+            f"{sum(c.infeasible for c in counts)} | {sum(c.failed for c in counts)} | "
+            f"{extension} | {critical} | {_held_sweep(group)} |"
         )
     return "\n".join(lines)
 
