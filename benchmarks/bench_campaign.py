@@ -6,8 +6,10 @@ rollout per row) is run into a fresh database by the local executor
 (``--workers`` processes) and then by the Ray executor (a Ray instance
 started here with ``--workers`` CPUs). Reported per executor: wall time
 from the call to the last row (worker start-up and shared inputs included),
-rollouts per minute over that wall time, and the mean wall time of a row
-in its worker.
+rollouts per minute over that wall time, the mean wall and CPU time of a row
+in its worker, and the share of the workers' time spent outside rows
+(start-up: spawning, imports, shared inputs; then waiting for the last rows).
+Ray is started before both runs (``--ray-first`` runs its campaign first).
 
 Then the per-task overhead: the round trip of a trivial task (submit, run,
 get the result), one at a time, through Ray and through a local process
@@ -25,6 +27,7 @@ import statistics
 import sys
 import tempfile
 import time
+import warnings
 from concurrent.futures import ProcessPoolExecutor
 from multiprocessing import get_context
 from pathlib import Path
@@ -68,11 +71,14 @@ def run(kind: ExecutorKind, path: Path, out: Path, workers: int) -> dict[str, fl
     wall = time.perf_counter() - start
     _, rows = read_rows(out)
     assert result.computed == len(rows) and all(r["status"] == "ok" for r in rows)
+    busy = sum(r["wall_s"] for r in rows)
     return {
         "rows": len(rows),
         "wall_s": wall,
         "per_min": 60.0 * len(rows) / wall,
-        "row_s": statistics.fmean(r["wall_s"] for r in rows),
+        "row_s": busy / len(rows),
+        "cpu_s": sum(r["cpu_s"] for r in rows) / len(rows),
+        "idle": 1.0 - busy / (workers * wall),
     }
 
 
@@ -92,21 +98,28 @@ def main() -> None:
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--round-trips", type=int, default=200)
     parser.add_argument("--burst", type=int, default=1000)
+    parser.add_argument(
+        "--ray-first", action="store_true", help="run Ray's campaign before the local"
+    )
     args = parser.parse_args()
 
     import ray
 
-    results = {}
+    results: dict[str, dict[str, float]] = {}
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "bench.yaml"
         path.write_text(CAMPAIGN.format(trials=args.trials))
-        results["local"] = run(
-            ExecutorKind.LOCAL, path, Path(tmp) / "local.db", args.workers
-        )
         start = time.perf_counter()
-        ray.init(num_cpus=args.workers, include_dashboard=False, log_to_driver=False)
+        with warnings.catch_warnings():  # Ray's notices of future changes
+            warnings.simplefilter("ignore", FutureWarning)
+            ray.init(
+                num_cpus=args.workers, include_dashboard=False, log_to_driver=False
+            )
         ray_init_s = time.perf_counter() - start
-        results["ray"] = run(ExecutorKind.RAY, path, Path(tmp) / "ray.db", args.workers)
+        order = [ExecutorKind.LOCAL, ExecutorKind.RAY]
+        for kind in reversed(order) if args.ray_first else order:
+            database = Path(tmp) / f"{kind.value}.db"
+            results[kind.value] = run(kind, path, database, args.workers)
 
         remote = ray.remote(num_cpus=1)(noop)
         ray.get([remote.remote(i) for i in range(2 * args.workers)])  # warm workers
@@ -128,10 +141,16 @@ def main() -> None:
 
     rows = results["local"]["rows"]
     print(f"\n{rows} rows (constrained rollouts) per executor, {args.workers} workers")
-    print("| executor | wall (s) | rollouts/min | mean row in its worker (s) |")
-    print("|---|---:|---:|---:|")
-    for name, r in results.items():
-        print(f"| {name} | {r['wall_s']:.1f} | {r['per_min']:.2f} | {r['row_s']:.1f} |")
+    print(
+        "| executor | wall (s) | rollouts/min | mean row in its worker: wall (s) "
+        "| CPU (s) | workers' time outside rows |"
+    )
+    print("|---|---:|---:|---:|---:|---:|")
+    for name, r in sorted(results.items()):
+        print(
+            f"| {name} | {r['wall_s']:.1f} | {r['per_min']:.2f} | {r['row_s']:.1f} "
+            f"| {r['cpu_s']:.1f} | {100 * r['idle']:.0f} % |"
+        )
     print(f"\nray.init(num_cpus={args.workers}): {ray_init_s:.1f} s (not in the wall)")
     print("| trivial task | Ray | local process pool |")
     print("|---|---:|---:|")

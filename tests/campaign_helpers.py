@@ -21,7 +21,7 @@ def no_init(campaign_path: str, content_hash: str) -> None:
 
 
 def _ok(task: Task) -> Outcome:
-    return Outcome(task.key, RowResult(Status.OK, duration_s=1.0), 0.0, "test", "test")
+    return Outcome(task.key, RowResult(Status.OK, duration_s=1.0), 0.0, 0.0, "t", "t")
 
 
 def crash_always(task: Task) -> Outcome:

@@ -121,7 +121,7 @@ def test_bad_campaign_is_one_line_naming_file_key_value(tmp_path, old, new, word
 
 
 def _outcome(key: RowKey, result: RowResult) -> Outcome:
-    return Outcome(key, result, wall_s=1.0, worker="test:1", code_version="test")
+    return Outcome(key, result, 1.0, 0.5, worker="test:1", code_version="test")
 
 
 def test_store_keeps_one_row_per_combination_and_refuses_another_campaign(tmp_path):
@@ -266,3 +266,30 @@ def test_report_numbers_equal_an_independent_sql_aggregation(tmp_path):
         held = group["variants"]["constrained"]
         assert f"| {obj} | {cup} | {held['held']}/{held['ran']} |" in table
     assert not math.isnan(summary["groups"][0]["time_extension_pct"]["mean"])
+
+
+@pytest.mark.parametrize(
+    "argv,words",
+    [
+        (["campaign", "{campaign}", "--out", "{text}"], ["not.db", "not a campaign"]),
+        (["report", "{missing}", "--out", "{tmp}"], ["missing.db", "does not exist"]),
+        (["report", "{text}", "--out", "{tmp}"], ["not.db", "not a campaign"]),
+        (
+            ["campaign", "{campaign}", "--out", "{tmp}/c.db", "--ray-address", "auto"],
+            ["Ray address", "ray executor"],
+        ),
+    ],
+)
+def test_bad_database_or_flags_exit_2_with_one_line(tmp_path, capsys, argv, words):
+    (tmp_path / "not.db").write_text("a text file, not SQLite\n" * 100)
+    names = {
+        "campaign": write_campaign(tmp_path / "c.yaml"),
+        "text": tmp_path / "not.db",
+        "missing": tmp_path / "missing.db",
+        "tmp": tmp_path,
+    }
+    assert main(["experiment", *(a.format(**names) for a in argv)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and ": error: " in err
+    for word in words:
+        assert word in err, (word, err)

@@ -42,6 +42,7 @@ def crashed(key: RowKey, attempts: int, cause: str) -> Outcome:
             Status.CRASHED, f"WorkerCrashed: worker died {attempts} times ({cause})"
         ),
         wall_s=None,
+        cpu_s=None,
         worker="",
         code_version=code_version(),
         attempts=attempts,

@@ -129,6 +129,8 @@ class Outcome:
         key: The row's combination.
         result: What its variant computed.
         wall_s: Wall time of the task in its worker, s (None: crashed).
+        cpu_s: CPU time of the task in its worker, s (None: crashed); far
+            below ``wall_s`` when the machine is shared.
         worker: ``host:pid`` of the worker that ran it last.
         code_version: rt_drake's version and git commit in that worker.
         attempts: How many times it was started (2 after a retried crash).
@@ -137,6 +139,7 @@ class Outcome:
     key: RowKey
     result: RowResult
     wall_s: float | None
+    cpu_s: float | None
     worker: str
     code_version: str
     attempts: int = 1

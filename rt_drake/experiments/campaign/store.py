@@ -10,6 +10,7 @@ Tables (SQLite, WAL journal; only the driver process writes):
   ``duration_s`` (the retimed MOVE at speed 1), ``speed``, ``success``
   (0/1), ``slip_translation_mm``, ``slip_rotation_deg``, ``critical_speed``,
   ``plan_s``, ``simulate_s``, ``wall_s`` (wall times in the worker),
+  ``cpu_s`` (the task's CPU time in its worker),
   ``error`` (``TypeName: message``), ``detail`` (JSON), ``attempts``,
   ``worker`` (``host:pid``), ``code_version``, ``finished_at`` (UTC ISO).
 
@@ -53,6 +54,7 @@ CREATE TABLE IF NOT EXISTS rollouts (
     plan_s REAL,
     simulate_s REAL,
     wall_s REAL,
+    cpu_s REAL,
     error TEXT,
     detail TEXT NOT NULL,
     attempts INTEGER NOT NULL,
@@ -80,6 +82,7 @@ COLUMNS = (
     "plan_s",
     "simulate_s",
     "wall_s",
+    "cpu_s",
     "error",
     "detail",
     "attempts",
@@ -213,6 +216,7 @@ class ResultStore:
             result.plan_s,
             result.simulate_s,
             outcome.wall_s,
+            outcome.cpu_s,
             result.error,
             json.dumps(result.detail, sort_keys=True),
             outcome.attempts,

@@ -136,12 +136,13 @@ def run_task(task: Task) -> Outcome:
             campaign would fail); a row's own failure is in its result.
     """
     context = worker_context(task.campaign_path, task.content_hash)
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     result = run_variant(context.campaign.combination(task.key))
     return Outcome(
         key=task.key,
         result=result,
         wall_s=time.perf_counter() - start,
+        cpu_s=time.process_time() - cpu,
         worker=context.worker,
         code_version=context.code_version,
     )
