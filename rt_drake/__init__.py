@@ -19,8 +19,8 @@ scenario -> plant -> (IK, planner) -> path -> (dynamics + grasp constraint)
 - simulation: ``MakeStation``, ``run_cycle``, ``OnlineMotions``;
 - scenarios: ``load_scenario``, ``Scenario``; phases: ``Phase``;
 - errors: ``RtDrakeError`` (the base of every error rt_drake raises on
-  purpose), ``InputError``, ``ScenarioError``, ``RetimeError``,
-  ``PlanningError``.
+  purpose), ``InputError``, ``ScenarioError``, ``TooLargeError``,
+  ``RetimeError``, ``PlanningError``.
 """
 
 from __future__ import annotations
@@ -41,7 +41,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
     )
     from rt_drake.cup_frame import CupFrame
     from rt_drake.dynamics import HeldObject, object_wrench
-    from rt_drake.errors import InputError, RtDrakeError, ScenarioError
+    from rt_drake.errors import InputError, RtDrakeError, ScenarioError, TooLargeError
     from rt_drake.phase import Phase
     from rt_drake.planning import (
         CyclePlanner,
@@ -81,6 +81,7 @@ _LAZY: dict[str, str] = {
     "InputError": "rt_drake.errors",
     "RtDrakeError": "rt_drake.errors",
     "ScenarioError": "rt_drake.errors",
+    "TooLargeError": "rt_drake.errors",
     "Phase": "rt_drake.phase",
     "CyclePlanner": "rt_drake.planning",
     "GeometricPath": "rt_drake.planning",
@@ -127,6 +128,7 @@ __all__ = [
     "SavedTrajectory",
     "Scenario",
     "ScenarioError",
+    "TooLargeError",
     "TrajectoryCheck",
     "WrenchPolytope",
     "cached_wrench_polytope",

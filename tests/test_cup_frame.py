@@ -213,5 +213,5 @@ def test_limits_a_model_lacks_are_asked_for_by_name():
     assert limits.acceleration.tolist() == [10.0] * 6
     with pytest.raises(RetimeInputError, match="no torque limit for joint 1"):
         JointLimits.from_plant(plant, robot, torque=True)
-    with pytest.raises(RetimeInputError, match="5 values for 6 joints"):
+    with pytest.raises(RetimeInputError, match="5 values but the plant has 6 joints"):
         JointLimits.from_plant(plant, RobotConfig(velocity_limits=[1.0] * 5))

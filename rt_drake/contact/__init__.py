@@ -39,6 +39,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers
         WrenchPolytope,
         contact_wrench_polytope,
         is_realizable,
+        with_suction_force,
     )
 
 #: Public name -> submodule defining it, imported on first access.
@@ -56,6 +57,7 @@ _LAZY = {
     "WrenchPolytope": "wrench_polytope",
     "contact_wrench_polytope": "wrench_polytope",
     "is_realizable": "wrench_polytope",
+    "with_suction_force": "wrench_polytope",
 }
 
 __all__ = [
@@ -75,6 +77,7 @@ __all__ = [
     "object_wrench_sampler",
     "save_polytope",
     "suction_wrench",
+    "with_suction_force",
 ]
 
 

@@ -7,7 +7,9 @@
 """
 
 from rt_drake.experiments.cycle_report import (
+    REPORT_FILES,
     cycle_report,
+    summary_line,
     table_markdown,
     write_report,
 )
@@ -25,20 +27,24 @@ from rt_drake.experiments.transport import (
     transport_trial,
 )
 from rt_drake.experiments.transport_report import (
+    TRANSPORT_FILES,
     transport_table,
     write_transport_report,
 )
 
 __all__ = [
+    "REPORT_FILES",
     "SLIP_ROTATION",
     "SLIP_TRANSLATION",
     "SPEED_FACTORS",
+    "TRANSPORT_FILES",
     "Rollout",
     "critical_speed",
     "cycle_report",
     "run_transport_experiment",
     "simulate_move",
     "summarize",
+    "summary_line",
     "table_markdown",
     "transport_table",
     "transport_trial",

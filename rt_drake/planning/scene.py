@@ -113,6 +113,7 @@ class PlanningScene:
             self_collision_padding=0.0,
         )
         self.bounds.set_self_pairs(self.checker.IsCollisionFilteredBetween)
+        self._fk_context = plant.CreateDefaultContext()  # cup_poses' scratch
         self._labels: dict = {}  # GeometryId of an added shape -> label
         self._groups: dict[str, object] = {}  # group -> key of what it holds
         self.held: str | None = None
@@ -221,6 +222,19 @@ class PlanningScene:
         return self.plant.CalcRelativeTransform(
             context, self.plant.world_frame(), self.cup_frame
         )
+
+    def cup_poses(self, q: np.ndarray) -> list[RigidTransform]:
+        """X_WC at each row of q (N, n): forward kinematics only, no geometry."""
+        world = self.plant.world_frame()
+        poses = []
+        for row in np.atleast_2d(q):
+            self.plant.SetPositions(self._fk_context, row)
+            poses.append(
+                self.plant.CalcRelativeTransform(
+                    self._fk_context, world, self.cup_frame
+                )
+            )
+        return poses
 
     def collisions(self, q: np.ndarray) -> list[str]:
         """Name the colliding pairs at q: ``"vs060::link3 with cell::top_plate"``."""

@@ -9,7 +9,9 @@ import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 
 from rt_drake.contact import CupParameters, cached_wrench_polytope
+from rt_drake.contact.wrench_polytope import check_h_representation
 from rt_drake.dynamics import HeldObject
+from rt_drake.errors import InputError
 from rt_drake.retiming.errors import RetimeInputError
 from rt_drake.scenario import RobotConfig
 
@@ -104,7 +106,8 @@ class JointLimits:
             value = np.asarray(given[name] if len(given[name]) else model[name])
             if len(given[name]) and value.size != n:
                 raise RetimeInputError(
-                    f"robot.{name}_limits has {value.size} values for {n} joints"
+                    f"key 'robot.{name}_limits': {value.size} values but the plant "
+                    f"has {n} joints"
                 )
             missing = np.flatnonzero(~np.isfinite(value))
             if missing.size:
@@ -162,12 +165,10 @@ class GraspConstraint:
     def __post_init__(self) -> None:
         F = np.array(self.F, dtype=float)
         g = np.array(self.g, dtype=float).reshape(-1)
-        if F.ndim != 2 or F.shape[1] != 6 or g.shape != (F.shape[0],):
-            raise RetimeInputError(
-                f"need F (R, 6) and g (R,), got {F.shape=} {g.shape=}"
-            )
-        if not (np.all(np.isfinite(F)) and np.all(np.isfinite(g))):
-            raise RetimeInputError("grasp constraint F, g must be finite")
+        try:  # shapes, NaN or inf, an all-zero row (it would constrain nothing)
+            check_h_representation(F, g)
+        except InputError as error:
+            raise RetimeInputError(f"grasp constraint: {error}") from None
         if np.any(g <= 0.0):
             raise RetimeInputError(
                 f"grasp constraint needs g > 0 (zero wrench inside), min g = {g.min()}"

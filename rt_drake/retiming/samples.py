@@ -70,7 +70,7 @@ def sample_path(
         cup: The cup frame C.
     """
     q, dq, ddq = spline(s), spline(s, 1), spline(s, 2)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore"):  # q' = 0: no cap
         x_cap = np.min(velocity_limit**2 / dq**2, axis=1)
     tau = (
         path_torque_coefficients(plant, q, dq, ddq, held, context, cup)

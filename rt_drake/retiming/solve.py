@@ -156,12 +156,14 @@ def retime(
             once with ``CupFrame.of(plant, ...)`` when retiming often.
 
     Raises:
-        RetimeInputError: malformed path, limits or grid, or a path that
-            leaves the joint position limits.
+        RetimeInputError: malformed path, limits or grid, a path that
+            leaves the joint position limits, or ``sd_start``, ``sd_end``
+            not finite and >= 0, ``start_time`` not finite.
         GraspUnstableAtRestError: gravity alone breaks the grasp somewhere.
         TorqueLimitAtRestError: holding the arm still exceeds a torque limit.
         PathNotControllableError: no admissible speed reaches the end.
     """
+    _check_arguments(sd_start, sd_end, start_time)
     spline = as_joint_path(path)  # checks the path
     n = spline.num_joints
     if n != plant.num_positions() or n != limits.num_joints:
@@ -412,6 +414,19 @@ def _solve_exact(
             )
         rows = np.union1d(rows, missed)
         repairs += 1
+
+
+def _check_arguments(sd_start: float, sd_end: float, start_time: float) -> None:
+    """Refuse NaN, inf or negative path velocities and a NaN start time."""
+    for name, value in (("sd_start", sd_start), ("sd_end", sd_end)):
+        if not (isinstance(value, (int, float, np.number)) and np.isfinite(value)):
+            raise RetimeInputError(f"{name} must be a finite number, got {value!r}")
+        if value < 0.0:
+            raise RetimeInputError(f"{name} must be >= 0 (1/s), got {value!r}")
+    if not (
+        isinstance(start_time, (int, float, np.number)) and np.isfinite(start_time)
+    ):
+        raise RetimeInputError(f"start_time must be finite, got {start_time!r}")
 
 
 def _margins(

@@ -6,7 +6,14 @@ from the :class:`~rt_drake.planning.CyclePlanner` and is retimed by
 :func:`~rt_drake.retiming.retime` under the joint limits, MOVE also under the
 grasp constraint ``F w <= g`` of the held object (unless disabled). Both are
 timed on the wall clock, as in the paper's Table II. The grasp polytope is
-computed once, offline, per cup (as the paper did), not in the cycle.
+computed once, offline, per cup (as the paper did), not in the cycle; with
+a ``first_order`` vacuum the MOVE is retimed for the force guaranteed when
+"part present" fires, ``part_present_fraction P A``: the same polytope
+translated (:func:`~rt_drake.contact.with_suction_force`).
+
+The pick (:meth:`OnlineMotions.pick`) is one motion through the approach
+pose (:mod:`rt_drake.planning.pick`), retimed rest to rest; APPROACH ends
+when it passes the approach pose.
 """
 
 from __future__ import annotations
@@ -20,10 +27,11 @@ from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
 from pydrake.trajectories import Trajectory
 
-from rt_drake.contact import cached_wrench_polytope
+from rt_drake.contact import cached_wrench_polytope, with_suction_force
 from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import HeldObject, path_wrench_coefficients
 from rt_drake.errors import InputError
+from rt_drake.phase import Phase
 from rt_drake.planning import CyclePlanner, GeometricPath, PlannedPath
 from rt_drake.plant import make_arm_plant
 from rt_drake.retiming import (
@@ -35,7 +43,7 @@ from rt_drake.retiming import (
     warm_up,
 )
 from rt_drake.scenario import ObjectConfig, Scenario
-from rt_drake.simulation.motion import Motion, PlanTimes
+from rt_drake.simulation.motion import Motion, PhasePart, PlanTimes
 
 
 def held_object(obj: ObjectConfig, X_OC: RigidTransform) -> HeldObject:
@@ -75,9 +83,15 @@ class OnlineMotions:
         self._limits = JointLimits.from_plant(self._plant, scenario.robot)
         self._speed = move_speed
         self._gridpoints = gridpoints
-        self._polytope = (
-            cached_wrench_polytope(scenario.cup) if grasp_constraint else None
-        )
+        self._polytope = None
+        if grasp_constraint:
+            full = cached_wrench_polytope(scenario.cup)
+            fraction = scenario.vacuum.move_force_fraction
+            self._polytope = (
+                full
+                if fraction == 1.0
+                else with_suction_force(full, fraction * scenario.cup.suction_force)
+            )
         warm_up()  # compile the retimer here, not in the first timed MOVE
 
     @property
@@ -88,7 +102,11 @@ class OnlineMotions:
     def retime_path(
         self, path: GeometricPath, grasp: GraspConstraint | None
     ) -> RetimeResult:
-        """Retime ``path`` under the joint limits (and ``grasp`` if given)."""
+        """Retime ``path`` under the joint limits (and ``grasp`` if given).
+
+        The retimer adds the path's knots to the ``gridpoints`` uniform points
+        and holds every limit between grid points too.
+        """
         return retime(
             self._plant,
             path,
@@ -138,11 +156,47 @@ class OnlineMotions:
         """Straight down onto ``obj``."""
         return self._timed(self._planner.plan_reach, q_start, obj, carrying=False)
 
-    def move(
-        self, q_start: np.ndarray, obj: ObjectConfig, reach: Motion | None = None
+    def pick(
+        self, q_start: np.ndarray, obj: ObjectConfig, retreat: bool = False
     ) -> Motion:
-        """Carry ``obj`` from its grasp to its goal (lifting along ``reach``)."""
-        planned_reach = None if reach is None else reach.planned
+        """Retreat (if ``retreat``), approach and reach ``obj`` without a stop.
+
+        Parts: APPROACH until the cup passes the approach pose (its plan
+        times: the retreat, transit and blend, and the retime), then REACH
+        (its plan times: the descent's IK line).
+        """
+        self._place_objects_for(obj)
+        start = time.perf_counter()
+        planned = self._planner.plan_pick(q_start, obj.name, retreat)
+        plan_s = time.perf_counter() - start
+        start = time.perf_counter()
+        result = self.retime_path(planned.path.path, None)
+        retime_s = time.perf_counter() - start
+        reach_s = min(planned.reach_timing.total_s, plan_s)
+        parts = (
+            PhasePart(
+                Phase.APPROACH,
+                time_at(result, planned.s_approach),
+                PlanTimes(plan_s=plan_s - reach_s, retime_s=retime_s),
+            ),
+            PhasePart(Phase.REACH, result.duration, PlanTimes(plan_s=reach_s)),
+        )
+        return Motion(
+            result.trajectory,
+            PlanTimes(plan_s=plan_s, retime_s=retime_s),
+            planned=planned.path,
+            retimed=result,
+            parts=parts,
+        )
+
+    def move(
+        self, q_start: np.ndarray, obj: ObjectConfig, pick: Motion | None = None
+    ) -> Motion:
+        """Carry ``obj`` from its grasp to its goal (lifting along ``pick``'s line).
+
+        ``pick`` is the pick or REACH motion that ended at ``q_start``.
+        """
+        planned_reach = None if pick is None else pick.planned
 
         def plan(q: np.ndarray, name: str) -> PlannedPath:
             return self._planner.plan_move(q, name, reach=planned_reach)
@@ -178,7 +232,7 @@ class OnlineMotions:
                 held=held_object(obj, planned.X_OC),
                 F=self._polytope.F,
                 g=self._polytope.g,
-                cup=self._scenario.cup,
+                cup=self._polytope.cup,
             )
         start = time.perf_counter()
         result = self.retime_path(planned.path, grasp)
@@ -195,4 +249,20 @@ class OnlineMotions:
         )
 
 
-__all__ = ["OnlineMotions", "held_object"]
+def time_at(result: RetimeResult, s: float) -> float:
+    """Time (s) at which the retimed motion reaches path parameter ``s``.
+
+    On grid segment i (``s_i <= s <= s_{i+1}``) the path acceleration u_i is
+    constant, so with ``d = s - s_i``: ``tau = 2 d / (s'_i + sqrt(s'_i^2 +
+    2 u_i d))``, after ``t_i = sum_{k<i} 2 ds_k / (s'_k + s'_{k+1})``.
+    """
+    grid, sd, sdd = result.gridpoints, result.sd, result.sdd
+    i = int(np.clip(np.searchsorted(grid, s, side="right") - 1, 0, len(grid) - 2))
+    dt = 2.0 * np.diff(grid) / (sd[:-1] + sd[1:])
+    d = s - grid[i]
+    root = np.sqrt(max(sd[i] ** 2 + 2.0 * sdd[i] * d, 0.0))
+    tau = 2.0 * d / (sd[i] + root) if sd[i] + root > 0.0 else 0.0
+    return float(result.trajectory.start_time() + dt[:i].sum() + tau)
+
+
+__all__ = ["OnlineMotions", "held_object", "time_at"]
