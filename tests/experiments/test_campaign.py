@@ -103,6 +103,8 @@ BAD_EDITS = [
     ("notebook.sdf", "notbook.sdf", ["objects[0].model", "notbook.sdf"]),
     ("random_transport", "stack_four_objects", ["'scenario'", "random_transport"]),
     ("random_transport", "nowhere", ["'scenario'", "nowhere"]),
+    ("seed: 0", "seed: 0\nseed: 1", ["bad.yaml", "duplicate key 'seed'"]),
+    ("  radius: 0.010", "  radius: .nan", ["bad.yaml", "cups[1].radius", "finite"]),
 ]
 
 

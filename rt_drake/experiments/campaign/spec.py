@@ -25,10 +25,8 @@ Relative paths are relative to the campaign file.
 # No ``from __future__ import annotations``: yaml_load_typed reads the
 # dataclass field types, which must be real types, not strings.
 import dataclasses
-import re
 from pathlib import Path
 
-import yaml
 from pydrake.common.schema import Transform
 from pydrake.common.yaml import yaml_load_typed
 
@@ -41,10 +39,8 @@ from rt_drake.experiments.campaign.catalogue import (
 )
 from rt_drake.experiments.campaign.errors import CampaignError
 from rt_drake.experiments.campaign.rows import Variant
-
-# The scenario loader's YAML reader and error locator, so that campaign
-# errors read exactly like scenario errors.
-from rt_drake.scenario import _check_poses, _locate, _TaggedLoader
+from rt_drake.scenario import MAX_SCENARIO_BYTES
+from rt_drake.scenario_yaml import check_schema, locate, read_yaml
 
 
 @dataclasses.dataclass
@@ -98,35 +94,37 @@ class CampaignFile:
 def read_campaign_file(path: Path) -> CampaignFile:
     """Parse ``path`` into a :class:`CampaignFile` (schema checks only).
 
+    The scenario loader's strict YAML reader and schema check, so campaign
+    errors read exactly like scenario errors.
+
     Raises:
-        CampaignError: missing file, bad YAML, unknown key, wrong type.
+        CampaignError: missing, too large or not UTF-8 file, bad YAML
+            (duplicate keys and aliases included), unknown key, wrong type.
     """
     if not path.is_file():
         raise CampaignError(f"{path}: campaign file does not exist")
-    text = path.read_text()
+    size = path.stat().st_size
+    if size > MAX_SCENARIO_BYTES:
+        raise CampaignError(
+            f"{path}: {size} bytes; a campaign file is at most "
+            f"{MAX_SCENARIO_BYTES} bytes"
+        )
     try:
-        raw = yaml.load(text, Loader=_TaggedLoader)
-    except yaml.YAMLError as error:
-        raise CampaignError(f"{path}: not valid YAML: {error}") from None
-    if not isinstance(raw, dict):
-        raise CampaignError(f"{path}: expected a mapping of keys at the top level")
+        text = path.read_bytes().decode("utf-8")
+    except UnicodeDecodeError as error:
+        byte = error.object[error.start]
+        raise CampaignError(
+            f"{path}: not UTF-8 text (byte {error.start} is {byte:#04x})"
+        ) from None
     try:
-        _check_poses(path, raw)
-        return yaml_load_typed(schema=CampaignFile, data=text)
+        raw = read_yaml(path, text)
+        check_schema(path, raw, CampaignFile)
     except ScenarioError as error:
         raise CampaignError(str(error)) from None
+    try:
+        return yaml_load_typed(schema=CampaignFile, data=text)
     except (RuntimeError, ValueError, TypeError) as error:
-        raise CampaignError(_locate_int(path, raw, str(error))) from None
-
-
-def _locate_int(path: Path, raw: dict, message: str) -> str:
-    """Like the scenario locator, and also for integers ('trials: two')."""
-    bad_int = re.search(r"invalid literal for int\(\) with base 10: '(.*)'", message)
-    if bad_int:
-        for key, value in raw.items():
-            if isinstance(value, str) and value == bad_int.group(1):
-                return f"{path}: key '{key}': value {value!r} is not an integer"
-    return _locate(path, raw, message)
+        raise CampaignError(locate(path, raw, str(error))) from None
 
 
 def parse_cups(path: Path, entries: list[CupEntry]) -> tuple[CampaignCup, ...]:
