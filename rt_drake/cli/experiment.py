@@ -1,4 +1,4 @@
-"""``rt-drake experiment transport|cycle``: the paper's experiments in simulation.
+"""``rt-drake experiment transport|cycle|campaign|report``: experiments in simulation.
 
 ``transport``: Table I. Random start and goal poses of one object, each MOVE
 retimed with and without the grasp constraint and played in the cycle's
@@ -10,6 +10,9 @@ the same physics with its own sweep, and the report compares both (plus
 
 ``cycle``: Table II. The four-object cycle with its timing breakdown (as
 ``rt-drake run``), into ``report.json``, ``report.md`` and ``replay.html``.
+
+``campaign`` and ``report``: validation campaigns over many objects, cups
+and transports, into SQLite (see :mod:`rt_drake.cli.campaign`).
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from rt_drake.cli import campaign
 from rt_drake.cli._args import add_optimize_flag, int_in, nonnegative_int
 
 #: Most random paths (each is planned, retimed twice and simulated ~12 times).
@@ -77,6 +81,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     cycle.add_argument("--out", type=Path, required=True, help="output directory")
     cycle.set_defaults(run=run_cycle_experiment)
+
+    campaign.register(which)  # ``campaign`` and ``report``
 
 
 def run_transport(args: argparse.Namespace) -> int:
