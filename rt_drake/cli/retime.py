@@ -3,7 +3,9 @@
 Retimes the clamped C2 spline through joint-space waypoints (one row per
 waypoint, one column per joint, rad; ``#`` starts a comment) time-optimally
 under the scenario's joint limits and, unless ``--no-grasp-constraint``, the
-grasp stability of the named object held by the scenario's cup. Writes an
+grasp stability of the named object held by the scenario's cup, or by its
+multi-cup tool (``tool:``; the exact set W_T, computed once and cached, with
+``robot.cup_frame`` as the tool frame T). Writes an
 ``.npz`` from which anyone can re-check the result (the format of
 ``rt_drake.save_trajectory``: samples every 1 ms of t, q, qd, qdd and the
 cup's pose X_WC, the object's inertia, the grasp constraint F, g, the cup,
@@ -109,9 +111,11 @@ def run(args: argparse.Namespace) -> int:
 
     from rt_drake import (
         CupFrame,
+        CupParameters,
         GraspConstraint,
         HeldObject,
         JointLimits,
+        ToolParameters,
         load_scenario,
         path_waypoints_and_knots,
         retime,
@@ -134,10 +138,16 @@ def run(args: argparse.Namespace) -> int:
     except InputError as error:  # e.g. two equal rows: name the file
         raise InputError(f"{args.waypoints}: {error}") from None
     held = HeldObject.from_scenario_object(obj)
-    cup_model = scenario.single_cup("rt-drake retime")
-    grasp = (
-        None if args.no_grasp_constraint else GraspConstraint.for_cup(held, cup_model)
-    )
+    cup_model: CupParameters | ToolParameters
+    grasp: GraspConstraint | None = None
+    if scenario.tool is None:
+        cup_model = scenario.cup
+        if not args.no_grasp_constraint:
+            grasp = GraspConstraint.for_cup(held, cup_model)
+    else:
+        cup_model = scenario.tool_parameters()
+        if not args.no_grasp_constraint:
+            grasp = GraspConstraint.for_tool(held, cup_model)
     limits = JointLimits.from_plant(plant, scenario.robot)
     cup = CupFrame.of(plant, scenario.robot.cup_frame)
     result = retime(plant, waypoints, limits, grasp, args.gridpoints, cup=cup)
@@ -147,6 +157,9 @@ def run(args: argparse.Namespace) -> int:
     )  # fmt: skip
     save_trajectory(args.out, saved)
     constraint = "joint limits only" if grasp is None else "grasp constraint"
+    if isinstance(cup_model, ToolParameters):
+        count = len(cup_model.cups)
+        constraint += f", a tool of {count} cup{'s' if count != 1 else ''}"
     # A binding constraint is at 0 to the LP's tolerance (about -1e-12): no "-0.000".
     margin = round(float(result.margin.min()), 3) + 0.0
     print(
