@@ -19,7 +19,9 @@ scenario -> plant -> (IK, planner) -> path -> (dynamics + grasp constraint)
 - retiming: ``retime``, ``RetimeResult``, ``JointLimits``,
   ``GraspConstraint``, ``check_trajectory``, ``TrajectoryCheck``,
   ``save_trajectory``, ``load_trajectory``, ``sample_trajectory``;
-- planning: ``CyclePlanner``, ``PlannedPath``, ``GeometricPath``;
+- planning: ``CyclePlanner``, ``PlannedPath``, ``GeometricPath``; MOVE
+  path optimisation: ``MoveOptimizer``, ``MoveOptimizerOptions``,
+  ``OptimizedMove``;
 - simulation: ``MakeStation``, ``run_cycle``, ``OnlineMotions``;
 - scenarios: ``load_scenario``, ``Scenario``; phases: ``Phase``;
 - errors: ``RtDrakeError`` (the base of every error rt_drake raises on
@@ -56,6 +58,11 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
         GeometricPath,
         PlannedPath,
         PlanningError,
+    )
+    from rt_drake.planning.shape import (
+        MoveOptimizer,
+        MoveOptimizerOptions,
+        OptimizedMove,
     )
     from rt_drake.plant import make_arm_plant
     from rt_drake.retiming import (
@@ -99,6 +106,9 @@ _LAZY: dict[str, str] = {
     "GeometricPath": "rt_drake.planning",
     "PlannedPath": "rt_drake.planning",
     "PlanningError": "rt_drake.planning",
+    "MoveOptimizer": "rt_drake.planning.shape",
+    "MoveOptimizerOptions": "rt_drake.planning.shape",
+    "OptimizedMove": "rt_drake.planning.shape",
     "make_arm_plant": "rt_drake.plant",
     "GraspConstraint": "rt_drake.retiming",
     "JointLimits": "rt_drake.retiming",
@@ -131,7 +141,10 @@ __all__ = [
     "InputError",
     "JointLimits",
     "MakeStation",
+    "MoveOptimizer",
+    "MoveOptimizerOptions",
     "OnlineMotions",
+    "OptimizedMove",
     "Phase",
     "PlannedPath",
     "PlanningError",

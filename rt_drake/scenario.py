@@ -3,7 +3,8 @@
 A scenario file names the cell (Drake model directives), the robot's home
 configuration and limits, the suction cup, the objects with their start and
 goal poses, and the vacuum (:mod:`rt_drake.scenario_vacuum`: attach and
-detach behaviour). :func:`load_scenario` refuses,
+detach behaviour) and how MOVEs are planned (``planning``: the MOVE path
+optimiser of issue 13). :func:`load_scenario` refuses,
 with a one-line :class:`~rt_drake.errors.ScenarioError` that names the file,
 the key path (``objects[1].start.translation``) and the offending value:
 unknown keys, a value of the wrong type, null where a value is needed, NaN
@@ -94,11 +95,41 @@ class Region:
 
 @dataclasses.dataclass
 class RandomTransport:
-    """Where Table I's random start and goal poses of ``object`` are sampled."""
+    """Where Table I's random start and goal poses of ``object`` are sampled.
+
+    Attributes:
+        object: The object carried.
+        start_region, goal_region: Where its start and goal poses are drawn.
+        start_on_cup: Start each trial with the object already sealed on the
+            cup at its start pose (an object in free space, as the paper's
+            regions): the arm starts at a grasp configuration found by IK
+            instead of picking the object from home.
+    """
 
     object: str = ""
     start_region: Region = dataclasses.field(default_factory=Region)
     goal_region: Region = dataclasses.field(default_factory=Region)
+    start_on_cup: bool = False
+
+
+@dataclasses.dataclass
+class PlanningConfig:
+    """How MOVEs are planned (issue 13).
+
+    Attributes:
+        optimize_move: Shape each MOVE path for speed under the grasp
+            constraint (:func:`rt_drake.planning.shape.optimize_move`)
+            instead of keeping the planner's spline through its anchors.
+        max_tilt_deg: Largest angle (deg) between the cup axis and gravity
+            an optimised MOVE may reach, in [0, 90); 0 keeps the cup
+            vertical (open containers).
+        budget_s: Wall time (s) the optimisation may take per MOVE, the
+            spline MOVE's planning excluded.
+    """
+
+    optimize_move: bool = False
+    max_tilt_deg: float = 45.0
+    budget_s: float = 0.15
 
 
 @dataclasses.dataclass
@@ -154,6 +185,7 @@ class Scenario:
     objects: list[ObjectConfig] = dataclasses.field(default_factory=list)
     vacuum: Vacuum = dataclasses.field(default_factory=Vacuum)
     random_transport: RandomTransport | None = None
+    planning: PlanningConfig = dataclasses.field(default_factory=PlanningConfig)
     #: The file it was loaded from, for messages (set by load_scenario; not
     #: a YAML key).
     source: str = dataclasses.field(default="", metadata={"yaml": False})
@@ -310,6 +342,20 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
     if scenario.tool is not None:
         _check_tool(path, scenario.tool)
     check_vacuum(path, scenario.vacuum)
+    _check_planning(path, scenario.planning)
+
+
+def _check_planning(path: Path, planning: PlanningConfig) -> None:
+    """``max_tilt_deg`` in [0, 90), ``budget_s`` > 0 (NaN and inf never load)."""
+    if not 0 <= planning.max_tilt_deg < 90:
+        raise ScenarioError(
+            f"{path}: key 'planning.max_tilt_deg': must be in [0, 90) deg, got "
+            f"{planning.max_tilt_deg}"
+        )
+    if not planning.budget_s > 0:
+        raise ScenarioError(
+            f"{path}: key 'planning.budget_s': must be > 0 s, got {planning.budget_s}"
+        )
 
 
 def _check_tool(path: Path, tool: ToolConfig) -> None:
@@ -348,6 +394,7 @@ __all__ = [
     "MAX_DEPTH",
     "MAX_SCENARIO_BYTES",
     "ObjectConfig",
+    "PlanningConfig",
     "RandomTransport",
     "Region",
     "RobotConfig",

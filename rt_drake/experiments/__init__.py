@@ -2,7 +2,8 @@
 
 - :mod:`.rollout`: play one MOVE in the cycle's physics and measure slip.
 - :mod:`.transport`: Table I, random transports with and without the grasp
-  constraint; :mod:`.transport_report` and :mod:`.plots` write its report.
+  constraint; :mod:`.optimized_transport`: the optimised MOVE of each
+  (issue 13); :mod:`.transport_report` and :mod:`.plots` write its report.
 - :mod:`.cycle_report`: Table II, the cycle's timing breakdown.
 """
 
@@ -28,6 +29,7 @@ from rt_drake.experiments.transport import (
 )
 from rt_drake.experiments.transport_report import (
     TRANSPORT_FILES,
+    optimized_summary,
     transport_table,
     write_transport_report,
 )
@@ -41,6 +43,7 @@ __all__ = [
     "Rollout",
     "critical_speed",
     "cycle_report",
+    "optimized_summary",
     "run_transport_experiment",
     "simulate_move",
     "summarize",

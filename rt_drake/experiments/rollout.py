@@ -15,6 +15,7 @@ import math
 from collections.abc import Sequence
 
 import numpy as np
+from pydrake.geometry import Meshcat
 from pydrake.trajectories import PiecewisePolynomial, Trajectory
 
 from rt_drake.retiming import TimeScaled
@@ -86,11 +87,21 @@ def rollout_scenario(trial: Scenario, q_grasp: np.ndarray) -> Scenario:
 
 
 def simulate_move(
-    scenario: Scenario, q_grasp: np.ndarray, move: Trajectory, speed: float = 1.0
+    scenario: Scenario,
+    q_grasp: np.ndarray,
+    move: Trajectory,
+    speed: float = 1.0,
+    meshcat: Meshcat | None = None,
 ) -> Rollout:
-    """Play ``move`` (``speed`` times faster) in the cycle's physics; measure slip."""
+    """Play ``move`` (``speed`` times faster) in the cycle's physics; measure slip.
+
+    With ``meshcat``, the run is recorded there for an offline replay
+    (``meshcat.StaticHtml()``).
+    """
     trajectory = move if speed == 1.0 else TimeScaled(move, speed)
-    result = run_cycle(scenario, Replay(q_grasp, trajectory), max_sim_time=30.0)
+    result = run_cycle(
+        scenario, Replay(q_grasp, trajectory), meshcat=meshcat, max_sim_time=30.0
+    )
     (record,) = result.records
     return Rollout(record.max_slip_translation, record.max_slip_rotation)
 

@@ -44,6 +44,7 @@ from rt_drake.dynamics import PathCoefficients
 from rt_drake.retiming import rows as R
 from rt_drake.retiming.at_rest import check_grasp_at_rest, check_torque_at_rest
 from rt_drake.retiming.between import (
+    ROW_SCREEN,
     Segments,
     grasp_midpoint_rows,
     interior_rows,
@@ -64,7 +65,9 @@ from rt_drake.retiming.passes import (
     StageRows,
     XBound,
     reachability,
+    stage_rows,
 )
+from rt_drake.retiming.row_groups import RowGroups
 from rt_drake.retiming.samples import PathSamples, sample_path
 from rt_drake.retiming.samples import with_points as merge_samples
 from rt_drake.retiming.seidel import kernel_array
@@ -189,14 +192,16 @@ def retime(
     toppra_spline = ToppraPath(spline) if engine == "toppra" else None
     refinements = cut_rounds = 0
     cuts: StageRows | None = None
+    groups: RowGroups | None = None  # the grasp rows grouped, at the first check
     segments = Segments(samples, knots, spline)
     joints = _joint_constraints(samples, segments, limits)
     while True:
         fixed = joints if cuts is None else [*joints, cuts]
         profile = _solve_exact(
             samples, segments, fixed, grasp, normals, rows, toppra_spline, sd_start,
-            sd_end, engine,
+            sd_end, engine, groups,
         )  # fmt: skip
+        groups = profile.groups
         x, u = profile.x, profile.u
         points = refinement_points(
             segments, samples, x, u, limits, normals, profile.row_max,
@@ -325,7 +330,10 @@ class _Profile(NamedTuple):
             (the acceleration of the segment that starts there; the last
             point takes the last one); else None.
         row_max: With a grasp, ``max_i F_k w_i / g_k`` (R,) of every row over
-            the wrenches enforced; else None.
+            the wrenches enforced where above ``1 - ROW_SCREEN`` (at most
+            that for the others); else None.
+        groups: The grasp rows grouped for the exactness check (reused by
+            the next solve), or None.
     """
 
     x: np.ndarray
@@ -334,6 +342,7 @@ class _Profile(NamedTuple):
     repairs: int
     ratio: np.ndarray | None
     row_max: np.ndarray | None
+    groups: RowGroups | None = None
 
 
 def _joint_constraints(
@@ -372,20 +381,25 @@ def _solve_exact(
     sd_start: float,
     sd_end: float,
     engine: str,
+    groups: RowGroups | None = None,
 ) -> _Profile:
     """TOPP-RA with the selected grasp rows, adding missed rows until none.
 
-    ``fixed``: every other constraint (:func:`_joint_constraints`, cuts).
+    ``fixed``: every other constraint (:func:`_joint_constraints`, cuts);
+    the compiled engine projects them once for all the solves.
     """
     s = samples.s
     repairs = 0
+    base = None
+    if engine == "compiled" and grasp is not None:
+        base = stage_rows(fixed, np.diff(s))
     while True:
-        constraints = list(fixed)
+        constraints = [] if base is not None else list(fixed)
         if grasp is not None and samples.wrench is not None:
             F, g = grasp.F[rows], grasp.g[rows]
             constraints.append(AffineConstraint(*samples.wrench, F, g))
             constraints.append(grasp_midpoint_rows(segments, samples.wrench, F, g))
-        solution = reachability(constraints, spline, s, sd_start, sd_end, engine)
+        solution = reachability(constraints, spline, s, sd_start, sd_end, engine, base)
         if solution.x is None or solution.u is None:
             if grasp is not None and len(rows) < len(grasp.g):
                 rows = np.arange(len(grasp.g))  # confirm with every row
@@ -401,16 +415,15 @@ def _solve_exact(
         if grasp is None or samples.wrench is None or normals is None:
             return _Profile(solution.x, solution.u, rows, repairs, None, None)
         enforced = segments.enforced_wrenches(samples.wrench, solution.x, solution.u)
+        if groups is None:
+            groups = R.wrench_groups(enforced, normals, grasp.g)
         ratio, violated, row_max = R.wrench_ratios(
-            enforced,
-            normals,
-            grasp.g,
-            ROW_TOLERANCE,
+            enforced, normals, grasp.g, ROW_TOLERANCE, 1.0 - ROW_SCREEN, groups
         )
         missed = np.setdiff1d(violated, rows) if violated.size else violated
         if not missed.size:
             return _Profile(
-                solution.x, solution.u, rows, repairs, ratio[: len(s)], row_max
+                solution.x, solution.u, rows, repairs, ratio[: len(s)], row_max, groups
             )
         rows = np.union1d(rows, missed)
         repairs += 1

@@ -4,7 +4,11 @@
 :class:`~rt_drake.simulation.motion.MotionSource`: each phase's path comes
 from the :class:`~rt_drake.planning.CyclePlanner` and is retimed by
 :func:`~rt_drake.retiming.retime` under the joint limits, MOVE also under the
-grasp constraint ``F w <= g`` of the held object (unless disabled). Both are
+grasp constraint ``F w <= g`` of the held object (unless disabled). With
+MOVE optimisation on (the scenario's ``planning.optimize_move``, or
+``optimize=True``), the spline MOVE is then reshaped for speed by
+:class:`~rt_drake.planning.shape.MoveOptimizer` within
+``planning.budget_s``, and the path it returns is the one retimed. Both are
 timed on the wall clock, as in the paper's Table II. The grasp polytope is
 computed once, offline, per cup or multi-cup tool (as the paper did: the
 exact W_c, or the tool's W_T about the tool frame), not in the cycle; with
@@ -39,6 +43,8 @@ from rt_drake.dynamics import HeldObject, path_wrench_coefficients
 from rt_drake.errors import InputError
 from rt_drake.phase import Phase
 from rt_drake.planning import CyclePlanner, GeometricPath, PlannedPath
+from rt_drake.planning.shape import MoveOptimizer, MoveOptimizerOptions
+from rt_drake.planning.shape import warm_up as warm_up_optimizer
 from rt_drake.plant import make_arm_plant
 from rt_drake.retiming import (
     GraspConstraint,
@@ -101,6 +107,8 @@ class OnlineMotions:
             (1: as retimed; > 1 leaves the constraint, for slip experiments).
         gridpoints: TOPP-RA grid size.
         seed: planner seed.
+        optimize: shape each MOVE for speed (None: the scenario's
+            ``planning.optimize_move``); needs the grasp constraint.
     """
 
     def __init__(
@@ -110,6 +118,7 @@ class OnlineMotions:
         move_speed: float = 1.0,
         gridpoints: int = 100,
         seed: int = 0,
+        optimize: bool | None = None,
     ) -> None:
         if not move_speed > 0:
             raise InputError(f"speed factor must be > 0, got {move_speed}")
@@ -125,11 +134,25 @@ class OnlineMotions:
         if grasp_constraint:
             self._polytope = move_polytope(scenario)
         warm_up()  # compile the retimer here, not in the first timed MOVE
+        if optimize is None:
+            optimize = scenario.planning.optimize_move
+        self._optimizer = None
+        if optimize and grasp_constraint:
+            options = MoveOptimizerOptions.from_config(scenario.planning)
+            self._optimizer = MoveOptimizer(
+                self._plant, self._limits, options, self._cup, self._context
+            )
+            warm_up_optimizer()
 
     @property
     def q_home(self) -> np.ndarray:
         """The arm's home configuration (rad)."""
         return self._planner.q_home
+
+    @property
+    def planner(self) -> CyclePlanner:
+        """The planner (its scene holds the objects of the last motion)."""
+        return self._planner
 
     def retime_path(
         self, path: GeometricPath, grasp: GraspConstraint | None
@@ -266,9 +289,18 @@ class OnlineMotions:
                 g=self._polytope.g,
                 cup=self._polytope.cup,
             )
-        start = time.perf_counter()
-        result = self.retime_path(planned.path, grasp)
-        retime_s = time.perf_counter() - start
+        if grasp is not None and self._optimizer is not None:
+            # the optimiser's search counts as planning, its final retime as retiming
+            optimized = self._optimizer.optimize(self._planner, planned, grasp)
+            path = optimized.path
+            planned = dataclasses.replace(planned, path=path, polyline=path.waypoints)
+            result = optimized.retimed
+            planned_s += optimized.wall_s - optimized.retime_wall_s
+            retime_s = optimized.retime_wall_s
+        else:
+            start = time.perf_counter()
+            result = self.retime_path(planned.path, grasp)
+            retime_s = time.perf_counter() - start
         trajectory: Trajectory = result.trajectory
         if carrying and self._speed != 1.0:
             trajectory = TimeScaled(trajectory, self._speed)
