@@ -10,7 +10,8 @@ MOVE optimisation on (the scenario's ``planning.optimize_move``, or
 :class:`~rt_drake.planning.shape.MoveOptimizer` within
 ``planning.budget_s``, and the path it returns is the one retimed. Both are
 timed on the wall clock, as in the paper's Table II. The grasp polytope is
-computed once, offline, per cup (as the paper did), not in the cycle; with
+computed once, offline, per cup or multi-cup tool (as the paper did: the
+exact W_c, or the tool's W_T about the tool frame), not in the cycle; with
 a ``first_order`` vacuum the MOVE is retimed for the force guaranteed when
 "part present" fires, ``part_present_fraction P A``: the same polytope
 translated (:func:`~rt_drake.contact.with_suction_force`).
@@ -31,7 +32,12 @@ from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
 from pydrake.trajectories import Trajectory
 
-from rt_drake.contact import cached_wrench_polytope, with_suction_force
+from rt_drake.contact import (
+    ToolParameters,
+    WrenchPolytope,
+    cached_wrench_polytope,
+    with_suction_force,
+)
 from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import HeldObject, path_wrench_coefficients
 from rt_drake.errors import InputError
@@ -57,6 +63,38 @@ def held_object(obj: ObjectConfig, X_OC: RigidTransform) -> HeldObject:
     return HeldObject.from_scenario_object(
         dataclasses.replace(obj, grasp=Transform(X_OC))
     )
+
+
+def move_polytope(scenario: Scenario) -> WrenchPolytope:
+    """The exact wrench set the MOVE is retimed under (cached on disk).
+
+    The scenario's cup W_c, or its tool's W_T (about the tool frame, in it;
+    two paper cups: 47,728 rows, about a minute the first time); with a
+    ``first_order`` vacuum, for the suction force guaranteed at "part
+    present": every cup's ``P A`` times ``part_present_fraction`` (one cup:
+    W_c translated; a tool: the set of the tool with those forces).
+    """
+    fraction = scenario.vacuum.move_force_fraction
+    if scenario.tool is None:
+        full = cached_wrench_polytope(scenario.cup)
+        if fraction == 1.0:
+            return full
+        return with_suction_force(full, fraction * scenario.cup.suction_force)
+    tool = scenario.tool_parameters()
+    if fraction != 1.0:
+        tool = ToolParameters(
+            cups=tuple(
+                dataclasses.replace(
+                    mount,
+                    cup=dataclasses.replace(
+                        mount.cup,
+                        suction_force=fraction * mount.cup.suction_force,
+                    ),
+                )
+                for mount in tool.cups
+            )
+        )
+    return cached_wrench_polytope(tool)
 
 
 class OnlineMotions:
@@ -94,15 +132,7 @@ class OnlineMotions:
         self._gridpoints = gridpoints
         self._polytope = None
         if grasp_constraint:
-            full = cached_wrench_polytope(scenario.single_cup("the cycle"))
-            fraction = scenario.vacuum.move_force_fraction
-            self._polytope = (
-                full
-                if fraction == 1.0
-                else with_suction_force(
-                    full, fraction * scenario.single_cup("the cycle").suction_force
-                )
-            )
+            self._polytope = move_polytope(scenario)
         warm_up()  # compile the retimer here, not in the first timed MOVE
         if optimize is None:
             optimize = scenario.planning.optimize_move
@@ -299,4 +329,4 @@ def time_at(result: RetimeResult, s: float) -> float:
     return float(result.trajectory.start_time() + dt[:i].sum() + tau)
 
 
-__all__ = ["OnlineMotions", "held_object", "time_at"]
+__all__ = ["OnlineMotions", "held_object", "move_polytope", "time_at"]
