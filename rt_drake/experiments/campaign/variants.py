@@ -7,9 +7,12 @@ in the physics of the cycle (:mod:`rt_drake.experiments.rollout`). A
 planner with the same seed in the same scene plans the same path, so the
 rows of one trial compare the same path.
 
-To add a comparison (e.g. ``optimized`` once MOVE path optimisation lands,
-``robust`` for uncertainty sets): add a member to :class:`Variant`, write
-its function here, and add it to :data:`VARIANTS`.
+The ``optimized`` row optimises the trial's spline MOVE with the transport
+experiment's :func:`~rt_drake.experiments.optimized_transport.optimize_spline`
+and plays the result at speed 1.
+
+To add a comparison (e.g. ``robust`` for uncertainty sets): add a member to
+:class:`Variant`, write its function here, and add it to :data:`VARIANTS`.
 """
 
 from __future__ import annotations
@@ -25,6 +28,7 @@ import numpy as np
 from rt_drake.errors import RtDrakeError
 from rt_drake.experiments.campaign.campaign import Combination
 from rt_drake.experiments.campaign.rows import RowResult, Status, Variant
+from rt_drake.experiments.optimized_transport import optimize_spline
 from rt_drake.experiments.rollout import (
     SPEED_FACTORS,
     Rollout,
@@ -45,13 +49,15 @@ class PlannedMove:
 
     Attributes:
         q_grasp: The grasp configuration (rad), where the MOVE starts.
-        move: The MOVE (its path, retiming and trajectory).
+        move: The MOVE (its path, retiming, grasp constraint, trajectory).
+        motions: The planner and retimer that made it.
         world: The rollout scenario (arm at the grasp, short waits).
         plan_s: Wall time of planning and retiming, s.
     """
 
     q_grasp: np.ndarray
     move: Motion
+    motions: OnlineMotions
     world: Scenario
     plan_s: float
 
@@ -87,6 +93,7 @@ def plan_move(combination: Combination, grasp_constraint: bool) -> PlannedMove:
     return PlannedMove(
         q_grasp,
         move,
+        motions,
         rollout_scenario(combination.scenario, q_grasp),
         time.perf_counter() - start,
     )
@@ -98,18 +105,21 @@ def _row(
     rollout: Rollout,
     simulate_s: float,
     critical: float | None = None,
+    duration: float | None = None,
+    plan_s: float | None = None,
     **detail: object,
 ) -> RowResult:
+    """The row of ``rollout``; duration and plan time: the planned MOVE's."""
     slip = rollout.as_dict()
     return RowResult(
         status=Status.OK,
-        duration_s=planned.move.duration,
+        duration_s=planned.move.duration if duration is None else duration,
         speed=speed,
         success=rollout.success,
         slip_translation_mm=slip["max_translation_mm"],
         slip_rotation_deg=slip["max_rotation_deg"],
         critical_speed=critical,
-        plan_s=planned.plan_s,
+        plan_s=planned.plan_s if plan_s is None else plan_s,
         simulate_s=simulate_s,
         detail={**planned.detail, **detail},
     )
@@ -151,12 +161,61 @@ def speed_sweep(combination: Combination) -> RowResult:
     )
 
 
+def optimized(combination: Combination) -> RowResult:
+    """The MOVE path optimised for speed, retimed under the constraint, at speed 1.
+
+    The trial's spline MOVE (the ``constrained`` row's path) is optimised
+    from the same grasp to the same goal within the scenario's ``planning``
+    budget (CPU time), retimed under the exact grasp constraint (adaptive
+    grid), and played in the same physics. ``duration_s`` is the optimised
+    MOVE's; ``plan_s`` adds the optimisation's wall time to the spline's
+    planning. ``detail`` adds:
+
+    - ``spline_duration_s``: the spline MOVE's duration (the
+      ``constrained`` row's), and ``ratio_to_spline`` = optimised / spline;
+    - ``spline_same_grid_s``: the spline path on the optimiser's grid;
+    - ``optimize_cpu_s``, ``optimize_wall_s``: the optimisation's CPU and
+      wall time, s;
+    - ``improved``, ``evaluations``, ``max_tilt_deg``, ``rejected``;
+    - ``waypoints_optimized``: the returned path's waypoints (rad), a
+      clamped chord-length spline
+      (:meth:`~rt_drake.planning.GeometricPath.from_waypoints`).
+    """
+    planned = plan_move(combination, grasp_constraint=True)
+    spline, grasp = planned.move.planned, planned.move.grasp
+    assert spline is not None and grasp is not None
+    _, result = optimize_spline(
+        combination.scenario, planned.motions.planner, spline, grasp
+    )
+    start = time.perf_counter()
+    rollout = simulate_move(planned.world, planned.q_grasp, result.retimed.trajectory)
+    return _row(
+        planned,
+        1.0,
+        rollout,
+        time.perf_counter() - start,
+        duration=result.duration,
+        plan_s=planned.plan_s + result.wall_s,
+        spline_duration_s=planned.move.duration,
+        ratio_to_spline=result.duration / planned.move.duration,
+        spline_same_grid_s=result.spline_duration,
+        optimize_cpu_s=result.cpu_s,
+        optimize_wall_s=result.wall_s,
+        improved=result.improved,
+        evaluations=result.evaluations,
+        max_tilt_deg=result.max_tilt_deg,
+        rejected=list(result.rejected),
+        waypoints_optimized=result.path.waypoints.tolist(),
+    )
+
+
 #: The registry: every :class:`Variant` and its function (read-only).
 VARIANTS: Mapping[Variant, VariantFunction] = MappingProxyType(
     {
         Variant.CONSTRAINED: constrained,
         Variant.UNCONSTRAINED: unconstrained,
         Variant.SPEED_SWEEP: speed_sweep,
+        Variant.OPTIMIZED: optimized,
     }
 )
 
@@ -184,6 +243,7 @@ __all__ = [
     "PlannedMove",
     "VariantFunction",
     "constrained",
+    "optimized",
     "plan_move",
     "run_variant",
     "speed_sweep",
