@@ -87,7 +87,8 @@ def test_every_variant_has_a_function_and_unknown_ones_list_the_known():
     with pytest.raises(CampaignError) as error:
         Variant.parse("robust")
     assert str(error.value) == (
-        "unknown variant 'robust' (known: constrained, unconstrained, speed_sweep)"
+        "unknown variant 'robust' "
+        "(known: constrained, unconstrained, speed_sweep, optimized)"
     )
 
 
@@ -194,12 +195,19 @@ def _synthetic(campaign, seed: int = 0) -> list[Outcome]:
             result = RowResult.failed(Status.CRASHED, "WorkerCrashed: y")
         else:
             critical = rng.choice([None, 1.1, 1.2, 1.3, 1.6])
+            detail = {}
+            if key.variant is Variant.OPTIMIZED:
+                detail = {
+                    "ratio_to_spline": rng.uniform(0.7, 1.0),
+                    "optimize_cpu_s": rng.uniform(0.1, 0.5),
+                }
             result = RowResult(
                 Status.OK,
                 duration_s=rng.uniform(0.8, 1.6),
                 speed=1.0,
                 success=rng.random() < 0.7,
                 critical_speed=critical if key.variant is Variant.SPEED_SWEEP else None,
+                detail=detail,
             )
         outcomes.append(_outcome(key, result))
     return outcomes
@@ -263,11 +271,35 @@ def test_report_numbers_equal_an_independent_sql_aggregation(tmp_path):
             if slipped:
                 assert got["median"] == statistics.median(slipped)
                 assert got["min"] == min(slipped)
+        _check_optimized(sql, summary, groups)
     table = (tmp_path / "report" / "summary.md").read_text()
     for (obj, cup), group in groups.items():
         held = group["variants"]["constrained"]
         assert f"| {obj} | {cup} | {held['held']}/{held['ran']} |" in table
+        optimized = group["variants"]["optimized"]
+        ratio = group["optimized"]["ratio_median"]
+        assert f" {optimized['held']}/{optimized['ran']} | {ratio:.3f} |" in table
     assert not math.isnan(summary["groups"][0]["time_extension_pct"]["mean"])
+
+
+def _check_optimized(sql: sqlite3.Connection, summary: dict, groups: dict) -> None:
+    """The optimized numbers against the rows' JSON detail, read by SQLite."""
+    query = (
+        "SELECT object, cup, success, json_extract(detail, '$.ratio_to_spline'),"
+        " json_extract(detail, '$.optimize_cpu_s') FROM rollouts"
+        " WHERE variant = 'optimized' AND status = 'ok'"
+    )
+    rows = sql.execute(query).fetchall()
+    assert rows and summary["optimized"]["ran"] == len(rows)
+    assert summary["optimized"]["held"] == sum(r[2] for r in rows)
+    assert summary["optimized"]["ratio_median"] == statistics.median(r[3] for r in rows)
+    for (obj, cup), group in groups.items():
+        mine = [r for r in rows if r[:2] == (obj, cup)]
+        got = group["optimized"]
+        assert (got["ran"], got["held"]) == (len(mine), sum(r[2] for r in mine))
+        assert got["ratio_median"] == statistics.median(r[3] for r in mine)
+        assert got["ratio_min"] == min(r[3] for r in mine)
+        assert got["optimize_cpu_s_median"] == statistics.median(r[4] for r in mine)
 
 
 @pytest.mark.parametrize(
