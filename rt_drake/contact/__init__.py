@@ -10,6 +10,8 @@ origin, expressed in C. The grasp is stable when ``F w <= g``.
   vertices); :func:`cached_wrench_polytope` stores it on disk.
 - :func:`is_realizable` (H-rep), :func:`is_realizable_lp` (independent LP).
 - :func:`guided_approximation`: the paper's inner approximation.
+- :func:`worst_cup_polytope`: the wrenches every cup of a friction and
+  suction range can exert (``friction_min``, ``suction_force_min``).
 
 Only :mod:`rt_drake.contact.cup` (numpy) is imported with the package, so a
 scenario can name ``CupParameters`` cheaply; the rest (scipy) loads on first
@@ -35,6 +37,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers
     )
     from rt_drake.contact.lp import is_realizable_lp, lp_residual
     from rt_drake.contact.samplers import object_wrench_sampler
+    from rt_drake.contact.worst_cup import worst_cup_polytope
     from rt_drake.contact.wrench_polytope import (
         WrenchPolytope,
         contact_wrench_polytope,
@@ -56,6 +59,7 @@ _LAZY = {
     "WrenchPolytope": "wrench_polytope",
     "contact_wrench_polytope": "wrench_polytope",
     "is_realizable": "wrench_polytope",
+    "worst_cup_polytope": "worst_cup",
 }
 
 __all__ = [
@@ -75,6 +79,7 @@ __all__ = [
     "object_wrench_sampler",
     "save_polytope",
     "suction_wrench",
+    "worst_cup_polytope",
 ]
 
 

@@ -57,7 +57,7 @@ MAX_SPLIT = 8
 _THETA = np.arange(1, SUBPOINTS + 1) / (SUBPOINTS + 1)
 #: The sub-points of the interior joint rows (theta = 1/4, 1/2, 3/4) and the
 #: midpoint.
-_INTERIOR_POINTS = np.array([1, 3, 5])
+INTERIOR_POINTS = np.array([1, 3, 5])
 MIDDLE = 3
 
 
@@ -106,7 +106,7 @@ def interior_rows(segments: Segments, limits: JointLimits) -> StageRows:
     min_j v_j^2 / q'_j(s)^2`` (inactive where every q'_j is 0) and the
     accelerations of every joint, each sign.
     """
-    points = _INTERIOR_POINTS
+    points = INTERIOR_POINTS
     with np.errstate(divide="ignore"):
         cap = np.min(limits.velocity**2 / segments.dq[:, points] ** 2, axis=2)
     bounded = cap < VAR_BOUND  # (N, 3)
@@ -213,14 +213,18 @@ def joint_cuts(
     )
 
 
+def subpoint_x(segments: Segments, x: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """(N, K) ``x = s'^2`` at the sub-points: ``x_i + 2 theta ds_i u_i`` (>= 0)."""
+    return np.maximum(x[:-1, None] + segments.step * u[:, None], 0.0)
+
+
 def refinement_points(
     segments: Segments,
     samples: PathSamples,
     x: np.ndarray,
     u: np.ndarray,
     limits: JointLimits,
-    normals: np.ndarray | None,
-    row_max: np.ndarray | None,
+    grasp_ratio: np.ndarray | None,
     tolerance: float,
 ) -> np.ndarray:
     """Grid points to add where torque or grasp is exceeded in a segment.
@@ -231,32 +235,30 @@ def refinement_points(
         x: (G,) ``s'^2`` at the grid points.
         u: (G-1,) ``s''`` per segment.
         limits: Joint limits.
-        normals: (6, R) grasp rows ``F / g`` (transposed), or None.
-        row_max: (R,) each grasp row's largest ``F_k w / g_k`` at the grid
-            points (from the exactness check), or None.
+        grasp_ratio: (N, K) the grasp's largest ``F_k w / g_k`` at the
+            sub-points (and, for a set of objects, its torque ratio), from
+            the grasp rows' ``between``; None: nothing to look at.
         tolerance: Relative excess allowed.
 
     Returns:
         Sorted new s values (empty: nothing exceeded).
     """
-    checks: list[tuple[PathCoefficients, np.ndarray | None]] = []
-    if samples.torque is not None and limits.torque is not None:
-        checks.append((samples.torque, None))
-    if samples.wrench is not None and normals is not None and row_max is not None:
-        rows = np.flatnonzero(row_max > 1.0 - ROW_SCREEN)
-        if rows.size:
-            checks.append((samples.wrench, normals[:, rows]))
-    if not checks:
+    torque = (
+        samples.torque is not None
+        and limits.torque is not None
+        and samples.torque_set is None  # a set's torques come with its grasp
+    )
+    if not torque and grasp_ratio is None:
         return np.zeros(0)
-    x_sub = np.maximum(x[:-1, None] + segments.step * u[:, None], 0.0)
+    x_sub = subpoint_x(segments, x, u)
     ratio = np.zeros_like(x_sub)
-    for coefficients, rows_normals in checks:
-        a, b, c = (segments.interpolate(v) for v in coefficients)
+    if torque:
+        assert samples.torque is not None and limits.torque is not None
+        a, b, c = (segments.interpolate(v) for v in samples.torque)
         value = a * u[:, None, None] + b * x_sub[..., None] + c
-        if rows_normals is None:
-            ratio = np.maximum(ratio, np.max(np.abs(value) / limits.torque, axis=2))
-        else:
-            ratio = np.maximum(ratio, np.max(value @ rows_normals, axis=2))
+        ratio = np.maximum(ratio, np.max(np.abs(value) / limits.torque, axis=2))
+    if grasp_ratio is not None:
+        ratio = np.maximum(ratio, grasp_ratio)
     excess = ratio.max(axis=1) - 1.0
     split = np.flatnonzero(excess > tolerance)
     if not split.size:
@@ -306,6 +308,7 @@ def _lagrange(s: np.ndarray, knots: np.ndarray) -> tuple[np.ndarray, np.ndarray]
 
 
 __all__ = [
+    "INTERIOR_POINTS",
     "MAX_SPLIT",
     "MIDDLE",
     "ROW_SCREEN",
@@ -315,4 +318,5 @@ __all__ = [
     "interior_rows",
     "joint_cuts",
     "refinement_points",
+    "subpoint_x",
 ]

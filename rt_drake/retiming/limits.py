@@ -1,4 +1,11 @@
-"""What the retimer constrains: joint limits and the grasp of a held object."""
+"""What the retimer constrains: joint limits and the grasp of a held object.
+
+A grasp constraint holds one object (:meth:`GraspConstraint.for_cup`), or
+every object of a set: an uncertainty set around a nominal object with the
+worst friction and suction of the cup (:meth:`GraspConstraint.robust`,
+:mod:`rt_drake.inertial_set`, :mod:`rt_drake.contact.worst_cup`), or a finite
+list of objects (:meth:`GraspConstraint.for_objects`).
+"""
 
 from __future__ import annotations
 
@@ -8,9 +15,12 @@ import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 
 from rt_drake.contact import CupParameters, cached_wrench_polytope
+from rt_drake.contact.worst_cup import worst_cup_polytope
 from rt_drake.dynamics import HeldObject
+from rt_drake.inertial_set import ObjectSet, object_list, uncertain_object
 from rt_drake.retiming.errors import RetimeInputError
 from rt_drake.scenario import RobotConfig
+from rt_drake.uncertainty import ObjectUncertainty
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -90,16 +100,19 @@ class GraspConstraint:
     conventions). ``g > 0`` row-wise: the zero wrench is strictly inside.
 
     Attributes:
-        held: Inertia of the object in C.
+        held: Inertia of the object in C (the nominal one of a set).
         F: (R, 6) rows (unit norm from :mod:`rt_drake.contact`).
         g: (R,) offsets.
         cup: The cup the polytope belongs to (for messages), if known.
+        objects: The set of objects to hold (None: ``held`` alone); see
+            :attr:`is_robust`.
     """
 
     held: HeldObject
     F: np.ndarray
     g: np.ndarray
     cup: CupParameters | None = None
+    objects: ObjectSet | None = None
 
     def __post_init__(self) -> None:
         F = np.array(self.F, dtype=float)
@@ -125,11 +138,60 @@ class GraspConstraint:
         polytope = cached_wrench_polytope(cup)
         return cls(held=held, F=polytope.F, g=polytope.g, cup=cup)
 
+    @classmethod
+    def robust(
+        cls,
+        held: HeldObject,
+        uncertainty: ObjectUncertainty,
+        cup: CupParameters,
+        R_CO: np.ndarray | None = None,
+    ) -> GraspConstraint:
+        """Hold every object of ``uncertainty`` around ``held`` with every cup.
+
+        The wrench set is the one every cup of ``cup``'s friction and suction
+        range can exert (:func:`~rt_drake.contact.worst_cup_polytope`); the
+        objects are the outer set Q of :func:`~rt_drake.inertial_set.
+        uncertain_object`, which contains every admissible object. A
+        zero-width set of a known cup is exactly :meth:`for_cup`.
+
+        Args:
+            held: The nominal object in C.
+            uncertainty: Half-widths of mass, CoM (along the object's axes)
+                and principal moments.
+            cup: The cup, with optional ``friction_min``, ``suction_force_min``.
+            R_CO: (3, 3) the object's axes in C (default identity).
+        """
+        F, g = worst_cup_polytope(cup)
+        objects = uncertain_object(held, uncertainty, R_CO)
+        return cls(held=held, F=F, g=g, cup=cup, objects=objects)
+
+    @classmethod
+    def for_objects(
+        cls, objects: list[HeldObject], cup: CupParameters
+    ) -> GraspConstraint:
+        """Hold each object of a list (the first is the nominal one).
+
+        Retiming under it stacks every object's constraint: with a dense
+        sample of an uncertainty set, its duration bounds the robust optimum
+        from below.
+        """
+        F, g = worst_cup_polytope(cup)
+        return cls(held=objects[0], F=F, g=g, cup=cup, objects=object_list(objects))
+
+    @property
+    def is_robust(self) -> bool:
+        """Whether the constraint holds a set of objects, not one object."""
+        return self.objects is not None and not self.objects.is_single()
+
     def describe(self) -> str:
         """E.g. ``object 0.551 kg, suction 20 N``."""
         text = f"object {self.held.mass:.3g} kg"
+        if self.is_robust:
+            text = f"every object of the set around {text}"
         if self.cup is not None:
             text += f", suction {self.cup.suction_force:.3g} N"
+            if self.cup.suction_force_min is not None:
+                text += f" (at least {self.cup.suction_force_min:.3g} N)"
         return text
 
 

@@ -41,12 +41,9 @@ from toppra.constraint import LinearConstraint
 
 from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import PathCoefficients
-from rt_drake.retiming import rows as R
-from rt_drake.retiming.at_rest import check_grasp_at_rest, check_torque_at_rest
+from rt_drake.retiming.at_rest import check_torque_at_rest
 from rt_drake.retiming.between import (
-    MIDDLE,
     Segments,
-    grasp_midpoint_rows,
     interior_rows,
     joint_cuts,
     refinement_points,
@@ -56,6 +53,7 @@ from rt_drake.retiming.errors import (
     RetimeInputError,
     RetimeStatus,
 )
+from rt_drake.retiming.grasp_rows import ROW_TOLERANCE, ObjectRows
 from rt_drake.retiming.grid import initial_grid
 from rt_drake.retiming.limits import GraspConstraint, JointLimits
 from rt_drake.retiming.passes import (
@@ -65,15 +63,18 @@ from rt_drake.retiming.passes import (
     reachability,
 )
 from rt_drake.retiming.path import path_spline, toppra_path
+from rt_drake.retiming.robust_grasp import SetRows
 from rt_drake.retiming.samples import PathSamples, sample_path
 from rt_drake.retiming.samples import with_points as merge_samples
+from rt_drake.retiming.set_tables import parameter_columns
 from rt_drake.retiming.timed_path import TimedPath
 
-#: Grasp rows violated by more than this (N or N m) are added and re-solved.
-ROW_TOLERANCE = 1e-9
 #: Relative excess over a limit between grid points that makes the retimer
 #: add a grid point there (the contract, checked at 1 kHz, is 1e-3).
 BETWEEN_TOLERANCE = 5e-4
+#: A set of objects is held at the sub-points where it exceeds a limit by
+#: more than this (cuts, :meth:`.robust_grasp.SetRows.between`).
+SET_CUT_TOLERANCE = 0.0
 #: Rounds of grid refinement at most (each shrinks an overshoot about 4x).
 MAX_REFINEMENTS = 8
 #: Rounds of cuts for the joint limits inside segments, at most.
@@ -97,10 +98,13 @@ class RetimeResult:
             "torque", "grasp"), for those in force.
         status: Always ``RetimeStatus.OK`` (failures raise ``RetimeError``).
         grasp_rows: Rows of the grasp polytope the stage LPs used (of
-            ``len(grasp.g)``).
-        repairs: Times the exactness check added rows and solved again.
+            ``len(grasp.g)``); for a set of objects, (row, vertex) pairs.
+        repairs: Times the exactness check added rows and solved again (in
+            the last solve).
         refinements: Times points were added to the grid where the torque or
             grasp was exceeded between grid points.
+        grasp_objects: Objects whose rows the stage LPs used: 1 for one
+            object, the vertex objects of a set (0 without a grasp).
     """
 
     trajectory: TimedPath
@@ -114,6 +118,7 @@ class RetimeResult:
     grasp_rows: int
     repairs: int
     refinements: int = 0
+    grasp_objects: int = 1
 
 
 def retime(
@@ -167,43 +172,64 @@ def retime(
     context = context or plant.CreateDefaultContext()
     cup = cup or CupFrame.of(plant)
     knots = spline.x
-    held = grasp.held if grasp is not None else None
     torque = limits.torque is not None
+    family: ObjectRows | SetRows | None = None
+    held = columns = None
+    if grasp is not None and grasp.is_robust:
+        assert grasp.objects is not None
+        family = SetRows(grasp, limits)
+        columns = parameter_columns(grasp.objects)[0]
+    elif grasp is not None:
+        family = ObjectRows(grasp)
+        held = grasp.held
 
     def sample(s: np.ndarray) -> PathSamples:
         return sample_path(
-            plant, spline, s, limits.velocity, torque, held, context, cup
+            plant, spline, s, limits.velocity, torque, held, context, cup, columns
         )
+
+    def hold_at_rest(samples: PathSamples) -> None:
+        if family is None or not family.robust:
+            _check_torque(samples, limits)
+        if family is not None:
+            family.add(samples)
 
     samples = sample(initial_grid(gridpoints, knots))
     check_position_limits(plant, samples)
-    normals = None if grasp is None else R.normalised_rows(grasp.F, grasp.g)
-    rows = _checked_rows(samples, limits, grasp, normals)
+    hold_at_rest(samples)
     # The compiled passes do not need the path; toppra's TOPPRA class does.
     toppra_spline = toppra_path(path) if engine == "toppra" else None
-    refinements = cut_rounds = 0
+    refinements = cut_rounds = set_cut_rounds = 0
     cuts: StageRows | None = None
     segments = Segments(samples, knots)
     joints = _joint_constraints(samples, segments, limits)
     while True:
         fixed = joints if cuts is None else [*joints, cuts]
         profile = _solve_exact(
-            samples, segments, fixed, grasp, normals, rows, toppra_spline, sd_start,
-            sd_end, engine,
-        )  # fmt: skip
+            samples, segments, fixed, family, toppra_spline, sd_start, sd_end, engine
+        )
         x, u = profile.x, profile.u
+        between = None
+        if family is not None and profile.screen is not None:
+            tolerance = SET_CUT_TOLERANCE if set_cut_rounds < MAX_CUT_ROUNDS else None
+            between, cut = family.between(
+                samples, segments, x, u, profile.screen, tolerance
+            )
+            if cut:  # a set of objects: held at the sub-points, solve again
+                set_cut_rounds += 1
+                continue
         points = refinement_points(
-            segments, samples, x, u, limits, normals, profile.row_max,
-            BETWEEN_TOLERANCE,
-        )  # fmt: skip
+            segments, samples, x, u, limits, between, BETWEEN_TOLERANCE
+        )
         if points.size and refinements < MAX_REFINEMENTS:
             added = sample(points)
-            rows = np.union1d(rows, _checked_rows(added, limits, grasp, normals))
+            hold_at_rest(added)
             samples = merge_samples(samples, added)
             segments = Segments(samples, knots)
             joints = _joint_constraints(samples, segments, limits)
             refinements += 1
             cuts = None  # made for the old segments
+            set_cut_rounds = 0
             continue
         new_cuts = joint_cuts(segments, x, u, limits, BETWEEN_TOLERANCE)
         if new_cuts is None or cut_rounds == MAX_CUT_ROUNDS:
@@ -213,7 +239,20 @@ def retime(
     s = samples.s
     trajectory = TimedPath(spline, s, profile.x, start_time)
     u = (profile.x[1:] - profile.x[:-1]) / (2.0 * np.diff(s))
-    margins = _margins(limits, samples.dq, samples.ddq, profile.x, u, samples.torque)
+    robust = isinstance(family, SetRows)
+    margins = _margins(
+        limits,
+        samples.dq,
+        samples.ddq,
+        profile.x,
+        u,
+        None if robust else samples.torque,
+    )
+    if robust:
+        assert isinstance(family, SetRows)
+        torque_margin = family.torque_margin(samples, profile.x, u)
+        if torque_margin is not None:
+            margins["torque"] = torque_margin
     if profile.ratio is not None:
         margins["grasp"] = 1.0 - profile.ratio
     return RetimeResult(
@@ -225,9 +264,10 @@ def retime(
         margin=np.min(np.vstack(list(margins.values())), axis=0),
         margins=margins,
         status=RetimeStatus.OK,
-        grasp_rows=len(profile.rows),
-        repairs=profile.repairs,
+        grasp_rows=0 if family is None else family.row_count,
+        repairs=0 if family is None else family.repairs,
         refinements=refinements,
+        grasp_objects=0 if family is None else family.object_count,
     )
 
 
@@ -292,42 +332,29 @@ def _stacked(first: StageRows, second: StageRows) -> StageRows:
     )
 
 
-def _checked_rows(
-    samples: PathSamples,
-    limits: JointLimits,
-    grasp: GraspConstraint | None,
-    normals: np.ndarray | None,
-) -> np.ndarray:
-    """Check holding still at the samples; return the grasp rows they select."""
+def _check_torque(samples: PathSamples, limits: JointLimits) -> None:
+    """Check that the arm (and one held object) can be held at the samples."""
     if samples.torque is not None and limits.torque is not None:
         check_torque_at_rest(samples.s, samples.torque.c, limits.torque)
-    if grasp is None or samples.wrench is None or normals is None:
-        return np.zeros(0, dtype=int)
-    rest, rows = R.rest_and_candidates(*samples.wrench, normals, samples.x_cap)
-    check_grasp_at_rest(samples.s, rest, samples.wrench.c, grasp)
-    return rows
 
 
 class _Profile(NamedTuple):
-    """The passes' profile with the grasp rows it needed.
+    """The passes' profile, checked against every grasp row.
 
     Attributes:
         x: (N+1,) ``s'^2`` at the grid points; u: (N,) ``s''`` per segment.
-        rows: The grasp rows the stage LPs used; repairs: how often the
-            exactness check added rows.
         ratio: With a grasp, ``max_k F_k w / g_k`` (N+1,) at each grid point
             (the acceleration of the segment that starts there; the last
-            point takes the last one); else None.
-        row_max: With a grasp, ``max_i F_k w_i / g_k`` (R,) of every row over
-            the wrenches enforced; else None.
+            point takes the last one; for a set, the worst object's); else
+            None.
+        screen: With a grasp, what tells the grasp rows where to look between
+            grid points (:class:`~.grasp_rows.Check`); else None.
     """
 
     x: np.ndarray
     u: np.ndarray
-    rows: np.ndarray
-    repairs: int
     ratio: np.ndarray | None
-    row_max: np.ndarray | None
+    screen: np.ndarray | None
 
 
 def _joint_constraints(
@@ -348,7 +375,11 @@ def _joint_constraints(
         ),
         interior_rows(segments, limits),
     ]
-    if samples.torque is not None and limits.torque is not None:
+    if (
+        samples.torque is not None
+        and limits.torque is not None
+        and samples.torque_set is None  # a set's torques: with its grasp rows
+    ):
         constraints.append(
             AffineConstraint(*samples.torque, box, np.tile(limits.torque, 2))
         )
@@ -359,31 +390,27 @@ def _solve_exact(
     samples: PathSamples,
     segments: Segments,
     fixed: list[LinearConstraint],
-    grasp: GraspConstraint | None,
-    normals: np.ndarray | None,
-    rows: np.ndarray,
+    family: ObjectRows | SetRows | None,
     spline: toppra.SplineInterpolator | None,
     sd_start: float,
     sd_end: float,
     engine: str,
 ) -> _Profile:
-    """TOPP-RA with the selected grasp rows, adding missed rows until none.
+    """TOPP-RA with the grasp rows selected, adding missed rows until none.
 
-    ``fixed``: every other constraint (:func:`_joint_constraints`, cuts).
+    ``fixed``: every other constraint (:func:`_joint_constraints`, cuts);
+    ``family``: the grasp rows (:mod:`.grasp_rows`, :mod:`.robust_grasp`).
     """
     s = samples.s
-    repairs = 0
+    if family is not None:
+        family.begin()
     while True:
         constraints = list(fixed)
-        if grasp is not None and samples.wrench is not None:
-            F, g = grasp.F[rows], grasp.g[rows]
-            constraints.append(AffineConstraint(*samples.wrench, F, g))
-            constraints.append(grasp_midpoint_rows(segments, samples.wrench, F, g))
+        if family is not None:
+            constraints += family.constraints(samples, segments)
         solution = reachability(constraints, spline, s, sd_start, sd_end, engine)
         if solution.x is None or solution.u is None:
-            if grasp is not None and len(rows) < len(grasp.g):
-                rows = np.arange(len(grasp.g))  # confirm with every row
-                repairs += 1
+            if family is not None and family.widen():
                 continue
             where = float(s[solution.failed_stage or 0])
             raise PathNotControllableError(
@@ -392,54 +419,11 @@ def _solve_exact(
                 "limits",
                 s=where,
             )
-        if grasp is None or samples.wrench is None or normals is None:
-            return _Profile(solution.x, solution.u, rows, repairs, None, None)
-        enforced = _enforced_wrenches(samples.wrench, solution.x, solution.u, s)
-        middle = _midpoint_wrenches(segments, samples.wrench, solution.x, solution.u)
-        ratio, violated, row_max = R.wrench_ratios(
-            np.vstack([enforced, middle]),
-            normals,
-            grasp.g,
-            ROW_TOLERANCE,
-        )
-        missed = np.setdiff1d(violated, rows) if violated.size else violated
-        if not missed.size:
-            return _Profile(
-                solution.x, solution.u, rows, repairs, ratio[: len(s)], row_max
-            )
-        rows = np.union1d(rows, missed)
-        repairs += 1
-
-
-def _midpoint_wrenches(
-    segments: Segments, wrench: PathCoefficients, x: np.ndarray, u: np.ndarray
-) -> np.ndarray:
-    """The (N, 6) wrenches the midpoint rows enforce (interpolated coefficients).
-
-    Checked with the rest, so that a row missing there is added too: the
-    profile is then TOPP-RA's with every row at the grid points and midpoints.
-    """
-    a, b, c = (segments.interpolate(v, MIDDLE) for v in wrench)
-    x_middle = (x[:-1] + segments.ds * u)[:, None]
-    return a * u[:, None] + b * x_middle + c
-
-
-def _enforced_wrenches(
-    wrench: PathCoefficients, x: np.ndarray, u: np.ndarray, s: np.ndarray
-) -> np.ndarray:
-    """The (2N+1, 6) wrenches ``w = a u + b x + c`` the stage LPs enforced.
-
-    Stage i (i < N) enforced ``s_i`` at ``(u_i, x_i)`` (rows 0..N-1) and
-    ``s_{i+1}`` at ``(u_i, x_i + 2 ds_i u_i)`` (rows N+1..2N). Row N is the
-    end point at ``(u_{N-1}, x_N)``, for its margin.
-    """
-    a, b, c = wrench
-    ds = np.diff(s)
-    u_at = np.append(u, u[-1])[:, None]
-    x_next = (x[:-1] + 2.0 * ds * u)[:, None]
-    here = a * u_at + b * x[:, None] + c
-    following = a[1:] * u[:, None] + b[1:] * x_next + c[1:]
-    return np.vstack([here, following])
+        if family is None:
+            return _Profile(solution.x, solution.u, None, None)
+        check = family.check(samples, segments, solution.x, solution.u)
+        if not check.added:
+            return _Profile(solution.x, solution.u, check.ratio, check.screen)
 
 
 def _margins(

@@ -1,0 +1,194 @@
+"""The grasp rows of one held object: selection, stage rows, exactness check.
+
+:class:`ObjectRows` is what :func:`~rt_drake.retiming.retime` does with the
+grasp of a single object (see :mod:`.solve` for the argument): the rows that
+ray shooting selects at the grid points (:func:`.rows.rest_and_candidates`),
+enforced at the grid points and the segments' midpoints; after each solve
+every row is evaluated at every wrench the stage LPs enforced
+(:func:`.rows.wrench_ratios`) and the rows it missed are added.
+:class:`~.robust_grasp.SetRows` does the same for a set of objects.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from toppra.constraint import LinearConstraint
+
+from rt_drake.dynamics import PathCoefficients
+from rt_drake.retiming import rows as R
+from rt_drake.retiming.at_rest import check_grasp_at_rest
+from rt_drake.retiming.between import (
+    MIDDLE,
+    ROW_SCREEN,
+    Segments,
+    grasp_midpoint_rows,
+    subpoint_x,
+)
+from rt_drake.retiming.limits import GraspConstraint
+from rt_drake.retiming.passes import AffineConstraint
+from rt_drake.retiming.samples import PathSamples
+
+#: Grasp rows violated by more than this (N or N m) are added and re-solved.
+ROW_TOLERANCE = 1e-9
+
+
+class Check(NamedTuple):
+    """The exactness check of one solve.
+
+    Attributes:
+        added: Whether rows were added (solve again).
+        ratio: (G,) the largest ``F_k w / g_k`` at each grid point (the
+            acceleration of the segment that starts there).
+        screen: Where to look between grid points: for one object, each
+            row's largest ``F_k w / g_k`` over the wrenches enforced (R,);
+            for a set, each segment's largest ratio (N,).
+    """
+
+    added: bool
+    ratio: np.ndarray
+    screen: np.ndarray
+
+
+class ObjectRows:
+    """Grasp rows of one object (module docstring).
+
+    Attributes:
+        grasp: The constraint.
+        normals: (6, R) ``(F / g)ᵀ``.
+        selected: Rows chosen by ray shooting so far (every solve starts from
+            them).
+        rows: The rows of the current solve (``selected`` plus repairs).
+        repairs: Times the current solve added rows.
+    """
+
+    robust = False
+
+    def __init__(self, grasp: GraspConstraint) -> None:
+        self.grasp = grasp
+        self.normals = R.normalised_rows(grasp.F, grasp.g)
+        self.selected = np.zeros(0, dtype=int)
+        self.rows = self.selected
+        self.repairs = 0
+
+    def add(self, samples: PathSamples) -> None:
+        """Check holding at rest at new samples; select their rows."""
+        assert samples.wrench is not None
+        rest, rows = R.rest_and_candidates(*samples.wrench, self.normals, samples.x_cap)
+        check_grasp_at_rest(samples.s, rest, samples.wrench.c, self.grasp)
+        self.selected = (
+            rows if not self.selected.size else np.union1d(self.selected, rows)
+        )
+
+    def begin(self) -> None:
+        """Start a solve from the selection."""
+        self.rows, self.repairs = self.selected, 0
+
+    def constraints(
+        self, samples: PathSamples, segments: Segments
+    ) -> list[LinearConstraint]:
+        """The rows at the grid points and at the segments' midpoints."""
+        assert samples.wrench is not None
+        F, g = self.grasp.F[self.rows], self.grasp.g[self.rows]
+        return [
+            AffineConstraint(*samples.wrench, F, g),
+            grasp_midpoint_rows(segments, samples.wrench, F, g),
+        ]
+
+    def widen(self) -> bool:
+        """After an uncontrollable solve: confirm with every row (once)."""
+        if len(self.rows) < len(self.grasp.g):
+            self.rows = np.arange(len(self.grasp.g))
+            self.repairs += 1
+            return True
+        return False
+
+    def check(
+        self, samples: PathSamples, segments: Segments, x: np.ndarray, u: np.ndarray
+    ) -> Check:
+        """Every row at every enforced wrench; add the rows missed."""
+        assert samples.wrench is not None
+        s = samples.s
+        enforced = _enforced_wrenches(samples.wrench, x, u, s)
+        middle = _midpoint_wrenches(segments, samples.wrench, x, u)
+        ratio, violated, row_max = R.wrench_ratios(
+            np.vstack([enforced, middle]), self.normals, self.grasp.g, ROW_TOLERANCE
+        )
+        missed = np.setdiff1d(violated, self.rows) if violated.size else violated
+        if missed.size:
+            self.rows = np.union1d(self.rows, missed)
+            self.repairs += 1
+        return Check(bool(missed.size), ratio[: len(s)], row_max)
+
+    def between(
+        self,
+        samples: PathSamples,
+        segments: Segments,
+        x: np.ndarray,
+        u: np.ndarray,
+        screen: np.ndarray,
+        tolerance: float | None = None,
+    ) -> tuple[np.ndarray | None, bool]:
+        """The grasp ratio (N, K) at the sub-points, floored at 0.
+
+        Only the rows whose largest value at the enforced wrenches
+        (``screen``) comes within :data:`~.between.ROW_SCREEN` of their bound
+        (None if there is none). One object never adds cuts (the retimer adds
+        grid points instead): the second value is always False.
+        """
+        assert samples.wrench is not None
+        rows = np.flatnonzero(screen > 1.0 - ROW_SCREEN)
+        if not rows.size:
+            return None, False
+        x_sub = subpoint_x(segments, x, u)
+        a, b, c = (segments.interpolate(v) for v in samples.wrench)
+        value = a * u[:, None, None] + b * x_sub[..., None] + c
+        ratio = np.maximum(
+            np.zeros_like(x_sub), np.max(value @ self.normals[:, rows], axis=2)
+        )
+        return ratio, False
+
+    @property
+    def row_count(self) -> int:
+        """Rows the last solve used."""
+        return len(self.rows)
+
+    @property
+    def object_count(self) -> int:
+        """Objects whose rows the LPs used."""
+        return 1
+
+
+def _midpoint_wrenches(
+    segments: Segments, wrench: PathCoefficients, x: np.ndarray, u: np.ndarray
+) -> np.ndarray:
+    """The (N, 6) wrenches the midpoint rows enforce (interpolated coefficients).
+
+    Checked with the rest, so that a row missing there is added too: the
+    profile is then TOPP-RA's with every row at the grid points and midpoints.
+    """
+    a, b, c = (segments.interpolate(v, MIDDLE) for v in wrench)
+    x_middle = (x[:-1] + segments.ds * u)[:, None]
+    return a * u[:, None] + b * x_middle + c
+
+
+def _enforced_wrenches(
+    wrench: PathCoefficients, x: np.ndarray, u: np.ndarray, s: np.ndarray
+) -> np.ndarray:
+    """The (2N+1, 6) wrenches ``w = a u + b x + c`` the stage LPs enforced.
+
+    Stage i (i < N) enforced ``s_i`` at ``(u_i, x_i)`` (rows 0..N-1) and
+    ``s_{i+1}`` at ``(u_i, x_i + 2 ds_i u_i)`` (rows N+1..2N). Row N is the
+    end point at ``(u_{N-1}, x_N)``, for its margin.
+    """
+    a, b, c = wrench
+    ds = np.diff(s)
+    u_at = np.append(u, u[-1])[:, None]
+    x_next = (x[:-1] + 2.0 * ds * u)[:, None]
+    here = a * u_at + b * x[:, None] + c
+    following = a[1:] * u[:, None] + b[1:] * x_next + c[1:]
+    return np.vstack([here, following])
+
+
+__all__ = ["ROW_TOLERANCE", "Check", "ObjectRows"]
