@@ -172,10 +172,12 @@ class ObjectSet:
         nominal: The object the planner knows (for messages and the
             single-object route).
         boxes: The boxes; a single degenerate box is the nominal alone.
+        label: What the set is, for reports.
     """
 
     nominal: HeldObject
     boxes: tuple[ParameterBox, ...]
+    label: str = ""
 
     def is_single(self) -> bool:
         """Whether the set is one object (one box of zero width)."""
@@ -244,7 +246,7 @@ def uncertain_object(
         center=center,
         inertia=_rows(_merged(inertia)),
     )
-    return ObjectSet(nominal=held, boxes=(box,))
+    return ObjectSet(nominal=held, boxes=(box,), label=uncertainty.describe())
 
 
 def object_list(objects: list[HeldObject]) -> ObjectSet:
@@ -262,7 +264,7 @@ def object_list(objects: list[HeldObject]) -> ObjectSet:
         )
         for held in objects
     )
-    return ObjectSet(nominal=objects[0], boxes=boxes)
+    return ObjectSet(nominal=objects[0], boxes=boxes, label=f"{len(objects)} objects")
 
 
 def _matrix_direction(M: np.ndarray) -> np.ndarray:

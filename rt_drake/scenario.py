@@ -24,8 +24,9 @@ from pydrake.common.yaml import yaml_load_typed
 from pydrake.multibody.parsing import ModelDirective
 
 from rt_drake.contact import CupParameters
-from rt_drake.errors import ScenarioError
+from rt_drake.errors import InputError, ScenarioError
 from rt_drake.resources import models_dir
+from rt_drake.uncertainty import ObjectUncertainty
 
 
 @dataclasses.dataclass
@@ -59,6 +60,9 @@ class ObjectConfig:
         approach_offset: m; the approach pose is the grasp pose raised by it.
         grasp: X_OC, pose of the cup frame C in the object frame O while held
             (cup +z pointing into the object).
+        uncertainty: What is not known about its inertia (None: known
+            exactly): the MOVE is then retimed to hold every object of the
+            set (:class:`~rt_drake.uncertainty.ObjectUncertainty`).
     """
 
     name: str = ""
@@ -67,6 +71,7 @@ class ObjectConfig:
     goal: Transform = dataclasses.field(default_factory=Transform)
     approach_offset: float = 0.2
     grasp: Transform = dataclasses.field(default_factory=Transform)
+    uncertainty: ObjectUncertainty | None = None
 
 
 @dataclasses.dataclass
@@ -211,6 +216,20 @@ def _resolve_model(url: str) -> Path:
     return Path(url)
 
 
+def _check_uncertainty(path: Path, key: str, obj: ObjectConfig) -> None:
+    """The widths in range and the CoM box inside the object's box."""
+    from rt_drake.object_geometry import object_box  # parses the model: Drake
+
+    assert obj.uncertainty is not None
+    try:
+        obj.uncertainty.validate()
+        if any(obj.uncertainty.com):
+            p_OoScm_O, half_extents = object_box(obj)
+            obj.uncertainty.check_inside(p_OoScm_O, half_extents)
+    except InputError as error:
+        raise ScenarioError(f"{path}: key '{key}': {error}") from None
+
+
 def _check_semantics(path: Path, scenario: Scenario) -> None:
     names = [obj.name for obj in scenario.objects]
     for index, obj in enumerate(scenario.objects):
@@ -227,6 +246,8 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
             raise ScenarioError(
                 f"{where}.approach_offset': must be >= 0 m, got {obj.approach_offset}"
             )
+        if obj.uncertainty is not None:
+            _check_uncertainty(path, f"objects[{index}].uncertainty", obj)
     transport = scenario.random_transport
     if transport is not None:
         if transport.object not in names:

@@ -70,6 +70,14 @@ class ObjectUncertainty:
         """(3,) ``com`` as an array, m."""
         return np.asarray(self.com, dtype=float)
 
+    def describe(self) -> str:
+        """E.g. ``mass +-20 %, CoM +-(10, 10, 5) mm, inertia +-20 %``."""
+        com = ", ".join(f"{1e3 * v:.3g}" for v in self.com)
+        return (
+            f"mass +-{100 * self.mass:.3g} %, CoM +-({com}) mm, "
+            f"inertia +-{100 * self.inertia:.3g} %"
+        )
+
     def is_zero(self) -> bool:
         """Whether the set is the nominal object alone."""
         return self.mass == 0.0 and self.inertia == 0.0 and not any(self.com)

@@ -3,7 +3,10 @@
 Retimes the clamped C2 spline through joint-space waypoints (one row per
 waypoint, one column per joint, rad; ``#`` starts a comment) time-optimally
 under the scenario's joint limits and, unless ``--no-grasp-constraint``, the
-grasp stability of the named object held by the scenario's cup. Writes an
+grasp stability of the named object held by the scenario's cup: of every
+object of its uncertainty set (and every cup of the cup's friction and
+suction range) if the scenario gives one or the flags ``--mass-uncertainty``,
+``--com-uncertainty``, ``--inertia-uncertainty`` do. Writes an
 ``.npz`` from which anyone can re-check the result (the format of
 ``rt_drake.save_trajectory``: samples every 1 ms of t, q, qd, qdd and the
 cup's pose X_WC, the object's inertia, the grasp constraint F, g, the cup,
@@ -13,6 +16,7 @@ the path and its s'(s) profile).
 from __future__ import annotations
 
 import argparse
+import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -39,10 +43,75 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="joint limits only (the object is still recorded)",
     )
     parser.add_argument(
+        "--mass-uncertainty",
+        type=float,
+        metavar="R",
+        help="relative half-width of the object's mass (overrides the scenario's)",
+    )
+    parser.add_argument(
+        "--com-uncertainty",
+        type=_three_floats,
+        metavar="DX,DY,DZ",
+        help="half-widths (m) of its centre of mass along the object's axes",
+    )
+    parser.add_argument(
+        "--inertia-uncertainty",
+        type=float,
+        metavar="R",
+        help="relative half-width of each of its principal moments of inertia",
+    )
+    parser.add_argument(
         "--gridpoints", type=int, default=100, help="TOPP-RA grid points (default 100)"
     )
     parser.add_argument("--out", type=Path, required=True, help="output .npz file")
     parser.set_defaults(run=run)
+
+
+def _three_floats(text: str) -> list[float]:
+    """``DX,DY,DZ``: three numbers separated by commas."""
+    import argparse as _argparse
+
+    parts = text.split(",")
+    try:
+        values = [float(p) for p in parts]
+    except ValueError:
+        raise _argparse.ArgumentTypeError(
+            f"expected three numbers DX,DY,DZ (m), got {text!r}"
+        ) from None
+    if len(values) != 3:
+        raise _argparse.ArgumentTypeError(
+            f"expected three numbers DX,DY,DZ (m), got {text!r}"
+        )
+    return values
+
+
+def object_uncertainty(args: argparse.Namespace, obj):  # noqa: ANN001, ANN201
+    """The object's uncertainty set: the scenario's, with the flags' widths.
+
+    Returns None when neither gives one. Bad widths raise InputError naming
+    the key and value; the CoM box must stay inside the object.
+    """
+    from rt_drake.object_geometry import object_box
+    from rt_drake.uncertainty import ObjectUncertainty
+
+    flags = {
+        "mass": args.mass_uncertainty,
+        "com": args.com_uncertainty,
+        "inertia": args.inertia_uncertainty,
+    }
+    if obj.uncertainty is None and all(v is None for v in flags.values()):
+        return None
+    base = obj.uncertainty or ObjectUncertainty()
+    fields = {
+        "mass": base.mass,
+        "com": list(base.com),
+        "inertia": base.inertia,
+        **{k: v for k, v in flags.items() if v is not None},
+    }
+    uncertainty = ObjectUncertainty(**fields)
+    if any(uncertainty.com):
+        uncertainty.check_inside(*object_box(obj))
+    return uncertainty
 
 
 def read_waypoints(path: Path, joints: int) -> np.ndarray:
@@ -90,10 +159,11 @@ def run(args: argparse.Namespace) -> int:
     waypoints = read_waypoints(args.waypoints, plant.num_positions())
     _, knots = path_waypoints_and_knots(waypoints)
     held = HeldObject.from_scenario_object(obj)
+    obj = dataclasses.replace(obj, uncertainty=object_uncertainty(args, obj))
     grasp = (
         None
         if args.no_grasp_constraint
-        else GraspConstraint.for_cup(held, scenario.cup)
+        else GraspConstraint.for_scenario_object(obj, scenario.cup)
     )
     limits = JointLimits.from_plant(plant, scenario.robot)
     result = retime(plant, waypoints, limits, grasp, args.gridpoints)
@@ -103,6 +173,11 @@ def run(args: argparse.Namespace) -> int:
     args.out.parent.mkdir(parents=True, exist_ok=True)
     save_trajectory(args.out, saved)
     constraint = "joint limits only" if grasp is None else "grasp constraint"
+    if grasp is not None and grasp.is_robust:
+        constraint = (
+            f"robust grasp constraint: {grasp.guarantee()}; "
+            f"{result.grasp_rows} rows of {result.grasp_objects} vertex objects"
+        )
     # A binding constraint is at 0 to the LP's tolerance (about -1e-12): no "-0.000".
     margin = round(float(result.margin.min()), 3) + 0.0
     print(

@@ -106,6 +106,8 @@ def run(args: argparse.Namespace) -> int:
     replay = args.out / "replay.html"
     replay.write_text(meshcat.StaticHtml())
     print(table_markdown(report))
+    for entry in report["objects"]:
+        print(f"MOVE {entry['name']} holds {entry['guarantee']}")
     print(f"cycle total {report['total_s']:.3f} s; simulated in {wall_s:.1f} s wall")
     print(f"wrote {json_path}, {md_path}, {replay}")
     if args.meshcat:

@@ -3,6 +3,9 @@
 - :mod:`.rollout`: play one MOVE in the cycle's physics and measure slip.
 - :mod:`.transport`: Table I, random transports with and without the grasp
   constraint; :mod:`.transport_report` and :mod:`.plots` write its report.
+- :mod:`.robust_transport`: Table I with objects known only to an
+  uncertainty set, nominal and robust plans played with a true object;
+  :mod:`.robust_report` writes its report.
 - :mod:`.cycle_report`: Table II, the cycle's timing breakdown.
 """
 
@@ -10,6 +13,11 @@ from rt_drake.experiments.cycle_report import (
     cycle_report,
     table_markdown,
     write_report,
+)
+from rt_drake.experiments.robust_report import robust_table, write_robust_report
+from rt_drake.experiments.robust_transport import (
+    robust_trial,
+    run_robust_transport_experiment,
 )
 from rt_drake.experiments.rollout import (
     SLIP_ROTATION,
@@ -36,6 +44,9 @@ __all__ = [
     "Rollout",
     "critical_speed",
     "cycle_report",
+    "robust_table",
+    "robust_trial",
+    "run_robust_transport_experiment",
     "run_transport_experiment",
     "simulate_move",
     "summarize",
@@ -43,5 +54,6 @@ __all__ = [
     "transport_table",
     "transport_trial",
     "write_report",
+    "write_robust_report",
     "write_transport_report",
 ]

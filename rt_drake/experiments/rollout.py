@@ -15,6 +15,7 @@ import math
 from collections.abc import Sequence
 
 import numpy as np
+from pydrake.multibody.tree import SpatialInertia
 from pydrake.trajectories import PiecewisePolynomial, Trajectory
 
 from rt_drake.retiming import TimeScaled
@@ -87,11 +88,24 @@ def rollout_scenario(trial: Scenario, q_grasp: np.ndarray) -> Scenario:
 
 
 def simulate_move(
-    scenario: Scenario, q_grasp: np.ndarray, move: Trajectory, speed: float = 1.0
+    scenario: Scenario,
+    q_grasp: np.ndarray,
+    move: Trajectory,
+    speed: float = 1.0,
+    object_inertias: dict[str, SpatialInertia] | None = None,
 ) -> Rollout:
-    """Play ``move`` (``speed`` times faster) in the cycle's physics; measure slip."""
+    """Play ``move`` (``speed`` times faster) in the cycle's physics; measure slip.
+
+    ``object_inertias``: the objects' true inertias, if not their models'
+    (:func:`~rt_drake.simulation.run_cycle`).
+    """
     trajectory = move if speed == 1.0 else TimeScaled(move, speed)
-    result = run_cycle(scenario, _Replay(q_grasp, trajectory), max_sim_time=30.0)
+    result = run_cycle(
+        scenario,
+        _Replay(q_grasp, trajectory),
+        max_sim_time=30.0,
+        object_inertias=object_inertias,
+    )
     (record,) = result.records
     return Rollout(record.max_slip_translation, record.max_slip_rotation)
 

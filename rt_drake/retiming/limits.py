@@ -12,6 +12,8 @@ from __future__ import annotations
 import dataclasses
 
 import numpy as np
+from pydrake.common.schema import Transform
+from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 
 from rt_drake.contact import CupParameters, cached_wrench_polytope
@@ -19,7 +21,7 @@ from rt_drake.contact.worst_cup import worst_cup_polytope
 from rt_drake.dynamics import HeldObject
 from rt_drake.inertial_set import ObjectSet, object_list, uncertain_object
 from rt_drake.retiming.errors import RetimeInputError
-from rt_drake.scenario import RobotConfig
+from rt_drake.scenario import ObjectConfig, RobotConfig
 from rt_drake.uncertainty import ObjectUncertainty
 
 
@@ -106,6 +108,8 @@ class GraspConstraint:
         cup: The cup the polytope belongs to (for messages), if known.
         objects: The set of objects to hold (None: ``held`` alone); see
             :attr:`is_robust`.
+        worst_cup: Whether F, g hold for every cup of ``cup``'s friction and
+            suction range (:func:`~rt_drake.contact.worst_cup_polytope`).
     """
 
     held: HeldObject
@@ -113,6 +117,7 @@ class GraspConstraint:
     g: np.ndarray
     cup: CupParameters | None = None
     objects: ObjectSet | None = None
+    worst_cup: bool = False
 
     def __post_init__(self) -> None:
         F = np.array(self.F, dtype=float)
@@ -163,7 +168,14 @@ class GraspConstraint:
         """
         F, g = worst_cup_polytope(cup)
         objects = uncertain_object(held, uncertainty, R_CO)
-        return cls(held=held, F=F, g=g, cup=cup, objects=objects)
+        return cls(
+            held=held,
+            F=F,
+            g=g,
+            cup=cup,
+            objects=objects,
+            worst_cup=cup.is_uncertain(),
+        )
 
     @classmethod
     def for_objects(
@@ -176,12 +188,57 @@ class GraspConstraint:
         from below.
         """
         F, g = worst_cup_polytope(cup)
-        return cls(held=objects[0], F=F, g=g, cup=cup, objects=object_list(objects))
+        return cls(
+            held=objects[0],
+            F=F,
+            g=g,
+            cup=cup,
+            objects=object_list(objects),
+            worst_cup=cup.is_uncertain(),
+        )
+
+    @classmethod
+    def for_scenario_object(
+        cls,
+        obj: ObjectConfig,
+        cup: CupParameters,
+        X_OC: RigidTransform | None = None,
+        robust: bool = True,
+    ) -> GraspConstraint:
+        """The grasp of a scenario object held at ``X_OC`` (default its grasp).
+
+        Robust (:meth:`robust`) when ``robust`` and the object has an
+        uncertainty set or the cup a friction or suction range; else
+        :meth:`for_cup` (the nominal object and cup).
+        """
+        if X_OC is not None:
+            obj = dataclasses.replace(obj, grasp=Transform(X_OC))
+        held = HeldObject.from_scenario_object(obj)
+        uncertainty = obj.uncertainty or ObjectUncertainty()
+        if robust and (not uncertainty.is_zero() or cup.is_uncertain()):
+            X_CO = obj.grasp.GetDeterministicValue().inverse()
+            return cls.robust(held, uncertainty, cup, X_CO.rotation().matrix())
+        return cls.for_cup(held, cup)
 
     @property
     def is_robust(self) -> bool:
         """Whether the constraint holds a set of objects, not one object."""
         return self.objects is not None and not self.objects.is_single()
+
+    def guarantee(self) -> str:
+        """What a trajectory retimed under this constraint holds, in words."""
+        if self.is_robust:
+            assert self.objects is not None
+            what = f"every object of the set ({self.objects.label})"
+        else:
+            what = f"the nominal object ({self.held.mass:.3g} kg)"
+        if self.worst_cup and self.cup is not None:
+            cup = self.cup.worst_case()
+            what += (
+                f", friction down to {cup.friction:.3g} and suction down to "
+                f"{cup.suction_force:.3g} N"
+            )
+        return what
 
     def describe(self) -> str:
         """E.g. ``object 0.551 kg, suction 20 N``."""

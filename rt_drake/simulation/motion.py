@@ -49,6 +49,8 @@ class Motion:
         retimed: the retiming of that path (its trajectory is ``trajectory``
             unless the source plays it faster).
         grasp: the grasp constraint it was retimed under, if any.
+        guarantee: for a MOVE, what holds the object, in words (the nominal
+            object, every object of its uncertainty set, or none); "" else.
     """
 
     trajectory: Trajectory
@@ -56,6 +58,7 @@ class Motion:
     planned: PlannedPath | None = None
     retimed: RetimeResult | None = None
     grasp: GraspConstraint | None = None
+    guarantee: str = ""
 
     @property
     def duration(self) -> float:

@@ -4,9 +4,13 @@
 :class:`~rt_drake.simulation.motion.MotionSource`: each phase's path comes
 from the :class:`~rt_drake.planning.CyclePlanner` and is retimed by
 :func:`~rt_drake.retiming.retime` under the joint limits, MOVE also under the
-grasp constraint ``F w <= g`` of the held object (unless disabled). Both are
-timed on the wall clock, as in the paper's Table II. The grasp polytope is
-computed once, offline, per cup (as the paper did), not in the cycle.
+grasp constraint ``F w <= g`` of the held object (unless disabled). An object
+with an uncertainty set (scenario key ``uncertainty``), or a cup with a
+friction or suction range, is held robustly: every object of the set, with
+every cup of the range (:meth:`~rt_drake.retiming.GraspConstraint.robust`).
+Both are timed on the wall clock, as in the paper's Table II. The grasp
+polytopes are computed once, offline, per cup (as the paper did), not in the
+cycle.
 """
 
 from __future__ import annotations
@@ -20,10 +24,11 @@ from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
 from pydrake.trajectories import Trajectory
 
-from rt_drake.contact import cached_wrench_polytope
+from rt_drake.contact import cached_wrench_polytope, worst_cup_polytope
 from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import HeldObject, path_wrench_coefficients
 from rt_drake.errors import InputError
+from rt_drake.inertial_set import uncertain_object
 from rt_drake.planning import CyclePlanner, GeometricPath, PlannedPath
 from rt_drake.plant import make_arm_plant
 from rt_drake.retiming import (
@@ -36,6 +41,10 @@ from rt_drake.retiming import (
 )
 from rt_drake.scenario import ObjectConfig, Scenario
 from rt_drake.simulation.motion import Motion, PlanTimes
+from rt_drake.uncertainty import ObjectUncertainty
+
+#: The guarantee of a MOVE retimed without the grasp constraint.
+NO_GUARANTEE = "none: joint limits only"
 
 
 def held_object(obj: ObjectConfig, X_OC: RigidTransform) -> HeldObject:
@@ -55,6 +64,9 @@ class OnlineMotions:
             (1: as retimed; > 1 leaves the constraint, for slip experiments).
         gridpoints: TOPP-RA grid size.
         seed: planner seed.
+        robust: hold every object of an object's uncertainty set (and every
+            cup of the cup's range) when the scenario gives one; False: the
+            nominal object and cup only.
     """
 
     def __init__(
@@ -64,6 +76,7 @@ class OnlineMotions:
         move_speed: float = 1.0,
         gridpoints: int = 100,
         seed: int = 0,
+        robust: bool = True,
     ) -> None:
         if not move_speed > 0:
             raise InputError(f"speed factor must be > 0, got {move_speed}")
@@ -77,6 +90,12 @@ class OnlineMotions:
         self._gridpoints = gridpoints
         self._polytope = (
             cached_wrench_polytope(scenario.cup) if grasp_constraint else None
+        )
+        self._robust = robust
+        self._worst_cup = (
+            worst_cup_polytope(scenario.cup)
+            if grasp_constraint and robust and scenario.cup.is_uncertain()
+            else None
         )
         warm_up()  # compile the retimer here, not in the first timed MOVE
 
@@ -97,6 +116,33 @@ class OnlineMotions:
             gridpoints=self._gridpoints,
             context=self._context,
             cup=self._cup,
+        )
+
+    def grasp_for(
+        self, obj: ObjectConfig, X_OC: RigidTransform, robust: bool | None = None
+    ) -> GraspConstraint:
+        """The grasp constraint of ``obj`` held at ``X_OC``.
+
+        Robust (every object of its uncertainty set, every cup of the cup's
+        range) when ``robust`` (default: as constructed) and the scenario
+        gives a set or a range; else the nominal object and cup.
+        """
+        robust = self._robust if robust is None else robust
+        cup = self._scenario.cup
+        held = held_object(obj, X_OC)
+        uncertainty = obj.uncertainty or ObjectUncertainty()
+        if not robust or (uncertainty.is_zero() and not cup.is_uncertain()):
+            polytope = self._polytope or cached_wrench_polytope(cup)
+            return GraspConstraint(held=held, F=polytope.F, g=polytope.g, cup=cup)
+        F, g = self._worst_cup or worst_cup_polytope(cup)
+        R_CO = X_OC.inverse().rotation().matrix()
+        return GraspConstraint(
+            held=held,
+            F=F,
+            g=g,
+            cup=cup,
+            objects=uncertain_object(held, uncertainty, R_CO),
+            worst_cup=cup.is_uncertain(),
         )
 
     def velocity_bound(self, path: GeometricPath, s: np.ndarray) -> np.ndarray:
@@ -174,25 +220,25 @@ class OnlineMotions:
         planned_s = time.perf_counter() - start
         grasp = None
         if carrying and self._polytope is not None:
-            grasp = GraspConstraint(
-                held=held_object(obj, planned.X_OC),
-                F=self._polytope.F,
-                g=self._polytope.g,
-                cup=self._scenario.cup,
-            )
+            grasp = self.grasp_for(obj, planned.X_OC)
         start = time.perf_counter()
         result = self.retime_path(planned.path, grasp)
         retime_s = time.perf_counter() - start
         trajectory: Trajectory = result.trajectory
+        guarantee = ""
+        if carrying:
+            guarantee = NO_GUARANTEE if grasp is None else grasp.guarantee()
         if carrying and self._speed != 1.0:
             trajectory = TimeScaled(trajectory, self._speed)
+            guarantee = f"none: played {self._speed:g}x faster than retimed"
         return Motion(
             trajectory,
             PlanTimes(plan_s=planned_s, retime_s=retime_s),
             planned=planned,
             retimed=result,
             grasp=grasp,
+            guarantee=guarantee,
         )
 
 
-__all__ = ["OnlineMotions", "held_object"]
+__all__ = ["NO_GUARANTEE", "OnlineMotions", "held_object"]

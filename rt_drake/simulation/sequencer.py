@@ -38,6 +38,7 @@ class ObjectRecord:
             largest displacement relative to the cup during MOVE.
         placement_translation, placement_rotation: m and rad, the object's
             distance from its goal pose during DETACH.
+        guarantee: What the MOVE's retiming held (``Motion.guarantee``).
     """
 
     name: str
@@ -47,6 +48,7 @@ class ObjectRecord:
     max_slip_rotation: float = 0.0
     placement_translation: float = float("nan")
     placement_rotation: float = float("nan")
+    guarantee: str = ""
 
 
 @dataclasses.dataclass
@@ -229,7 +231,11 @@ class Sequencer(LeafSystem):
             motion = self._motions.move(q_hold, obj, state.reach)
         record = state.records[state.object_index]
         plan_times = {**record.plan_times, phase: motion.times}
-        state = _with_record(state, dataclasses.replace(record, plan_times=plan_times))
+        guarantee = motion.guarantee if phase is Phase.MOVE else record.guarantee
+        state = _with_record(
+            state,
+            dataclasses.replace(record, plan_times=plan_times, guarantee=guarantee),
+        )
         return dataclasses.replace(
             state,
             phase=phase,
