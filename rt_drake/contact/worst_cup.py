@@ -12,14 +12,15 @@ the intersection of their wrench sets. With R(mu) the set of rim wrenches
   friction at the same normal force), so the intersection over mu is
   ``W_c(friction_min, .)``: the smaller set, exactly.
 - Suction only translates W_c along the cup axis (force z). More suction
-  helps when the object pulls away from the cup but hurts when it is pushed
-  into it (the rim's normal forces are bounded by f_max): W_c is NOT
-  monotone in the suction. The intersection over ``P A`` in ``[P_lo,
-  P_hi]`` of ``{w : F (w + (P A - P_lo) e_fz) <= g}`` (F, g the exact set
-  at ``P_lo``) has the same rows with the offsets
-  ``g_k - (P_hi - P_lo) max(F_k,fz, 0)``: rows pushing against the cup
-  (``F_k,fz > 0``) tighten, the others keep the weakest suction's offset.
-  Exact, and no new rows.
+  helps when the object pulls away from the cup (f_z < 0) but hurts when the
+  cup must push it away (f_z > 0, e.g. moving it down faster than it falls
+  with the cup pointing down: the rim's normal forces, bounded by f_max,
+  must overcome the suction): W_c is NOT monotone in the suction. The
+  intersection over ``P A`` in ``[P_lo, P_hi]`` of ``{w : F (w + (P A -
+  P_lo) e_fz) <= g}`` (F, g the exact set at ``P_lo``) has the same rows
+  with the offsets ``g_k - (P_hi - P_lo) max(F_k,fz, 0)``: rows bounding
+  +z force (``F_k,fz > 0``) tighten, the others keep the weakest suction's
+  offset. Exact, and no new rows.
 """
 
 from __future__ import annotations

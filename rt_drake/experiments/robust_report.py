@@ -47,7 +47,9 @@ def summary_lines(results: dict[str, Any]) -> list[str]:
     price, tight = s["price"], s["tightness"]
     return [
         f"- true objects held: robust plans {s['success_robust']} of {s['n']}, "
-        f"nominal plans {s['success_nominal']} of {s['n']}",
+        f"nominal plans {s['success_nominal']} of {s['n']}; largest slip of the "
+        f"robust plans {s['slip_robust_max_mm']:.2f} mm, "
+        f"{s['slip_robust_max_deg']:.2f} deg",
         f"- price of robustness (robust / nominal duration): median "
         f"{price['median']:.2f}x, range {price['min']:.2f}-{price['max']:.2f}x",
         f"- tightness (robust / dense-sample lower bound): median "
@@ -64,22 +66,32 @@ def write_robust_report(results: dict[str, Any], out_dir: Path) -> list[Path]:
     written = [out_dir / "results.json"]
     written[0].write_text(json.dumps(results, indent=1) + "\n")
     written.append(plot_robustness(results["trials"], out_dir / "robustness.png"))
-    u = results["uncertainty"]
+    u, cup = results["uncertainty"], results["cup"]
     com = ", ".join(f"{1e3 * v:.3g}" for v in u["com"])
+    ranges = [
+        f"{name} down to {cup[key]:g}{unit}"
+        for name, key, unit in (
+            ("friction", "friction_min", ""),
+            ("suction", "suction_force_min", " N"),
+        )
+        if cup[key] is not None
+    ]
     text = [
         f"# Robust transports of the {results['object']} "
         f"(seed {results['seed']}, n = {results['summary']['n']})",
         "",
-        f"Uncertainty set: mass +-{100 * u['mass']:.3g} %, CoM +-({com}) mm, "
-        f"principal moments +-{100 * u['inertia']:.3g} %; cup "
-        f"{results['cup']}. Each path is retimed for the nominal object and for",
-        "every object of the set, and both are played in the cycle's physics",
-        "with the same true object, drawn from the set's hardest corners",
-        "(heaviest, largest moments, centre of mass at a random corner), on",
-        "the worst cup of the range. ok: it moved less than 5 mm and 3 deg on",
-        "the cup. Price: robust / nominal duration. Tightness: robust duration",
-        "/ the duration that holds a dense sample of the set (128 corners and",
-        "200 random objects), a lower bound of the robust optimum.",
+        f"Uncertainty set: mass +-{100 * u['mass']:.3g} %, CoM +-({com}) mm,",
+        f"principal moments +-{100 * u['inertia']:.3g} %; cup: "
+        + (", ".join(ranges) if ranges else "friction and suction known")
+        + ".",
+        "Each path is retimed for the nominal object and for every object of",
+        "the set, and both are played in the cycle's physics with the same true",
+        "object, drawn from the set's hardest corners (heaviest, largest",
+        "moments, centre of mass at a random corner), on the worst cup of the",
+        "range. ok: it moved less than 5 mm and 3 deg on the cup. Price: robust",
+        "/ nominal duration. Tightness: robust duration / the duration that",
+        "holds a dense sample of the set (128 corners and 200 random objects),",
+        "a lower bound of the robust optimum.",
         "",
         robust_table(results),
         *summary_lines(results),

@@ -223,6 +223,12 @@ def summarize_robust(trials: list[dict[str, Any]]) -> dict[str, Any]:
         "tightness": stats("tightness"),
         "retime_nominal_s": stats("retime_nominal_s"),
         "retime_robust_s": stats("retime_robust_s"),
+        "slip_robust_max_mm": max(
+            t["slip_robust"]["max_translation_mm"] for t in trials
+        ),
+        "slip_robust_max_deg": max(
+            t["slip_robust"]["max_rotation_deg"] for t in trials
+        ),
     }
 
 

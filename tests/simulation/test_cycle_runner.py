@@ -41,6 +41,7 @@ def test_report_has_every_field(constrained_run):
         sum(entry["plan_s"].values()) + sum(entry["exec_s"].values())
     )
     assert entry["exec_s"]["attach"] == pytest.approx(1.0, abs=0.01)
+    assert entry["guarantee"] == "the nominal object (0.551 kg)"
 
 
 def test_object_lands_on_its_goal_without_slipping(constrained_run):
@@ -75,6 +76,16 @@ def test_without_the_grasp_constraint_the_object_slips(tmp_path):
     )
     (entry,) = json.loads((tmp_path / "report.json").read_text())["objects"]
     assert entry["slip"]["max_translation_mm"] > 5.0
+    assert entry["guarantee"] == "none: joint limits only"
+
+
+def test_an_uncertain_object_is_moved_robustly_and_the_report_says_so(tmp_path, capsys):
+    assert main(["run", "random_transport_uncertain", "--out", str(tmp_path)]) == 0
+    (entry,) = json.loads((tmp_path / "report.json").read_text())["objects"]
+    assert entry["guarantee"].startswith("every object of the set (mass +-20 %")
+    assert entry["slip"]["max_translation_mm"] < 2.0
+    assert "every object of the set" in (tmp_path / "report.md").read_text()
+    assert "MOVE notebook holds every object of the set" in capsys.readouterr().out
 
 
 @pytest.mark.parametrize(
