@@ -35,8 +35,6 @@ grid point; the error names the worst object.
 
 from __future__ import annotations
 
-from typing import NamedTuple
-
 import numpy as np
 from toppra.constraint import LinearConstraint
 
@@ -44,12 +42,13 @@ from rt_drake.dynamics import HeldObject, PathCoefficients
 from rt_drake.inertial_set import held_object
 from rt_drake.retiming import rows as R
 from rt_drake.retiming.at_rest import set_grasp_at_rest, set_torque_at_rest
-from rt_drake.retiming.between import ROW_SCREEN, SUBPOINTS, Segments, subpoint_x
+from rt_drake.retiming.between import ROW_SCREEN, Segments, subpoint_x
 from rt_drake.retiming.grasp_rows import ROW_TOLERANCE, Check
 from rt_drake.retiming.limits import GraspConstraint, JointLimits
 from rt_drake.retiming.passes import StageRows
 from rt_drake.retiming.robust_rows import vertex_weights, worst_rows
 from rt_drake.retiming.samples import PathSamples
+from rt_drake.retiming.set_pairs import Cut, Pairs, cut_rows
 from rt_drake.retiming.set_tables import (
     Points,
     Tables,
@@ -60,58 +59,12 @@ from rt_drake.retiming.set_tables import (
     with_subpoints,
 )
 
+#: Rows ranked at each point by the exactness check (their worst pairs added
+#: where violated).
+RANKS = 1
 #: Rows whose screening bound at the enforced points exceeds this are
 #: looked at between grid points.
 SCREEN = 1.0 - ROW_SCREEN
-
-
-class _Cut(NamedTuple):
-    """A pair held at one sub-point of one segment (a cut of that stage's LP).
-
-    Attributes:
-        segments: The grid it was made for.
-        stage: The segment i.
-        subpoint: k, the sub-point theta = (k + 1) / (K + 1).
-        row: The grasp row (or torque row, if ``torque``).
-        vertex: The vertex key.
-        torque: Whether it is a torque row.
-    """
-
-    segments: Segments
-    stage: int
-    subpoint: int
-    row: int
-    vertex: int
-    torque: bool
-
-
-class _Pairs:
-    """(row, vertex) pairs in the order found, with their stage-row values.
-
-    ``values[name]`` keeps ``n_k . (a, b, c)_v`` of the pairs found so far on
-    the grid they were computed for, so a new round computes only the new
-    pairs'.
-    """
-
-    def __init__(self) -> None:
-        self.rows: list[int] = []
-        self.vertices: list[int] = []
-        self._known: set[tuple[int, int]] = set()
-        self.values: dict[str, tuple[Segments, list[np.ndarray]]] = {}
-
-    def add(self, rows: np.ndarray, vertices: np.ndarray) -> bool:
-        """Add the new pairs; whether there was one."""
-        added = False
-        for pair in zip(rows.tolist(), vertices.tolist(), strict=True):
-            if pair not in self._known:
-                self._known.add(pair)
-                self.rows.append(pair[0])
-                self.vertices.append(pair[1])
-                added = True
-        return added
-
-    def __len__(self) -> int:
-        return len(self.rows)
 
 
 class SetRows:
@@ -133,10 +86,10 @@ class SetRows:
         self.columns, self.layout = parameter_columns(grasp.objects)
         self.normals = R.normalised_rows(grasp.F, grasp.g)
         self.repairs = 0
-        self._grasp = _Pairs()
-        self._torque = _Pairs()
+        self._grasp = Pairs()
+        self._torque = Pairs()
         self._tables: Tables | None = None
-        self._cuts: list[_Cut] = []
+        self._cuts: list[Cut] = []
         self._torque_normals: np.ndarray | None = None
         self._torque_directions: np.ndarray | None = None
         if limits.torque is not None:
@@ -182,19 +135,19 @@ class SetRows:
         out: list[LinearConstraint] = []
         if len(self._grasp):
             rows = np.array(self._grasp.rows)
-            grid, interior = self._pair_values(
-                "wrench", tables.wrench, self._grasp, self.grasp.F, inside, segments
+            grid, interior = self._grasp.stage_values(
+                "wrench", tables.wrench, self.grasp.F, self.layout, inside, segments
             )
             out.append(pair_stage_rows(grid, self.grasp.g[rows], segments, interior))
         if len(self._torque):
             assert tables.torque is not None and self.limits.torque is not None
             assert self._torque_directions is not None
             rows = np.array(self._torque.rows)
-            grid, _ = self._pair_values(
+            grid, _ = self._torque.stage_values(
                 "torque",
                 tables.torque,
-                self._torque,
                 self._torque_directions,
+                self.layout,
                 None,
                 segments,
             )
@@ -214,17 +167,20 @@ class SetRows:
     ) -> Check:
         """Every row's worst vertex at every enforced point; add the violated.
 
-        Only the worst (row, vertex) of each point where it is violated is
-        added (the others usually follow it out of the way). The screen is
-        an upper bound of each grasp row's largest value at those points.
+        At each point, the worst (row, vertex) of the :data:`RANKS` rows of
+        largest worst value are added where violated (the others usually
+        follow them out of the way). The screen is an upper bound of each
+        grasp row's largest value at the enforced points.
         """
         tables = self._tables_for(samples, segments)
         count = len(samples.s)
         points = enforced_points(segments, x, u, inside=True)
-        worst = worst_rows(tables.wrench, *points, self.normals, self.layout)
-        excess = self.grasp.g[worst.row] * (worst.ratio - 1.0)
-        violated = excess > ROW_TOLERANCE
-        added = self._grasp.add(worst.row[violated], worst.key[violated])
+        worst = worst_rows(tables.wrench, *points, self.normals, self.layout, RANKS)
+        assert worst.ranked is not None
+        values, rows, keys = worst.ranked
+        excess = self.grasp.g[rows] * (values - 1.0)
+        violated = (rows >= 0) & (excess > ROW_TOLERANCE)
+        added = self._grasp.add(rows[violated], keys[violated])
         if self._torque_normals is not None:
             assert tables.torque is not None
             grid = enforced_points(segments, x, u, inside=False)
@@ -292,7 +248,7 @@ class SetRows:
             for worst, index, is_torque in found:
                 for point in np.flatnonzero(exceeded & (worst.ratio > 1.0)).tolist():
                     stage, subpoint = divmod(point, x_sub.shape[1])
-                    cut = _Cut(
+                    cut = Cut(
                         segments,
                         stage,
                         subpoint,
@@ -352,6 +308,21 @@ class SetRows:
             self._tables = Tables(segments, wrench, torque)
         return self._tables
 
+    def _cut_rows(
+        self, cuts: list[Cut], tables: Tables, segments: Segments
+    ) -> StageRows:
+        """The cuts as stage rows (:func:`.set_pairs.cut_rows`)."""
+        table = {False: tables.wrench}
+        directions = {False: self.grasp.F}
+        bounds = {False: self.grasp.g}
+        if tables.torque is not None:
+            assert self._torque_directions is not None
+            assert self.limits.torque is not None
+            table[True] = tables.torque
+            directions[True] = self._torque_directions
+            bounds[True] = np.tile(self.limits.torque, 2)
+        return cut_rows(cuts, table, directions, bounds, self.layout, segments)
+
     def _torque_table(
         self, arm: PathCoefficients | None, own: PathCoefficients | None
     ) -> PathCoefficients:
@@ -364,79 +335,6 @@ class SetRows:
             table[:, centres, :] += part[:, None, :]
             out.append(table)
         return PathCoefficients(*out)
-
-    def _cut_rows(
-        self, cuts: list[_Cut], tables: Tables, segments: Segments
-    ) -> StageRows:
-        """Each cut as a row of its own stage (inactive in the others)."""
-        count = len(segments.s)
-        stages = len(segments.ds)
-        A = np.zeros((stages, len(cuts)))
-        B = np.zeros((stages, len(cuts)))
-        C = np.full((stages, len(cuts)), -1.0)
-        weights = vertex_weights(
-            self.layout, np.array([cut.vertex for cut in cuts]), len(self.columns)
-        )
-        for j, cut in enumerate(cuts):
-            place = count + SUBPOINTS * cut.stage + cut.subpoint
-            if cut.torque:
-                assert tables.torque is not None and self.limits.torque is not None
-                assert self._torque_directions is not None
-                table = tables.torque
-                direction = self._torque_directions[cut.row]
-                bound = np.tile(self.limits.torque, 2)[cut.row]
-            else:
-                table = tables.wrench
-                direction = self.grasp.F[cut.row]
-                bound = self.grasp.g[cut.row]
-            a, b, c = (float(weights[j] @ v[place] @ direction) for v in table)
-            A[cut.stage, j] = a + segments.step[cut.stage, cut.subpoint] * b
-            B[cut.stage, j] = b
-            C[cut.stage, j] = c - bound
-        return StageRows(A, B, C)
-
-    def _pair_values(
-        self,
-        name: str,
-        table: PathCoefficients,
-        pairs: _Pairs,
-        directions: np.ndarray,
-        inside: np.ndarray | None,
-        segments: Segments,
-    ) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...] | None]:
-        """``n_k . (a, b, c)_v`` of every pair (row k, vertex v), (places, p).
-
-        At the grid points and at the ``inside`` places of the tables; cached
-        per name and grid, so that only new pairs are computed.
-        """
-        count = len(segments.s)
-        places = np.arange(count)
-        if inside is not None:
-            places = np.concatenate([places, inside.reshape(-1)])
-        cached = pairs.values.get(name)
-        if cached is None or cached[0] is not segments:
-            cached = (segments, [np.zeros((len(places), 0))] * 3)
-        done = cached[1][0].shape[1]
-        if done < len(pairs):
-            rows = np.array(pairs.rows[done:])
-            vertices, which = np.unique(pairs.vertices[done:], return_inverse=True)
-            weights = vertex_weights(self.layout, vertices, len(self.columns))
-            new = []
-            for part in table:
-                chosen = part[places]  # (M, P, D)
-                places_count, columns, dims = chosen.shape
-                flat = chosen.transpose(1, 0, 2).reshape(columns, -1)
-                per_vertex = (weights @ flat).reshape(len(vertices), places_count, dims)
-                new.append(np.einsum("pmd,pd->mp", per_vertex[which], directions[rows]))
-            cached = (
-                segments,
-                [np.hstack([old, v]) for old, v in zip(cached[1], new, strict=True)],
-            )
-            pairs.values[name] = cached
-        values = cached[1]
-        grid = tuple(v[:count] for v in values)
-        interior = None if inside is None else tuple(v[count:] for v in values)
-        return grid, interior
 
 
 __all__ = ["SCREEN", "SetRows"]

@@ -60,12 +60,16 @@ class Worst(NamedTuple):
         key: (M,) its worst vertex (:func:`key`).
         bound_max: (R,) an upper bound of each row's largest value over the
             points (the screening bound).
+        ranked: The values, rows and keys (each (M,
+            ranks)) of the rows of largest worst value at each point, in
+            decreasing order (row -1 where there are fewer rows).
     """
 
     ratio: np.ndarray
     row: np.ndarray
     key: np.ndarray
     bound_max: np.ndarray
+    ranked: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
 
 def key(box: int, heavy: bool, com: np.ndarray, inertia: np.ndarray) -> int:
@@ -107,6 +111,7 @@ def worst_rows(
     x: np.ndarray,
     normals: np.ndarray,
     layout: Layout,
+    ranks: int = 1,
 ) -> Worst:
     """The largest row value over the set at M points (module docstring).
 
@@ -120,11 +125,12 @@ def worst_rows(
         x: (M,) s'^2 at each point.
         normals: (D, R) rows ``n_k`` (the constraint is ``n_k v <= 1``).
         layout: The boxes.
+        ranks: How many rows to rank at each point (the worst first).
     """
     count = len(index)
-    ratio = np.empty(count)
-    row = np.empty(count, dtype=np.int64)
-    vertex = np.empty(count, dtype=np.int64)
+    ratio = np.empty((count, ranks))
+    row = np.empty((count, ranks), dtype=np.int64)
+    vertex = np.empty((count, ranks), dtype=np.int64)
     bound_max = np.full(normals.shape[1], -np.inf)
     _worst_rows(
         *(kernel_array(v) for v in table),
@@ -139,7 +145,8 @@ def worst_rows(
         vertex,
         bound_max,
     )
-    return Worst(ratio, row, vertex, bound_max)
+    ranked = (ratio, row, vertex)
+    return Worst(ratio[:, 0], row[:, 0], vertex[:, 0], bound_max, ranked)
 
 
 @njit(cache=True)
@@ -253,16 +260,29 @@ def _bounds(V, n, absn, columns, masses, centre, spread, tmp, bound):
 
 
 @njit(cache=True)
+def _insert(values, rows, keys, value, row, key):
+    """Put (value, row, key) into the descending top list if it belongs."""
+    slots = values.shape[0]
+    if value <= values[slots - 1]:
+        return
+    j = slots - 1
+    while j > 0 and values[j - 1] < value:
+        values[j], rows[j], keys[j] = values[j - 1], rows[j - 1], keys[j - 1]
+        j -= 1
+    values[j], rows[j], keys[j] = value, row, key
+
+
+@njit(cache=True)
 def _worst_rows(
     a, b, c, index, u, x, n, columns, masses, ratio, row, vertex, bound_max
 ):
     dims, rows = n.shape
+    slots = ratio.shape[1]
     absn = np.abs(n)
     centre = np.empty(dims)
     spread = np.empty(dims)
     tmp = np.empty(rows)
     bound = np.empty(rows)
-    candidates = np.empty(rows, dtype=np.int64)
     V = np.empty(a.shape[1:])
     for i in range(index.shape[0]):
         place, u_i, x_i = index[i], u[i], x[i]
@@ -270,32 +290,25 @@ def _worst_rows(
             for d in range(dims):
                 V[j, d] = a[place, j, d] * u_i + b[place, j, d] * x_i + c[place, j, d]
         _bounds(V, n, absn, columns, masses, centre, spread, tmp, bound)
+        values, best_rows, keys = ratio[i], row[i], vertex[i]
+        values[:] = -np.inf
+        best_rows[:] = -1
+        keys[:] = 0
         # The row of largest bound first; then only rows whose bound exceeds
-        # the best exact value can be worse.
-        top, top_bound, count = 0, -np.inf, 0
+        # the slots-th best exact value so far can enter the ranking.
+        top, top_bound = 0, -np.inf
         for k in range(rows):
             value = bound[k]
             if value > bound_max[k]:
                 bound_max[k] = value
             if value > top_bound:
                 top, top_bound = k, value
-        best, best_key = _exact(n, top, V, columns, masses)
-        best_row = top
-        if top_bound > best:
-            for k in range(rows):
-                if bound[k] > best and k != top:
-                    candidates[count] = k
-                    count += 1
-            for j in range(count):
-                k = candidates[j]
-                if bound[k] <= best:
-                    continue
-                value, vertex_key = _exact(n, k, V, columns, masses)
-                if value > best:
-                    best, best_key, best_row = value, vertex_key, k
-        ratio[i] = best
-        row[i] = best_row
-        vertex[i] = best_key
+        value, key = _exact(n, top, V, columns, masses)
+        _insert(values, best_rows, keys, value, top, key)
+        for k in range(rows):
+            if bound[k] > values[slots - 1] and k != top:
+                value, key = _exact(n, k, V, columns, masses)
+                _insert(values, best_rows, keys, value, k, key)
 
 
 __all__ = [

@@ -72,9 +72,6 @@ from rt_drake.retiming.timed_path import TimedPath
 #: Relative excess over a limit between grid points that makes the retimer
 #: add a grid point there (the contract, checked at 1 kHz, is 1e-3).
 BETWEEN_TOLERANCE = 5e-4
-#: A set of objects is held at the sub-points where it exceeds a limit by
-#: more than this (cuts, :meth:`.robust_grasp.SetRows.between`).
-SET_CUT_TOLERANCE = 0.0
 #: Rounds of grid refinement at most (each shrinks an overshoot about 4x).
 MAX_REFINEMENTS = 8
 #: Rounds of cuts for the joint limits inside segments, at most.
@@ -105,6 +102,8 @@ class RetimeResult:
             grasp was exceeded between grid points.
         grasp_objects: Objects whose rows the stage LPs used: 1 for one
             object, the vertex objects of a set (0 without a grasp).
+        cuts: Rounds of cuts between grid points (joint limits; for a set of
+            objects also its grasp and torques).
     """
 
     trajectory: TimedPath
@@ -119,6 +118,7 @@ class RetimeResult:
     repairs: int
     refinements: int = 0
     grasp_objects: int = 1
+    cuts: int = 0
 
 
 def retime(
@@ -199,7 +199,7 @@ def retime(
     hold_at_rest(samples)
     # The compiled passes do not need the path; toppra's TOPPRA class does.
     toppra_spline = toppra_path(path) if engine == "toppra" else None
-    refinements = cut_rounds = set_cut_rounds = 0
+    refinements = cut_rounds = set_cut_rounds = total_cuts = 0
     cuts: StageRows | None = None
     segments = Segments(samples, knots)
     joints = _joint_constraints(samples, segments, limits)
@@ -211,12 +211,13 @@ def retime(
         x, u = profile.x, profile.u
         between = None
         if family is not None and profile.screen is not None:
-            tolerance = SET_CUT_TOLERANCE if set_cut_rounds < MAX_CUT_ROUNDS else None
+            tolerance = BETWEEN_TOLERANCE if set_cut_rounds < MAX_CUT_ROUNDS else None
             between, cut = family.between(
                 samples, segments, x, u, profile.screen, tolerance
             )
             if cut:  # a set of objects: held at the sub-points, solve again
                 set_cut_rounds += 1
+                total_cuts += 1
                 continue
         points = refinement_points(
             segments, samples, x, u, limits, between, BETWEEN_TOLERANCE
@@ -236,6 +237,7 @@ def retime(
             break
         cuts = new_cuts if cuts is None else _stacked(cuts, new_cuts)
         cut_rounds += 1
+        total_cuts += 1
     s = samples.s
     trajectory = TimedPath(spline, s, profile.x, start_time)
     u = (profile.x[1:] - profile.x[:-1]) / (2.0 * np.diff(s))
@@ -268,6 +270,7 @@ def retime(
         repairs=0 if family is None else family.repairs,
         refinements=refinements,
         grasp_objects=0 if family is None else family.object_count,
+        cuts=total_cuts,
     )
 
 

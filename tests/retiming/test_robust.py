@@ -193,3 +193,18 @@ def test_robust_torque_limits_hold_for_every_sampled_object(
             GraspConstraint.for_cup(held, scenario.cup),
         )
         assert check.excess["torque"].value <= DEFAULT_TOLERANCE
+
+
+def test_between_grid_points_a_set_is_held_by_cuts(
+    plant, limits, scenario, notebook, samples, paths, monkeypatch
+):
+    """With a tiny tolerance between grid points, cuts hold the worst object."""
+    from rt_drake.retiming import solve
+
+    monkeypatch.setattr(solve, "BETWEEN_TOLERANCE", 1e-5)
+    robust = GraspConstraint.for_scenario_object(notebook, scenario.cup)
+    result = retime(plant, paths[2], limits, robust)
+    assert result.cuts >= 1 and result.refinements == 0
+    polytope = cached_wrench_polytope(scenario.cup)
+    excess = _excess(plant, result.trajectory, samples, [(polytope.F, polytope.g)])
+    assert excess <= DEFAULT_TOLERANCE

@@ -67,3 +67,25 @@ def test_vertex_keys_round_trip():
     weights = vertex_weights(layout, np.array([k]), 6)[0]
     np.testing.assert_array_equal(weights, [2.0, 2.0, -2.0, 1.0, -1.0, 1.0])
     assert len(set(itertools.islice(_vertices(layout, 6), 100))) == 2**5
+
+
+def test_ranked_rows_are_the_largest_worst_values():
+    rng = np.random.default_rng(1)
+    layout, columns = _random_set(rng, boxes=1)
+    table = tuple(rng.normal(size=(3, columns, 6)) for _ in range(3))
+    index = rng.integers(0, 3, 20)
+    u, x = rng.normal(size=20), rng.uniform(0, 3, 20)
+    normals = rng.normal(size=(6, 30))
+    ranked = worst_rows(table, index, u, x, normals, layout, ranks=3).ranked
+    assert ranked is not None
+    keys = np.array(list(_vertices(layout, columns)))
+    weights = vertex_weights(layout, keys, columns)
+    vectors = (
+        table[0][index] * u[:, None, None]
+        + table[1][index] * x[:, None, None]
+        + table[2][index]
+    )
+    per_row = np.einsum("vp,mpd,dr->mvr", weights, vectors, normals).max(axis=1)
+    expected = -np.sort(-per_row, axis=1)[:, :3]
+    np.testing.assert_allclose(ranked[0], expected, rtol=1e-12)
+    np.testing.assert_array_equal(np.argsort(-per_row, axis=1)[:, :3], ranked[1])
