@@ -16,6 +16,7 @@ import numpy as np
 
 from rt_drake.retiming import rows
 from rt_drake.retiming.passes import AffineConstraint, XBound, reachability
+from rt_drake.retiming.robust_rows import Layout, worst_rows
 
 
 @functools.cache
@@ -32,6 +33,12 @@ def warm_up() -> None:
     wrench = np.full((3, 6), 0.1)
     rows.rest_and_candidates(wrench, wrench, 0.0 * wrench, normals, grid + 1.0)
     rows.wrench_ratios(wrench, normals, np.ones(12), 1e-9)
+    # A set of objects (robust grasp): one box of four columns, and one for
+    # torques (another row dimension).
+    layout = Layout(np.array([[0, 1, 2, 2, 3, 4]]), np.array([[1.0, 2.0]]))
+    for dims in (6, 5):
+        table = tuple(np.full((3, 4, dims), 0.1) for _ in range(3))
+        worst_rows(table, np.arange(3), grid, grid, np.ones((dims, 2)), layout)
 
 
 __all__ = ["warm_up"]
