@@ -41,9 +41,9 @@ class Check(NamedTuple):
         added: Whether rows were added (solve again).
         ratio: (G,) the largest ``F_k w / g_k`` at each grid point (the
             acceleration of the segment that starts there).
-        screen: Where to look between grid points: for one object, each
-            row's largest ``F_k w / g_k`` over the wrenches enforced (R,);
-            for a set, each segment's largest ratio (N,).
+        screen: Where to look between grid points: each row's largest
+            ``F_k w / g_k`` over the wrenches enforced (R,) (for a set of
+            objects, an upper bound of its worst object's).
     """
 
     added: bool

@@ -23,9 +23,19 @@ for the full constraint and, as TOPP-RA's pointwise-maximal profile of a
 relaxation of it, the very profile TOPP-RA computes with all rows (the tests
 compare with toppra on all rows).
 
+A grasp of a set of objects (:meth:`GraspConstraint.robust`: every object of
+an uncertainty set, every cup of a friction and suction range) takes the same
+steps with (row, vertex) pairs of the set's outer parameter set instead of
+rows (:mod:`.robust_grasp`): the exactness check evaluates every row's worst
+vertex in closed form, and between grid points the worst object is held by
+cuts at the sub-points (then grid points, as for one object). A set of zero
+width is one object and takes the single-object code (:mod:`.grasp_rows`),
+unchanged.
+
 The robot must be able to stop anywhere on the path: the object must be held
 by gravity's wrench alone (``F c(s) < g``) and the arm's gravity torques must
-be within limits at every grid point, else a typed error says where.
+be within limits at every grid point, else a typed error says where (for a
+set, naming its worst object).
 """
 
 from __future__ import annotations
