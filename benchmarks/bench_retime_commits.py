@@ -2,12 +2,15 @@
 
 Run: ``python benchmarks/bench_retime_commits.py BEFORE AFTER [--rounds 4]``,
 e.g. ``e2cd504 HEAD``. Each commit is checked out into a temporary git
-worktree; one process per commit retimes the 5 MOVE paths of
-``bench_retime.py`` (notebook, exact grasp polytope, 100 grid points), 10
-repeats each, and the two alternate ``--rounds`` times so that both see the
-same machine load. Printed: median and p10/p90 wall time per retime, the
-durations, and each trajectory's worst excess over its limits sampled at
-1 kHz (``check_trajectory``). ``OPENBLAS_NUM_THREADS=1``.
+worktree, where one process retimes the 5 MOVE paths of ``bench_retime.py``
+(notebook, exact grasp polytope, 100 grid points) on request: the two
+processes alternate retime by retime (``--repeats`` times every path), so
+both see the same machine load. Printed: median and p10/p90 wall time per
+retime, the median CPU time of the retiming thread (``time.thread_time``:
+on a shared machine it counts only the time the retime ran, not the time
+it waited for a core), the durations, and each trajectory's worst excess
+over its limits sampled at 1 kHz (``check_trajectory``).
+``OPENBLAS_NUM_THREADS=1``.
 """
 
 from __future__ import annotations
@@ -60,12 +63,12 @@ for path in paths:
     out["durations"].append(result.duration)
     check = check_trajectory(plant, result.trajectory, limits, grasp)
     out["excess"].append({k: e.value for k, e in check.excess.items()})
-for _ in range(int(sys.argv[1])):
-    for path in paths:
-        start = time.perf_counter()
-        retime(plant, path, limits, grasp, 100, context=context, **options)
-        out["times"].append(time.perf_counter() - start)
-print(json.dumps(out))
+print(json.dumps(out), flush=True)
+for line in sys.stdin:  # one retime per request: the path's index
+    path = paths[int(line)]
+    start, cpu = time.perf_counter(), time.thread_time()
+    retime(plant, path, limits, grasp, 100, context=context, **options)
+    print(time.perf_counter() - start, time.thread_time() - cpu, flush=True)
 """
 
 
@@ -73,8 +76,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("before")
     parser.add_argument("after")
-    parser.add_argument("--rounds", type=int, default=4)
-    parser.add_argument("--repeats", type=int, default=10)
+    parser.add_argument("--repeats", type=int, default=40)
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as scratch:
         trees = {}
@@ -87,7 +89,7 @@ def main() -> None:
             )
             trees[label] = tree
         try:
-            results = _run(trees, args.rounds, args.repeats)
+            results = _run(trees, args.repeats)
         finally:
             for tree in trees.values():
                 subprocess.run(
@@ -107,10 +109,11 @@ def main() -> None:
         r = results[label]
         times = sorted(1e3 * t for t in r["times"])
         deciles = statistics.quantiles(times, n=10)
+        cpu = statistics.median(1e3 * t for t in r["cpu"])
         print(
-            f"{label} ({ref}): median {statistics.median(times):.2f} ms "
-            f"(p10 {deciles[0]:.2f}, p90 {deciles[-1]:.2f}); durations "
-            + " ".join(f"{d:.4f}" for d in r["durations"])
+            f"{label} ({ref}): median {statistics.median(times):.2f} ms wall "
+            f"(p10 {deciles[0]:.2f}, p90 {deciles[-1]:.2f}), {cpu:.2f} ms CPU; "
+            "durations " + " ".join(f"{d:.4f}" for d in r["durations"])
         )
         worst = {k: max(e[k] for e in r["excess"]) for k in r["excess"][0]}
         print(
@@ -119,32 +122,49 @@ def main() -> None:
         )
     before, after = results["before"], results["after"]
     ratio = statistics.median(after["times"]) / statistics.median(before["times"])
+    cpu_ratio = statistics.median(after["cpu"]) / statistics.median(before["cpu"])
     durations = [
         a / b for a, b in zip(after["durations"], before["durations"], strict=True)
     ]
     print(
-        f"after / before: time {ratio:.3f}; durations "
+        f"after / before: wall {ratio:.3f}, CPU {cpu_ratio:.3f}; durations "
         + " ".join(f"{d:.4f}" for d in durations)
     )
 
 
-def _run(trees: dict[str, Path], rounds: int, repeats: int) -> dict:
-    results: dict[str, dict] = {label: {"times": []} for label in trees}
-    for _ in range(rounds):
-        for label, tree in trees.items():
-            env = {**os.environ, "PYTHONPATH": str(tree), "OPENBLAS_NUM_THREADS": "1"}
-            out = subprocess.run(
-                [sys.executable, "-c", WORKER, str(repeats)],
-                capture_output=True,
-                text=True,
-                env=env,
-                cwd=tree,
-                check=True,
-            )
-            data = json.loads(out.stdout.strip().splitlines()[-1])
-            results[label]["times"] += data["times"]
-            results[label]["durations"] = data["durations"]
-            results[label]["excess"] = data["excess"]
+def _run(trees: dict[str, Path], repeats: int) -> dict:
+    workers = {}
+    for label, tree in trees.items():
+        env = {**os.environ, "PYTHONPATH": str(tree), "OPENBLAS_NUM_THREADS": "1"}
+        workers[label] = subprocess.Popen(
+            [sys.executable, "-c", WORKER],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            text=True,
+            env=env,
+            cwd=tree,
+        )
+    results = {}
+    for label, worker in workers.items():
+        assert worker.stdout is not None
+        results[label] = {
+            **json.loads(worker.stdout.readline()),
+            "times": [],
+            "cpu": [],
+        }
+    for _ in range(repeats):
+        for index in range(5):
+            for label, worker in workers.items():
+                assert worker.stdin is not None and worker.stdout is not None
+                worker.stdin.write(f"{index}\n")
+                worker.stdin.flush()
+                wall, cpu = map(float, worker.stdout.readline().split())
+                results[label]["times"].append(wall)
+                results[label]["cpu"].append(cpu)
+    for worker in workers.values():
+        assert worker.stdin is not None
+        worker.stdin.close()
+        worker.wait()
     return results
 
 

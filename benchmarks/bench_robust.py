@@ -8,7 +8,7 @@ inertia: 0.2}`` (with the scenario's cup, and with the cup's friction and
 suction known only down to 0.25 and 18 N), then:
 
 - sound: at 1 kHz, the wrench of each object of a dense sample (the set's
-  128 corners and ``--random`` uniform draws) by another route than the
+  corners and ``--random`` uniform draws, bodies only) by another route than the
   retimer's (Drake's body accelerations and Newton-Euler,
   :func:`rt_drake.newton_euler.reference_object_wrenches`), against the
   exact wrench sets of the cups at both ends of the suction range: the

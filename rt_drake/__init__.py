@@ -23,8 +23,8 @@ scenario -> plant -> (IK, planner) -> path -> (dynamics + grasp constraint)
 - simulation: ``MakeStation``, ``run_cycle``, ``OnlineMotions``;
 - scenarios: ``load_scenario``, ``Scenario``; phases: ``Phase``;
 - errors: ``RtDrakeError`` (the base of every error rt_drake raises on
-  purpose), ``InputError``, ``ScenarioError``, ``RetimeError``,
-  ``PlanningError``.
+  purpose), ``InputError``, ``ScenarioError``, ``TooLargeError``,
+  ``RetimeError``, ``PlanningError``.
 """
 
 from __future__ import annotations
@@ -46,7 +46,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
     from rt_drake.contact.worst_cup import worst_cup_polytope
     from rt_drake.cup_frame import CupFrame
     from rt_drake.dynamics import HeldObject, object_wrench
-    from rt_drake.errors import InputError, RtDrakeError, ScenarioError
+    from rt_drake.errors import InputError, RtDrakeError, ScenarioError, TooLargeError
     from rt_drake.object_samples import ObjectInertia
     from rt_drake.phase import Phase
     from rt_drake.planning import (
@@ -91,6 +91,7 @@ _LAZY: dict[str, str] = {
     "InputError": "rt_drake.errors",
     "RtDrakeError": "rt_drake.errors",
     "ScenarioError": "rt_drake.errors",
+    "TooLargeError": "rt_drake.errors",
     "Phase": "rt_drake.phase",
     "CyclePlanner": "rt_drake.planning",
     "GeometricPath": "rt_drake.planning",
@@ -139,6 +140,7 @@ __all__ = [
     "SavedTrajectory",
     "Scenario",
     "ScenarioError",
+    "TooLargeError",
     "TrajectoryCheck",
     "WrenchPolytope",
     "cached_wrench_polytope",

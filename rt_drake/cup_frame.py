@@ -56,7 +56,8 @@ class CupFrame:
 
         Args:
             plant: Finalized plant.
-            frame: The frame, or its name (default ``"suction_cup"``).
+            frame: The frame, or its name, possibly scoped
+                (``"tool_b::suction_cup"``; default ``"suction_cup"``).
             model_instance: The model instance holding a frame given by name
                 (needed when several instances have a frame of that name).
 
@@ -67,7 +68,7 @@ class CupFrame:
         cup_frame: Frame = (
             frame
             if isinstance(frame, Frame)
-            else _frame_by_name(plant, frame or DEFAULT_CUP_FRAME, model_instance)
+            else find_frame(plant, frame or DEFAULT_CUP_FRAME, model_instance)
         )
         context = plant.CreateDefaultContext()
         welded = {body.index() for body in plant.GetBodiesWeldedTo(plant.world_body())}
@@ -107,9 +108,24 @@ def vertical_base_joint(
     return None
 
 
-def _frame_by_name(
-    plant: MultibodyPlant, name: str, model_instance: ModelInstanceIndex | None
+def find_frame(
+    plant: MultibodyPlant,
+    name: str,
+    model_instance: ModelInstanceIndex | None = None,
 ) -> Frame:
+    """The frame ``name`` of ``plant`` (finalized or not).
+
+    ``name`` may be scoped, ``"instance::frame"``; unscoped, it must be the
+    name of one frame in the whole plant unless ``model_instance`` is given.
+
+    Raises:
+        InputError: no such frame or model instance, or an ambiguous name.
+    """
+    if "::" in name and model_instance is None:
+        instance_name, name = name.rsplit("::", 1)
+        if not plant.HasModelInstanceNamed(instance_name):
+            raise InputError(f"the plant has no model instance '{instance_name}'")
+        model_instance = plant.GetModelInstanceByName(instance_name)
     if model_instance is not None:
         if not plant.HasFrameNamed(name, model_instance):
             instance = plant.GetModelInstanceName(model_instance)
@@ -133,4 +149,4 @@ def _frame_by_name(
     return plant.GetFrameByName(name)
 
 
-__all__ = ["DEFAULT_CUP_FRAME", "CupFrame", "vertical_base_joint"]
+__all__ = ["DEFAULT_CUP_FRAME", "CupFrame", "find_frame", "vertical_base_joint"]

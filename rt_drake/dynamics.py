@@ -53,6 +53,7 @@ from pydrake.systems.framework import Context
 
 from rt_drake.cup_frame import CupFrame, vertical_base_joint
 from rt_drake.errors import InputError
+from rt_drake.object_model import check_inertia, model_file, read_model_inertia
 from rt_drake.plant import OBJECT_BODY, make_parser
 from rt_drake.scenario import ObjectConfig
 
@@ -73,18 +74,12 @@ class HeldObject:
 
     def __post_init__(self) -> None:
         p = np.asarray(self.p_CoScm_C, dtype=float).reshape(-1)
-        inertia = np.asarray(self.I_Scm_C, dtype=float)
-        if not (np.isfinite(self.mass) and self.mass > 0):
-            raise InputError(f"object mass must be > 0 kg, got {self.mass!r}")
         if p.shape != (3,) or not np.all(np.isfinite(p)):
             raise InputError(f"p_CoScm_C must be 3 finite numbers, got {p!r}")
-        if inertia.shape != (3, 3) or not np.all(np.isfinite(inertia)):
-            raise InputError(f"I_Scm_C must be a finite 3x3 matrix, got {inertia!r}")
-        if not np.allclose(inertia, inertia.T, atol=1e-12):
-            raise InputError("I_Scm_C must be symmetric")
+        check_inertia(self.mass, self.I_Scm_C, "object")
         object.__setattr__(self, "mass", float(self.mass))
         object.__setattr__(self, "p_CoScm_C", p)
-        object.__setattr__(self, "I_Scm_C", inertia)
+        object.__setattr__(self, "I_Scm_C", np.asarray(self.I_Scm_C, dtype=float))
 
     @classmethod
     def from_scenario_object(
@@ -93,16 +88,30 @@ class HeldObject:
         """Inertia of a scenario object held with its grasp ``X_OC``.
 
         Takes the spatial inertia of body ``body`` of model instance
-        ``obj.name`` from ``plant`` if it has one, else parses ``obj.model``,
-        and moves it from the object frame O to C through ``obj.grasp``.
+        ``obj.name`` from ``plant`` if it has one, else parses ``obj.model``
+        (after checking the inertia written in the file: the parser would
+        take a missing or invalid mass as 1 kg), and moves it from the object
+        frame O to C through ``obj.grasp``.
+
+        Raises:
+            InputError: the model file is not a valid object model (see
+                :func:`rt_drake.object_model.read_model_inertia`), or the
+                inertia is not physically valid.
         """
         if plant is not None and plant.HasModelInstanceNamed(obj.name):
             instance = plant.GetModelInstanceByName(obj.name)
             body = plant.GetBodyByName(OBJECT_BODY, instance)
         else:
+            read_model_inertia(model_file(obj.model))  # Drake's defaults hide errors
             scratch = MultibodyPlant(0.0)
-            (instance,) = make_parser(scratch).AddModels(url=_as_url(obj.model))
-            body = scratch.GetBodyByName(OBJECT_BODY, instance)
+            try:
+                (instance,) = make_parser(scratch).AddModels(url=_as_url(obj.model))
+                body = scratch.GetBodyByName(OBJECT_BODY, instance)
+            except RuntimeError as error:
+                message = " ".join(str(error).split())[:300]
+                raise InputError(
+                    f"object model '{obj.model}' cannot be loaded: {message}"
+                ) from None
         M_OOo_O = body.default_spatial_inertia()
         mass = M_OOo_O.get_mass()
         p_OoScm_O = M_OOo_O.get_com()

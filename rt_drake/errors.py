@@ -3,7 +3,10 @@
 Every error rt_drake raises on purpose derives from :class:`RtDrakeError`:
 
 - :class:`InputError` (also a ``ValueError``): an argument, file or value
-  is malformed or out of range; :class:`ScenarioError` for scenario files.
+  is malformed or out of range; :class:`ScenarioError` for scenario files;
+  :class:`TooLargeError` when the work an input asks for is estimated, up
+  front, to need more memory than the limit (the message gives the estimate,
+  the limit and the largest accepted value).
 - ``RetimeError`` (:mod:`rt_drake.retiming`), ``PlanningError``
   (:mod:`rt_drake.planning`), ``CycleTimeout`` (:mod:`rt_drake.simulation`):
   the input is well formed but the task cannot be done (the object slips
@@ -31,4 +34,12 @@ class ScenarioError(InputError):
     """
 
 
-__all__ = ["InputError", "RtDrakeError", "ScenarioError"]
+class TooLargeError(InputError):
+    """The input asks for more memory (or time) than the limit allows.
+
+    Raised before the work starts, from an estimate; the message gives the
+    estimate, the limit and the largest accepted value.
+    """
+
+
+__all__ = ["InputError", "RtDrakeError", "ScenarioError", "TooLargeError"]

@@ -78,6 +78,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+from typing import NamedTuple
 
 import numpy as np
 
@@ -128,6 +129,24 @@ def held_object(pi: np.ndarray) -> HeldObject:
     xx, yy, zz, xy, xz, yz = pi[4:]
     I_Co = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
     return HeldObject(mass=m, p_CoScm_C=p, I_Scm_C=I_Co - m * parallel_axes(p))
+
+
+class SetVertex(NamedTuple):
+    """A point of a parameter set: mass (kg) and centre of mass (m, in C).
+
+    A vertex of the outer set Q need not be a body (its inertia may break
+    the triangle inequality, or not be positive definite): the retimer's
+    at-rest errors name it by its mass and centre of mass only.
+    """
+
+    mass: float
+    p_CoScm_C: np.ndarray
+
+
+def set_vertex(pi: np.ndarray) -> SetVertex:
+    """The mass and centre of mass ``h / m`` of parameters pi."""
+    pi = np.asarray(pi, dtype=float)
+    return SetVertex(float(pi[0]), pi[1:4] / pi[0])
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -294,10 +313,12 @@ __all__ = [
     "PARAMETER_NAMES",
     "ObjectSet",
     "ParameterBox",
+    "SetVertex",
     "held_object",
     "inertial_parameters",
     "object_list",
     "parallel_axes",
+    "set_vertex",
     "sym_entries",
     "uncertain_object",
 ]

@@ -25,15 +25,16 @@ from pydrake.multibody.plant import CoulombFriction, MultibodyPlant
 from pydrake.multibody.tree import Frame, ModelInstanceIndex
 
 from rt_drake.contact import CupParameters
-from rt_drake.errors import ScenarioError
+from rt_drake.cup_frame import DEFAULT_CUP_FRAME, find_frame
+from rt_drake.errors import InputError, ScenarioError
+from rt_drake.object_model import OBJECT_BODY
 from rt_drake.resources import models_dir
 from rt_drake.scenario import Scenario
 
-#: Name of the cup frame C (origin at the centre of the cup's contact face,
-#: +z out of the cup toward the object), defined in suction_tool.urdf.
-CUP_FRAME = "suction_cup"
-#: Name of each object's body in its SDF.
-OBJECT_BODY = "body"
+#: Name of the shipped tool's cup frame C (origin at the centre of the cup's
+#: contact face, +z out of the cup toward the object, suction_tool.urdf): the
+#: default of the scenario's ``robot.cup_frame``.
+CUP_FRAME = DEFAULT_CUP_FRAME
 #: Friction coefficient of the objects' SDF collision geometry.
 OBJECT_FRICTION = 1.0
 #: m, radius of the spheres that model the cup's rim.
@@ -82,30 +83,42 @@ def add_scenario_models(
     objects are welded to W at X_WO. The caller finalizes the plant.
 
     Raises:
-        ScenarioError: the directives do not contain ``robot.model_instance``
-            or the ``suction_cup`` frame.
+        ScenarioError: the directives cannot be loaded, do not contain
+            ``robot.model_instance`` or the ``suction_cup`` frame, or the
+            robot's ``home`` or limit lists do not have one entry per joint;
+            an object model cannot be loaded. Messages name the scenario file.
     """
     parser = _with_rt_drake_package(parser or Parser(plant))
-    infos: list[ModelInstanceInfo] = ProcessModelDirectives(
-        ModelDirectives(directives=scenario.directives), plant, parser
-    )
+    try:
+        infos: list[ModelInstanceInfo] = ProcessModelDirectives(
+            ModelDirectives(directives=scenario.directives), plant, parser
+        )
+    except RuntimeError as error:
+        raise ScenarioError(
+            f"{scenario.key('directives')}: {_one_line(error)}"
+        ) from None
     by_name = {info.model_name: info.model_instance for info in infos}
     robot_name = scenario.robot.model_instance
     if robot_name not in by_name:
         raise ScenarioError(
-            f"key 'robot.model_instance': '{robot_name}' is not a model of the "
-            f"directives (they add: {', '.join(by_name)})"
+            f"{scenario.key('robot.model_instance')}: '{robot_name}' is not a model "
+            f"of the directives (they add: {', '.join(by_name)})"
         )
-    if not plant.HasFrameNamed(CUP_FRAME):
-        raise ScenarioError(f"the directives define no frame named '{CUP_FRAME}'")
-    cup_frame = plant.GetFrameByName(CUP_FRAME)
+    _check_robot_lengths(plant, by_name[robot_name], scenario)
+    cup_frame = scenario_cup_frame(plant, scenario)
     tool = cup_frame.model_instance()
     if plant.geometry_source_is_registered():
         add_cup_rim(plant, cup_frame, scenario.cup)
     added: dict[str, ModelInstanceIndex] = {}
     if objects is not ObjectMode.NONE:
-        for obj in scenario.objects:
-            instance = _add_object(plant, parser, obj.name, obj.model)
+        for index, obj in enumerate(scenario.objects):
+            try:
+                instance = _add_object(plant, parser, obj.name, obj.model)
+            except RuntimeError as error:
+                raise ScenarioError(
+                    f"{scenario.key(f'objects[{index}].model')}: '{obj.model}' "
+                    f"cannot be loaded: {_one_line(error)}"
+                ) from None
             X_WO = obj.start.GetDeterministicValue()
             body = plant.GetBodyByName(OBJECT_BODY, instance)
             if objects is ObjectMode.WELDED:
@@ -114,6 +127,18 @@ def add_scenario_models(
                 plant.SetDefaultFloatingBaseBodyPose(body, X_WO)
             added[obj.name] = instance
     return ScenarioModels(robot=by_name[robot_name], tool=tool, objects=added)
+
+
+def scenario_cup_frame(plant: MultibodyPlant, scenario: Scenario) -> Frame:
+    """The frame named by the scenario's ``robot.cup_frame``.
+
+    Raises:
+        ScenarioError: the directives define no such frame (or several).
+    """
+    try:
+        return find_frame(plant, scenario.robot.cup_frame)
+    except InputError as error:
+        raise ScenarioError(f"{scenario.key('robot.cup_frame')}: {error}") from None
 
 
 def make_arm_plant(scenario: Scenario) -> MultibodyPlant:
@@ -186,6 +211,28 @@ def _add_object(
     return instance
 
 
+def _check_robot_lengths(
+    plant: MultibodyPlant, robot: ModelInstanceIndex, scenario: Scenario
+) -> None:
+    """``robot.home`` and non-empty limit lists: one entry per robot joint."""
+    joints = sum(
+        plant.get_joint(index).num_positions() for index in plant.GetJointIndices(robot)
+    )
+    config = scenario.robot
+    for field in ("home", "velocity_limits", "acceleration_limits", "torque_limits"):
+        values = getattr(config, field)
+        if (values or field == "home") and len(values) != joints:
+            raise ScenarioError(
+                f"{scenario.key(f'robot.{field}')}: {len(values)} values but robot "
+                f"'{config.model_instance}' has {joints} joint positions"
+            )
+
+
+def _one_line(error: Exception) -> str:
+    """A Drake error message on one line, at most 300 characters."""
+    return " ".join(str(error).split())[:300]
+
+
 def home_configuration(plant: MultibodyPlant, scenario: Scenario) -> np.ndarray:
     """Return the robot's home joint positions (rad), checked against the plant.
 
@@ -197,7 +244,8 @@ def home_configuration(plant: MultibodyPlant, scenario: Scenario) -> np.ndarray:
     n = plant.num_positions(robot)
     if q_home.shape != (n,):
         raise ScenarioError(
-            f"key 'robot.home': expected {n} joint positions, got {q_home.tolist()}"
+            f"{scenario.key('robot.home')}: expected {n} joint positions, got "
+            f"{q_home.tolist()}"
         )
     indices = robot_position_indices(plant, robot)
     lower = plant.GetPositionLowerLimits()[indices]
@@ -206,8 +254,8 @@ def home_configuration(plant: MultibodyPlant, scenario: Scenario) -> np.ndarray:
     if outside.size:
         i = int(outside[0])
         raise ScenarioError(
-            f"key 'robot.home[{i}]': {q_home[i]:.4f} rad is outside the joint "
-            f"limits [{lower[i]:.4f}, {upper[i]:.4f}]"
+            f"{scenario.key(f'robot.home[{i}]')}: {q_home[i]:.4f} rad is outside "
+            f"the joint limits [{lower[i]:.4f}, {upper[i]:.4f}]"
         )
     return q_home
 
@@ -233,4 +281,5 @@ __all__ = [
     "make_parser",
     "rim_friction",
     "robot_position_indices",
+    "scenario_cup_frame",
 ]

@@ -2,10 +2,17 @@
 
 A scenario file names the cell (Drake model directives), the robot's home
 configuration and limits, the suction cup, the objects with their start and
-goal poses, and the attach/detach times. ``yaml_load_typed`` rejects
-misspelled keys; :func:`load_scenario` turns every error into a one-line
-:class:`~rt_drake.errors.ScenarioError` that names the file, the key path
-(``objects[1].start.translation``) and the offending value.
+goal poses, and the vacuum (:mod:`rt_drake.scenario_vacuum`: attach and
+detach behaviour). :func:`load_scenario` refuses,
+with a one-line :class:`~rt_drake.errors.ScenarioError` that names the file,
+the key path (``objects[1].start.translation``) and the offending value:
+unknown keys, a value of the wrong type, null where a value is needed, NaN
+or inf anywhere, duplicate keys (YAML would keep the last one silently),
+aliases (``*name``: an alias bomb expands exponentially), nesting deeper
+than :data:`MAX_DEPTH` (:mod:`rt_drake.scenario_yaml`), files over
+:data:`MAX_SCENARIO_BYTES` or not UTF-8,
+a scenario without objects, object models whose inertia is missing or not
+physically valid (:mod:`rt_drake.object_model`), and inconsistent names.
 
 Poses are ``pydrake.common.schema.Transform`` (metres, and degrees in
 ``!Rpy {deg: [roll, pitch, yaw]}``), expressed in the world frame W unless a
@@ -13,25 +20,30 @@ field says otherwise.
 """
 
 import dataclasses
-import math
-import re
 from pathlib import Path
-from typing import Any
 
-import yaml
 from pydrake.common.schema import Transform
 from pydrake.common.yaml import yaml_load_typed
 from pydrake.multibody.parsing import ModelDirective
 
 from rt_drake.contact import CupParameters
+from rt_drake.cup_frame import DEFAULT_CUP_FRAME
 from rt_drake.errors import InputError, ScenarioError
-from rt_drake.resources import models_dir
+from rt_drake.object_model import model_file, read_model_inertia
+from rt_drake.scenario_vacuum import Vacuum, VacuumModel, check_renamed, check_vacuum
+from rt_drake.scenario_yaml import MAX_DEPTH, check_schema, locate, read_yaml
 from rt_drake.uncertainty import ObjectUncertainty
+
+#: Largest scenario file read, bytes (the shipped ones are about 3 kB).
+MAX_SCENARIO_BYTES = 2**20
 
 
 @dataclasses.dataclass
 class RobotConfig:
     """The arm: its model instance, home configuration and limit overrides.
+
+    ``cup_frame`` names the frame C of the cup (or tool) the arm carries,
+    possibly scoped (``"suction_tool::suction_cup"``).
 
     Empty limit lists mean "take them from the model" (URDF ``velocity``,
     ``drake:acceleration`` and ``effort``). Units: rad, rad/s, rad/s^2, N m.
@@ -42,6 +54,7 @@ class RobotConfig:
 
     model_instance: str = "vs060"
     home: list[float] = dataclasses.field(default_factory=list)
+    cup_frame: str = DEFAULT_CUP_FRAME
     velocity_limits: list[float] = dataclasses.field(default_factory=list)
     acceleration_limits: list[float] = dataclasses.field(default_factory=list)
     torque_limits: list[float] = dataclasses.field(default_factory=list)
@@ -75,14 +88,6 @@ class ObjectConfig:
 
 
 @dataclasses.dataclass
-class Timing:
-    """Waits of the cycle, in seconds (the paper: 1 s each)."""
-
-    attach_s: float = 1.0
-    detach_s: float = 1.0
-
-
-@dataclasses.dataclass
 class Region:
     """An axis-aligned box of object positions (m, world) and a yaw range (deg)."""
 
@@ -108,8 +113,16 @@ class Scenario:
     robot: RobotConfig = dataclasses.field(default_factory=RobotConfig)
     cup: CupParameters = dataclasses.field(default_factory=CupParameters)
     objects: list[ObjectConfig] = dataclasses.field(default_factory=list)
-    timing: Timing = dataclasses.field(default_factory=Timing)
+    vacuum: Vacuum = dataclasses.field(default_factory=Vacuum)
     random_transport: RandomTransport | None = None
+    #: The file it was loaded from, for messages (set by load_scenario; not
+    #: a YAML key).
+    source: str = dataclasses.field(default="", metadata={"yaml": False})
+
+    def key(self, key_path: str) -> str:
+        """``"<file>: key '<key_path>'"``, the start of a message about a key."""
+        where = f"key '{key_path}'"
+        return f"{self.source}: {where}" if self.source else where
 
     def object(self, name: str) -> ObjectConfig:
         """Return the object called ``name``; ScenarioError if there is none."""
@@ -124,96 +137,39 @@ def load_scenario(path: str | Path) -> Scenario:
     """Load and check a scenario file.
 
     Raises:
-        ScenarioError: one line naming the file, the key and the value, for a
-            missing file, YAML syntax error, unknown key, malformed pose or
-            number, unknown model file, or inconsistent names.
+        ScenarioError: one line naming the file, the key and the value (see
+            the module docstring for what is refused).
     """
     path = Path(path)
+    if path.is_dir():
+        raise ScenarioError(f"{path}: is a directory, not a scenario file")
     if not path.is_file():
         raise ScenarioError(f"{path}: scenario file does not exist")
-    text = path.read_text()
+    size = path.stat().st_size
+    if size > MAX_SCENARIO_BYTES:
+        raise ScenarioError(
+            f"{path}: {size} bytes; a scenario file is at most "
+            f"{MAX_SCENARIO_BYTES} bytes"
+        )
     try:
-        raw = yaml.load(text, Loader=_TaggedLoader)
-    except yaml.YAMLError as error:
-        raise ScenarioError(f"{path}: not valid YAML: {error}") from None
-    if not isinstance(raw, dict):
-        raise ScenarioError(f"{path}: expected a mapping of keys at the top level")
-    _check_poses(path, raw)
+        text = path.read_bytes().decode("utf-8")
+    except UnicodeDecodeError as error:
+        byte = error.object[error.start]
+        raise ScenarioError(
+            f"{path}: not UTF-8 text (byte {error.start} is {byte:#04x})"
+        ) from None
+    except OSError as error:
+        raise ScenarioError(f"{path}: cannot be read: {error.strerror}") from None
+    raw = read_yaml(path, text)
+    check_renamed(path, raw)
+    check_schema(path, raw, Scenario)
     try:
         scenario = yaml_load_typed(schema=Scenario, data=text)
     except (RuntimeError, ValueError, TypeError) as error:
-        raise ScenarioError(_locate(path, raw, str(error))) from None
+        raise ScenarioError(locate(path, raw, str(error))) from None
+    scenario.source = str(path)
     _check_semantics(path, scenario)
     return scenario
-
-
-class _TaggedLoader(yaml.SafeLoader):
-    """SafeLoader that keeps ``!Tag {...}`` nodes as plain mappings."""
-
-
-def _construct_tagged(loader: yaml.SafeLoader, _suffix: str, node: yaml.Node) -> Any:
-    if isinstance(node, yaml.MappingNode):
-        return loader.construct_mapping(node, deep=True)
-    if isinstance(node, yaml.SequenceNode):
-        return loader.construct_sequence(node, deep=True)
-    return loader.construct_scalar(node)
-
-
-_TaggedLoader.add_multi_constructor("!", _construct_tagged)
-
-
-def _walk(node: Any, prefix: str = ""):
-    """Yield ``(key_path, key, value)`` for every mapping entry and list item."""
-    if isinstance(node, dict):
-        for key, value in node.items():
-            child = f"{prefix}.{key}" if prefix else str(key)
-            yield child, key, value
-            yield from _walk(value, child)
-    elif isinstance(node, list):
-        for index, value in enumerate(node):
-            child = f"{prefix}[{index}]"
-            yield child, index, value
-            yield from _walk(value, child)
-
-
-def _is_number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
-
-
-def _check_poses(path: Path, raw: dict) -> None:
-    """Every ``translation`` and rotation angle list must hold 3 numbers."""
-    for key_path, key, value in _walk(raw):
-        if key in ("translation", "deg", "rad") and not (
-            isinstance(value, list) and len(value) == 3 and all(map(_is_number, value))
-        ):
-            raise ScenarioError(
-                f"{path}: key '{key_path}': expected 3 numbers, got {value!r}"
-            )
-
-
-def _locate(path: Path, raw: dict, message: str) -> str:
-    """Turn a ``yaml_load_typed`` error into 'file: key ...: problem'."""
-    unknown = re.search(r"fields \[(.*?)\] were unknown", message)
-    if unknown:
-        names = [n.strip(" '\"") for n in unknown.group(1).split(",")]
-        for key_path, key, _ in _walk(raw):
-            if key in names:
-                return f"{path}: unknown key '{key_path}'"
-        return f"{path}: unknown key(s) {', '.join(names)}"
-    bad_float = re.search(r"could not convert string to float: '(.*)'", message)
-    if bad_float:
-        for key_path, _, value in _walk(raw):
-            if isinstance(value, str) and value == bad_float.group(1):
-                return f"{path}: key '{key_path}': value {value!r} is not a number"
-    return f"{path}: {' '.join(message.split())[:300]}"
-
-
-def _resolve_model(url: str) -> Path:
-    """Return the file a ``package://rt_drake/...`` URL or a path points to."""
-    prefix = "package://rt_drake/"
-    if url.startswith(prefix):
-        return models_dir() / url[len(prefix) :]
-    return Path(url)
 
 
 def _check_uncertainty(path: Path, key: str, obj: ObjectConfig) -> None:
@@ -231,6 +187,10 @@ def _check_uncertainty(path: Path, key: str, obj: ObjectConfig) -> None:
 
 
 def _check_semantics(path: Path, scenario: Scenario) -> None:
+    if not scenario.objects:
+        raise ScenarioError(
+            f"{path}: key 'objects': a scenario needs at least one object, got none"
+        )
     names = [obj.name for obj in scenario.objects]
     for index, obj in enumerate(scenario.objects):
         where = f"{path}: key 'objects[{index}]"
@@ -238,16 +198,26 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
             raise ScenarioError(f"{where}.name': an object needs a name")
         if obj.name in names[:index]:
             raise ScenarioError(f"{where}.name': duplicate object name '{obj.name}'")
-        if not _resolve_model(obj.model).is_file():
+        if not model_file(obj.model).is_file():
             raise ScenarioError(
                 f"{where}.model': unknown model '{obj.model}' (no such file)"
             )
-        if not (math.isfinite(obj.approach_offset) and obj.approach_offset >= 0):
+        try:
+            read_model_inertia(model_file(obj.model))
+        except InputError as error:
+            raise ScenarioError(f"{where}.model': {error}") from None
+        if obj.approach_offset < 0:
             raise ScenarioError(
                 f"{where}.approach_offset': must be >= 0 m, got {obj.approach_offset}"
             )
+        for pose in ("start", "goal", "grasp"):
+            if not getattr(obj, pose).IsDeterministic():
+                raise ScenarioError(
+                    f"{where}.{pose}': must be a fixed pose, not a random one"
+                )
         if obj.uncertainty is not None:
             _check_uncertainty(path, f"objects[{index}].uncertainty", obj)
+    _check_robot(path, scenario.robot)
     transport = scenario.random_transport
     if transport is not None:
         if transport.object not in names:
@@ -270,11 +240,34 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
                 )
     try:
         scenario.cup.validate()
-    except ValueError as error:
+    except InputError as error:
         raise ScenarioError(f"{path}: key 'cup': {error}") from None
-    for field in ("attach_s", "detach_s"):
-        value = getattr(scenario.timing, field)
-        if not (math.isfinite(value) and value >= 0):
+    check_vacuum(path, scenario.vacuum)
+
+
+def _check_robot(path: Path, robot: RobotConfig) -> None:
+    """Limit lists are empty or as long as ``home``, and > 0."""
+    joints = len(robot.home)
+    for field in ("velocity_limits", "acceleration_limits", "torque_limits"):
+        values = getattr(robot, field)
+        key = f"{path}: key 'robot.{field}'"
+        if values and len(values) != joints:
             raise ScenarioError(
-                f"{path}: key 'timing.{field}': must be >= 0 s, got {value}"
+                f"{key}: {len(values)} values but robot.home has {joints} joints"
             )
+        if any(v <= 0 for v in values):
+            raise ScenarioError(f"{key}: limits must be > 0, got {values}")
+
+
+__all__ = [
+    "MAX_DEPTH",
+    "MAX_SCENARIO_BYTES",
+    "ObjectConfig",
+    "RandomTransport",
+    "Region",
+    "RobotConfig",
+    "Scenario",
+    "Vacuum",
+    "VacuumModel",
+    "load_scenario",
+]

@@ -11,7 +11,11 @@ from rt_drake.plant import make_arm_plant
 from rt_drake.resources import scenarios_dir
 from rt_drake.scenario import Scenario, load_scenario
 
-SCENARIO_NAMES = ("stack_four_objects", "random_transport")
+SCENARIO_NAMES = (
+    "stack_four_objects",
+    "stack_four_objects_vacuum_sensor",
+    "random_transport",
+)
 
 
 @pytest.fixture(scope="session")

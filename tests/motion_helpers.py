@@ -12,8 +12,9 @@ from pydrake.multibody.inverse_kinematics import InverseKinematics
 from pydrake.solvers import Solve
 from pydrake.trajectories import PiecewisePolynomial
 
+from rt_drake.phase import Phase
 from rt_drake.plant import CUP_FRAME, make_arm_plant
-from rt_drake.simulation import Motion
+from rt_drake.simulation import Motion, PhasePart, PlanTimes
 
 
 def min_jerk(
@@ -99,15 +100,18 @@ class IkMotions:
     def raised(X: RigidTransform, dz: float) -> RigidTransform:
         return RigidTransform(X.rotation(), X.translation() + [0, 0, dz])
 
-    def approach(self, q_start, obj):
-        q = self.ik(self.raised(self.grasp(obj), obj.approach_offset), q_start)
-        return Motion(min_jerk([q_start, q], [self._approach_s]))
+    def pick(self, q_start, obj, retreat=False):
+        """Approach (at rest above the object), then reach: one motion."""
+        q_up = self.ik(self.raised(self.grasp(obj), obj.approach_offset), q_start)
+        q = self.ik(self.grasp(obj), q_up)
+        durations = [self._approach_s, self._reach_s]
+        parts = (
+            PhasePart(Phase.APPROACH, self._approach_s, PlanTimes()),
+            PhasePart(Phase.REACH, sum(durations), PlanTimes()),
+        )
+        return Motion(min_jerk([q_start, q_up, q], durations), parts=parts)
 
-    def reach(self, q_start, obj):
-        q = self.ik(self.grasp(obj), q_start)
-        return Motion(min_jerk([q_start, q], [self._reach_s]))
-
-    def move(self, q_start, obj, reach=None):
+    def move(self, q_start, obj, pick=None):
         q_up = self.ik(self.raised(self.grasp(obj), obj.approach_offset), q_start)
         X_goal = self.grasp(obj, "goal")
         q_above = self.ik_first(

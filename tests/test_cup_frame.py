@@ -9,11 +9,19 @@ the world that does not move the cup.
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 from pydrake.math import RigidTransform
+from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import MultibodyPlant
-from pydrake.multibody.tree import RevoluteJoint, SpatialInertia, UnitInertia
+from pydrake.multibody.tree import (
+    ModelInstanceIndex,
+    RevoluteJoint,
+    SpatialInertia,
+    UnitInertia,
+)
 from scipy.interpolate import CubicSpline
 
 from rt_drake import (
@@ -29,6 +37,9 @@ from rt_drake.cup_frame import vertical_base_joint
 from rt_drake.dynamics import path_wrench_coefficients
 from rt_drake.newton_euler import reference_object_wrench
 from rt_drake.plant import make_parser
+from rt_drake.resources import models_dir
+from rt_drake.retiming import RetimeInputError
+from rt_drake.scenario import RobotConfig
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 SWING = [
@@ -151,3 +162,56 @@ def test_an_ambiguous_or_missing_frame_name_is_refused():
         CupFrame.of(plant)
     with pytest.raises(InputError, match="no frame named 'tip'"):
         CupFrame.of(plant, "tip")
+
+
+def test_two_arms_each_retime_with_their_own_cup(scenario):
+    """Two tools in one plant: each cup named by scope, each arm retimed."""
+    plant = MultibodyPlant(0.0)
+    parser = make_parser(plant)
+    parser.SetAutoRenaming(True)
+    _arm(plant, parser, RigidTransform([0.0, 0.9, 0.0]), with_tool=True)
+    _arm(plant, parser, RigidTransform(), with_tool=True)
+    plant.Finalize()
+    tools = _instances(plant, "tool")
+    held = HeldObject.from_scenario_object(scenario.object("notebook"))
+    grasp = GraspConstraint.for_cup(held, scenario.cup)
+    limits = JointLimits.from_plant(plant)
+    for first, tool in zip((0, 6), tools, strict=True):
+        cup = CupFrame.of(plant, f"{tool}::suction_cup")
+        assert vertical_base_joint(plant, cup) == (first, pytest.approx(-9.81))
+        path = np.tile(HOME, (3, 2))
+        path[:, first : first + 6] = SWING
+        result = retime(plant, path, limits, grasp, cup=cup)
+        check = check_trajectory(plant, result.trajectory, limits, grasp, cup=cup)
+        assert check.worst() <= 1e-3, check.summary()
+        # The other cup's wrench would be the wrong one: its arm stands still.
+        assert result.margins["grasp"].min() == pytest.approx(0.0, abs=1e-6)
+
+
+def _instances(plant, body_name):
+    names = []
+    for i in range(plant.num_model_instances()):
+        instance = ModelInstanceIndex(i)
+        if plant.HasBodyNamed(body_name, instance):
+            names.append(plant.GetModelInstanceName(instance))
+    return names
+
+
+def test_limits_a_model_lacks_are_asked_for_by_name():
+    """A URDF without drake:acceleration and without transmissions."""
+    plant = MultibodyPlant(0.0)
+    text = (models_dir() / "robot" / "vs060.urdf").read_text()
+    text = re.sub(r' drake:acceleration="[^"]*"', "", text)
+    text = re.sub(r"<transmission.*?</transmission>", "", text, flags=re.S)
+    (arm,) = Parser(plant).AddModelsFromString(text, "urdf")
+    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base_link", arm))
+    plant.Finalize()
+    with pytest.raises(RetimeInputError, match=r"no acceleration limit for joint 1 "):
+        JointLimits.from_plant(plant)
+    robot = RobotConfig(acceleration_limits=np.full(6, 10.0))  # numpy arrays work
+    limits = JointLimits.from_plant(plant, robot)
+    assert limits.acceleration.tolist() == [10.0] * 6
+    with pytest.raises(RetimeInputError, match="no torque limit for joint 1"):
+        JointLimits.from_plant(plant, robot, torque=True)
+    with pytest.raises(RetimeInputError, match="5 values but the plant has 6 joints"):
+        JointLimits.from_plant(plant, RobotConfig(velocity_limits=[1.0] * 5))

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import logging
 import sys
 from collections.abc import Sequence
 from typing import NoReturn
@@ -74,6 +75,7 @@ def _name_every_command(parser: argparse.ArgumentParser) -> None:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run ``rt-drake`` and return its exit code (see the module docstring)."""
+    quiet_drake_info()
     parser = build_parser()
     try:
         args = parser.parse_args(argv)
@@ -92,6 +94,23 @@ def main(argv: Sequence[str] | None = None) -> int:
             file=sys.stderr,
         )
         raise
+
+
+def quiet_drake_info() -> None:
+    """Show Drake's warnings and errors, not its INFO lines.
+
+    Drake logs through the Python logger ``drake``; at INFO it announces,
+    e.g., "Allocating contexts to support implicit context parallelism",
+    which would precede the one error line of a refused input. A filter,
+    not a level: importing pydrake resets the logger's level to INFO.
+    """
+    drake = logging.getLogger("drake")
+    if _below_warning not in drake.filters:
+        drake.addFilter(_below_warning)
+
+
+def _below_warning(record: logging.LogRecord) -> bool:
+    return record.levelno >= logging.WARNING
 
 
 def main_exit() -> None:

@@ -3,20 +3,72 @@
 argparse calls a type with the flag's text; a ``ValueError`` or
 ``argparse.ArgumentTypeError`` becomes the one-line usage error
 ``rt-drake <command>: error: argument --flag: <message>`` with exit code 2.
+Every number must be finite (``nan``, ``inf`` are refused); ranges are
+closed unless a bound is marked open.
 """
 
 from __future__ import annotations
 
 import argparse
 import math
+from collections.abc import Callable
 
 
 def positive_int(text: str) -> int:
     """An integer >= 1."""
-    value = _parse(text, int, "an integer")
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be >= 1, got {text}")
-    return value
+    return int_in(1)(text)
+
+
+def nonnegative_int(text: str) -> int:
+    """An integer >= 0 (e.g. a random seed)."""
+    return int_in(0)(text)
+
+
+def finite_float(text: str) -> float:
+    """Any finite number."""
+    return _parse(text, float, "a number")
+
+
+def positive_float(text: str) -> float:
+    """A finite number > 0."""
+    return float_in(0.0, math.inf, low_open=True)(text)
+
+
+def nonnegative_float(text: str) -> float:
+    """A finite number >= 0."""
+    return float_in(0.0, math.inf)(text)
+
+
+def int_in(low: int, high: int | None = None) -> Callable[[str], int]:
+    """The type of an integer in ``[low, high]`` (no upper bound if None)."""
+
+    def parse(text: str) -> int:
+        value = _parse(text, int, "an integer")
+        if value < low or (high is not None and value > high):
+            bounds = f">= {low}" if high is None else f"in [{low}, {high}]"
+            raise argparse.ArgumentTypeError(f"must be {bounds}, got {text}")
+        return value
+
+    parse.__name__ = "integer"  # argparse names the type in some messages
+    return parse
+
+
+def float_in(low: float, high: float, low_open: bool = False) -> Callable[[str], float]:
+    """The type of a finite number in ``[low, high]`` (``(low, high]`` if open)."""
+
+    def parse(text: str) -> float:
+        value = _parse(text, float, "a number")
+        if value < low or (low_open and value == low) or value > high:
+            if math.isinf(high):
+                bounds = f"> {low:g}" if low_open else f">= {low:g}"
+            else:
+                bounds = f"{'(' if low_open else '['}{low:g}, {high:g}]"
+                bounds = f"in {bounds}"
+            raise argparse.ArgumentTypeError(f"must be {bounds}, got {text}")
+        return value
+
+    parse.__name__ = "number"
+    return parse
 
 
 def _parse(text: str, kind: type, what: str):  # noqa: ANN202
@@ -29,4 +81,12 @@ def _parse(text: str, kind: type, what: str):  # noqa: ANN202
     return value
 
 
-__all__ = ["positive_int"]
+__all__ = [
+    "finite_float",
+    "float_in",
+    "int_in",
+    "nonnegative_float",
+    "nonnegative_int",
+    "positive_float",
+    "positive_int",
+]

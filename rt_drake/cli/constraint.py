@@ -13,6 +13,11 @@ a ``--guide-mass`` kg object hanging below the cup, tilted up to 90 degrees
 and accelerated up to ``--guide-acceleration`` m/s^2
 (``rt_drake.contact.samplers.object_wrench_sampler``), and also ``covered``,
 ``samples`` and ``exact_rows``.
+
+The exact set's memory and time are estimated first (it grows steeply with
+``--points`` and ``--sides``); above ``--max-memory`` the command refuses
+with the estimate and the largest accepted values. ``--out`` is checked
+before any work (see ``rt_drake.cli._output``) and written atomically.
 """
 
 from __future__ import annotations
@@ -22,21 +27,31 @@ import dataclasses
 import time
 from pathlib import Path
 
+from rt_drake.cli._args import (
+    finite_float,
+    nonnegative_float,
+    nonnegative_int,
+    positive_float,
+)
+from rt_drake.cli._output import output_file
+from rt_drake.contact.exact_cost import DEFAULT_MAX_MEMORY
 from rt_drake.errors import InputError
 
-#: Command-line flag -> CupParameters field.
+#: Command-line flag -> CupParameters field (ranges: CupParameters.validate).
 _CUP_FLAGS = {
-    "radius": ("--radius", float, "radius of the circle of contact points, m"),
+    "radius": ("--radius", finite_float, "radius of the circle of contact points, m"),
     "points": ("--points", int, "number of contact points on the rim"),
-    "friction": ("--friction", float, "friction coefficient mu"),
+    "friction": ("--friction", finite_float, "friction coefficient mu"),
     "sides": ("--sides", int, "sides of the linearised friction cone"),
-    "suction_force": ("--suction-force", float, "suction force P A, N"),
+    "suction_force": ("--suction-force", finite_float, "suction force P A, N"),
     "max_normal_force": (
         "--max-normal-force",
-        float,
+        finite_float,
         "normal force bound per point, N",
     ),
 }
+#: An estimated computation longer than this (s) is announced first.
+_ANNOUNCE_S = 10.0
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -58,32 +73,39 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="write the guided approximation with at most N vertices (>= 7)",
     )
     parser.add_argument(
-        "--guide-mass", type=float, default=0.5, help="guiding object mass, kg"
+        "--guide-mass", type=positive_float, default=0.5, help="guiding object mass, kg"
     )
     parser.add_argument(
         "--guide-acceleration",
-        type=float,
+        type=nonnegative_float,
         default=5.0,
         help="largest guiding acceleration, m/s^2",
     )
     parser.add_argument("--samples", type=int, default=2000, help="guiding samples")
-    parser.add_argument("--seed", type=int, default=0, help="random seed")
+    parser.add_argument("--seed", type=nonnegative_int, default=0, help="random seed")
     parser.add_argument(
         "--no-cache", action="store_true", help="do not read or write the cache"
+    )
+    parser.add_argument(
+        "--max-memory",
+        type=positive_float,
+        default=DEFAULT_MAX_MEMORY / 2**30,
+        metavar="GB",
+        help="refuse an exact set estimated to need more memory "
+        f"(default {DEFAULT_MAX_MEMORY / 2**30:g} GB)",
     )
     parser.set_defaults(run=run)
 
 
-def _cup(args: argparse.Namespace):
+def _cup(args: argparse.Namespace, scenario: Path | None):
     """Return the cup of ``--scenario`` (or the defaults) with flags applied."""
     from rt_drake.contact import CupParameters
 
     cup = CupParameters()
-    if args.scenario is not None:
-        from rt_drake.resources import resolve_scenario_path
+    if scenario is not None:
         from rt_drake.scenario import load_scenario
 
-        cup = load_scenario(resolve_scenario_path(args.scenario)).cup
+        cup = load_scenario(scenario).cup
     overrides = {
         f: getattr(args, f) for f in _CUP_FLAGS if getattr(args, f) is not None
     }
@@ -98,14 +120,33 @@ def run(args: argparse.Namespace) -> int:
         object_wrench_sampler,
         save_polytope,
     )
+    from rt_drake.contact.approximation import MAX_SAMPLES, MAX_VERTICES
+    from rt_drake.contact.exact_cost import check_exact_cost
 
-    cup = _cup(args)
-    if args.out.suffix != ".npz":
-        raise InputError(f"--out must end in .npz, got '{args.out}'")
-    if args.approximate is not None and args.approximate < 7:
-        raise InputError(f"--approximate must be >= 7, got {args.approximate}")
+    for flag, value, low, high in (
+        ("--approximate", args.approximate, 7, MAX_VERTICES),
+        ("--samples", args.samples, 1, MAX_SAMPLES),
+    ):
+        if value is not None and not low <= value <= high:
+            raise InputError(f"{flag} must be in [{low}, {high}], got {value}")
+    scenario = None
+    if args.scenario is not None:
+        from rt_drake.resources import resolve_scenario_path
+
+        scenario = resolve_scenario_path(args.scenario)
+    output_file(args.out, "--out", ".npz", {"scenario file": scenario})
+    cup = _cup(args, scenario)
+    max_memory = args.max_memory * 2**30
+    cost = check_exact_cost(cup, max_memory)
+    if cost.seconds > _ANNOUNCE_S:
+        print(
+            f"exact W_c: estimated {cost.seconds:.0f} s and "
+            f"{cost.memory / 2**30:.2g} GB for {cup.points} points, {cup.sides} sides"
+        )
     start = time.perf_counter()
-    exact = cached_wrench_polytope(cup, use_cache=not args.no_cache)
+    exact = cached_wrench_polytope(
+        cup, use_cache=not args.no_cache, max_memory=max_memory
+    )
     seconds = time.perf_counter() - start
     print(
         f"exact W_c: {len(exact.F)} rows, {len(exact.vertices)} vertices, "

@@ -16,7 +16,12 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from rt_drake.cli._args import positive_int
+from rt_drake.cli._args import int_in, nonnegative_int
+
+#: Most random paths (each is planned, retimed twice and simulated ~12 times).
+MAX_TRIALS = 1000
+#: Most worker processes.
+MAX_WORKERS = 64
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -37,16 +42,25 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="scenario with a random_transport section",
     )
     transport.add_argument(
-        "--n", type=positive_int, default=20, help="number of random paths (default 20)"
+        "--n",
+        type=int_in(1, MAX_TRIALS),
+        default=20,
+        help=f"number of random paths (default 20, at most {MAX_TRIALS})",
     )
     transport.add_argument(
-        "--seed", type=int, default=0, help="sampling and planning seed (default 0)"
+        "--seed",
+        type=nonnegative_int,
+        default=0,
+        help="sampling and planning seed (default 0)",
     )
     transport.add_argument(
         "--object", default=None, help="object to carry (default: the scenario's)"
     )
     transport.add_argument(
-        "--workers", type=positive_int, default=1, help="parallel processes (default 1)"
+        "--workers",
+        type=int_in(1, MAX_WORKERS),
+        default=1,
+        help=f"parallel processes (default 1, at most {MAX_WORKERS})",
     )
     transport.add_argument(
         "--robust",
@@ -73,7 +87,10 @@ def run_transport(args: argparse.Namespace) -> int:
     """Run the transport experiment and write its outputs; return 0."""
     import time
 
+    from rt_drake.cli._output import output_directory
+    from rt_drake.cli._progress import Progress
     from rt_drake.experiments import (
+        TRANSPORT_FILES,
         run_transport_experiment,
         transport_table,
         write_transport_report,
@@ -82,14 +99,21 @@ def run_transport(args: argparse.Namespace) -> int:
 
     if args.robust:
         return run_robust_transport(args)
+    path = resolve_scenario_path(args.scenario)
+    output_directory(args.out, "--out", TRANSPORT_FILES, {"scenario file": path})
+    progress = Progress("rt-drake experiment transport", args.n, "trial", eta=True)
     start = time.perf_counter()
-    results = run_transport_experiment(
-        resolve_scenario_path(args.scenario),
-        n=args.n,
-        seed=args.seed,
-        object_name=args.object,
-        workers=args.workers,
-    )
+    try:
+        results = run_transport_experiment(
+            path,
+            n=args.n,
+            seed=args.seed,
+            object_name=args.object,
+            workers=args.workers,
+            progress=lambda done, n: progress.step(done, "trials done"),
+        )
+    finally:
+        progress.close()
     results["wall_s"] = time.perf_counter() - start
     written = write_transport_report(results, args.out)
     s = results["summary"]
@@ -107,7 +131,10 @@ def run_robust_transport(args: argparse.Namespace) -> int:
     """The robust transport experiment: write its outputs; return 0."""
     import time
 
+    from rt_drake.cli._output import output_directory
+    from rt_drake.cli._progress import Progress
     from rt_drake.experiments import (
+        ROBUST_FILES,
         robust_table,
         run_robust_transport_experiment,
         write_robust_report,
@@ -115,14 +142,23 @@ def run_robust_transport(args: argparse.Namespace) -> int:
     from rt_drake.experiments.robust_report import summary_lines
     from rt_drake.resources import resolve_scenario_path
 
-    start = time.perf_counter()
-    results = run_robust_transport_experiment(
-        resolve_scenario_path(args.scenario),
-        n=args.n,
-        seed=args.seed,
-        object_name=args.object,
-        workers=args.workers,
+    path = resolve_scenario_path(args.scenario)
+    output_directory(args.out, "--out", ROBUST_FILES, {"scenario file": path})
+    progress = Progress(
+        "rt-drake experiment transport --robust", args.n, "trial", eta=True
     )
+    start = time.perf_counter()
+    try:
+        results = run_robust_transport_experiment(
+            path,
+            n=args.n,
+            seed=args.seed,
+            object_name=args.object,
+            workers=args.workers,
+            progress=lambda done, n: progress.step(done, "trials done"),
+        )
+    finally:
+        progress.close()
     results["wall_s"] = time.perf_counter() - start
     written = write_robust_report(results, args.out)
     print(robust_table(results))
@@ -141,6 +177,7 @@ def run_cycle_experiment(args: argparse.Namespace) -> int:
         meshcat=False,
         no_grasp_constraint=False,
         speed=1.0,
+        sequential_planning=False,
         seed=0,
         time_step=1e-3,
     )

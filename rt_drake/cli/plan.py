@@ -8,13 +8,18 @@ those waypoints is the planned path (``rt_drake.planning.GeometricPath``),
 the input of ``rt-drake retime SCENARIO --waypoints FILE.csv --object NAME``.
 
 Objects listed before NAME in the scenario are taken as already placed at
-their goals (the cycle's order); the others rest at their starts.
+their goals (the cycle's order); the others rest at their starts. ``--out``
+is checked before planning (``rt_drake.cli._output``: never the scenario
+file, a ``.csv``) and written atomically.
 """
 
 from __future__ import annotations
 
 import argparse
 from pathlib import Path
+
+from rt_drake.cli._args import nonnegative_int, positive_float
+from rt_drake.cli._output import output_file
 
 PHASES = ("approach", "reach", "move")
 
@@ -38,9 +43,14 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         default="all",
         help="phase whose waypoints --out writes (all: plan every phase, write MOVE)",
     )
-    parser.add_argument("--seed", type=int, default=0, help="planner seed (default 0)")
     parser.add_argument(
-        "--budget", type=float, default=1.0, help="time budget per phase, s (default 1)"
+        "--seed", type=nonnegative_int, default=0, help="planner seed (default 0)"
+    )
+    parser.add_argument(
+        "--budget",
+        type=positive_float,
+        default=1.0,
+        help="time budget per phase, s (default 1, at most 600)",
     )
     parser.add_argument("--out", type=Path, help="write the waypoints to this CSV file")
     parser.set_defaults(run=run)
@@ -48,13 +58,21 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Plan, print the timings, write the CSV; return 0."""
+    from rt_drake.resources import resolve_scenario_path
+
+    scenario_path = resolve_scenario_path(args.scenario)
+    if args.out is not None:  # before the heavy imports: a quick refusal
+        output_file(args.out, "--out", ".csv", {"scenario file": scenario_path})
+
+    import io
+
     import numpy as np
 
+    from rt_drake.atomic_file import write_text_atomically
     from rt_drake.planning import CyclePlanner, PlannedPath
-    from rt_drake.resources import resolve_scenario_path
     from rt_drake.scenario import load_scenario
 
-    scenario = load_scenario(resolve_scenario_path(args.scenario))
+    scenario = load_scenario(scenario_path)
     scenario.object(args.object)
     planner = CyclePlanner(scenario, seed=args.seed, budget_s=args.budget)
     for obj in scenario.objects:
@@ -78,12 +96,12 @@ def run(args: argparse.Namespace) -> int:
         )
     chosen = plans[wanted]
     if args.out is not None:
-        args.out.parent.mkdir(parents=True, exist_ok=True)
         names = ",".join(
             planner.scene.plant.get_joint(j).name() for j in planner.scene.bounds.joints
         )
+        text = io.StringIO()
         np.savetxt(
-            args.out,
+            text,
             chosen.path.waypoints,
             fmt="%.17g",
             delimiter=",",
@@ -93,6 +111,7 @@ def run(args: argparse.Namespace) -> int:
                 f"joint positions (rad), one waypoint per row: {names}"
             ),
         )
+        write_text_atomically(args.out, text.getvalue())
         print(
             f"wrote {args.out} ({chosen.phase.label}, "
             f"{len(chosen.path.waypoints)} waypoints)"

@@ -10,7 +10,9 @@ suction range) if the scenario gives one or the flags ``--mass-uncertainty``,
 ``.npz`` from which anyone can re-check the result (the format of
 ``rt_drake.save_trajectory``: samples every 1 ms of t, q, qd, qdd and the
 cup's pose X_WC, the object's inertia, the grasp constraint F, g, the cup,
-the path and its s'(s) profile).
+the path and its s'(s) profile). ``--out`` is checked before any work
+(``rt_drake.cli._output``: a ``.npz``, never an input) and written
+atomically.
 """
 
 from __future__ import annotations
@@ -21,7 +23,13 @@ from pathlib import Path
 
 import numpy as np
 
+from rt_drake.cli._output import output_file
 from rt_drake.errors import InputError
+
+#: Largest number of waypoints read from a CSV.
+MAX_WAYPOINTS = 100_000
+#: Largest waypoint file read, bytes.
+MAX_WAYPOINT_BYTES = 64 * 2**20
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -115,13 +123,33 @@ def object_uncertainty(args: argparse.Namespace, obj):  # noqa: ANN001, ANN201
 
 
 def read_waypoints(path: Path, joints: int) -> np.ndarray:
-    """Read a (K, joints) waypoint CSV; ValueError naming the problem."""
+    """Read a (K, joints) waypoint CSV; InputError naming the problem."""
+    if path.is_dir():
+        raise InputError(f"waypoint file '{path}' is a directory")
     if not path.is_file():
         raise InputError(f"waypoint file '{path}' does not exist")
+    if path.stat().st_size > MAX_WAYPOINT_BYTES:
+        raise InputError(
+            f"{path}: {path.stat().st_size} bytes; a waypoint file is at most "
+            f"{MAX_WAYPOINT_BYTES} bytes"
+        )
     try:
-        waypoints = np.loadtxt(path, delimiter=",", comments="#", ndmin=2)
+        text = path.read_bytes().decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise InputError(f"{path}: not UTF-8 text (byte {error.start})") from None
+    if not text.strip() or all(
+        not line.strip() or line.lstrip().startswith("#") for line in text.splitlines()
+    ):
+        raise InputError(f"{path}: no waypoints (empty file)")
+    try:
+        waypoints = np.loadtxt(text.splitlines(), delimiter=",", comments="#", ndmin=2)
     except ValueError as error:
-        raise InputError(f"{path}: not a CSV of numbers: {error}") from None
+        message = " ".join(str(error).split())
+        raise InputError(f"{path}: not a CSV of numbers: {message}") from None
+    if len(waypoints) > MAX_WAYPOINTS:
+        raise InputError(
+            f"{path}: {len(waypoints)} waypoints; at most {MAX_WAYPOINTS} are read"
+        )
     if waypoints.shape[1] != joints:
         raise InputError(
             f"{path}: {waypoints.shape[1]} columns but the robot has {joints} joints"
@@ -138,7 +166,18 @@ def read_waypoints(path: Path, joints: int) -> np.ndarray:
 
 def run(args: argparse.Namespace) -> int:
     """Retime, write the .npz and print a summary; return 0."""
+    from rt_drake.resources import resolve_scenario_path
+
+    path = resolve_scenario_path(args.scenario)
+    output_file(  # before the heavy imports: a quick refusal
+        args.out,
+        "--out",
+        ".npz",
+        {"scenario file": path, "waypoint file": args.waypoints},
+    )
+
     from rt_drake import (
+        CupFrame,
         GraspConstraint,
         HeldObject,
         JointLimits,
@@ -149,15 +188,20 @@ def run(args: argparse.Namespace) -> int:
         save_trajectory,
     )
     from rt_drake.plant import make_arm_plant
-    from rt_drake.resources import resolve_scenario_path
+    from rt_drake.retiming.grid import MAX_GRIDPOINTS
 
-    if args.gridpoints < 2:
-        raise InputError(f"--gridpoints must be >= 2, got {args.gridpoints}")
-    scenario = load_scenario(resolve_scenario_path(args.scenario))
+    if not 2 <= args.gridpoints <= MAX_GRIDPOINTS:
+        raise InputError(
+            f"--gridpoints must be in [2, {MAX_GRIDPOINTS}], got {args.gridpoints}"
+        )
+    scenario = load_scenario(path)
     obj = scenario.object(args.object)
     plant = make_arm_plant(scenario)
     waypoints = read_waypoints(args.waypoints, plant.num_positions())
-    _, knots = path_waypoints_and_knots(waypoints)
+    try:
+        _, knots = path_waypoints_and_knots(waypoints)
+    except InputError as error:  # e.g. two equal rows: name the file
+        raise InputError(f"{args.waypoints}: {error}") from None
     held = HeldObject.from_scenario_object(obj)
     obj = dataclasses.replace(obj, uncertainty=object_uncertainty(args, obj))
     grasp = (
@@ -166,11 +210,12 @@ def run(args: argparse.Namespace) -> int:
         else GraspConstraint.for_scenario_object(obj, scenario.cup)
     )
     limits = JointLimits.from_plant(plant, scenario.robot)
-    result = retime(plant, waypoints, limits, grasp, args.gridpoints)
+    cup = CupFrame.of(plant, scenario.robot.cup_frame)
+    result = retime(plant, waypoints, limits, grasp, args.gridpoints, cup=cup)
     saved = sample_trajectory(
-        plant, result, held, grasp, scenario.cup, obj.name, waypoints, knots
-    )
-    args.out.parent.mkdir(parents=True, exist_ok=True)
+        plant, result, held, grasp, scenario.cup, obj.name, waypoints, knots,
+        cup_frame=cup.frame,
+    )  # fmt: skip
     save_trajectory(args.out, saved)
     constraint = "joint limits only" if grasp is None else "grasp constraint"
     if grasp is not None and grasp.is_robust:

@@ -4,7 +4,9 @@ Every object is approached, reached, attached, moved (planned and retimed
 online, critically fast under the grasp constraint) and detached, in a Drake
 simulation with suction physics. Prints the paper's Table II for this run
 and writes ``report.json``, ``report.md`` and ``replay.html`` (a Meshcat
-recording that plays offline) into ``--out``.
+recording that plays offline) into ``--out``, checked before the
+simulation starts (``rt_drake.cli._output``: a directory, none of its files
+an input) and written atomically.
 """
 
 from __future__ import annotations
@@ -12,7 +14,10 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from rt_drake.errors import InputError
+from rt_drake.cli._args import float_in, nonnegative_int
+
+#: The file written beside the report.
+REPLAY_FILE = "replay.html"
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -43,19 +48,27 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     parser.add_argument(
         "--speed",
-        type=float,
+        type=float_in(0.0, 100.0, low_open=True),
         default=1.0,
         metavar="FACTOR",
-        help="play every MOVE FACTOR times faster than retimed (default 1)",
+        help="play every MOVE FACTOR times faster than retimed (default 1, max 100)",
     )
-    parser.add_argument("--seed", type=int, default=0, help="planner seed (default 0)")
+    parser.add_argument(
+        "--seed", type=nonnegative_int, default=0, help="planner seed (default 0)"
+    )
+    parser.add_argument(
+        "--sequential-planning",
+        action="store_true",
+        help="plan each motion when its phase starts, as the paper did, instead "
+        "of during the motion and wait before it (the arm waits for all of it)",
+    )
     parser.add_argument(
         "--time-step",
-        type=float,
+        type=float_in(1e-4, 0.01),
         default=1e-3,
         metavar="SECONDS",
-        help="simulation step (default 0.001; smaller steps reduce the numerical "
-        "creep of held objects, ~1.6 mm per MOVE at 1 ms)",
+        help="simulation step, 0.0001 to 0.01 (default 0.001; smaller steps reduce "
+        "the numerical creep of held objects, ~1.6 mm per MOVE at 1 ms)",
     )
     parser.set_defaults(run=run)
 
@@ -66,16 +79,25 @@ def run(args: argparse.Namespace) -> int:
 
     from pydrake.geometry import StartMeshcat
 
-    from rt_drake.experiments import cycle_report, table_markdown, write_report
+    from rt_drake.atomic_file import write_text_atomically
+    from rt_drake.cli._output import output_directory
+    from rt_drake.cli._progress import Progress
+    from rt_drake.experiments import (
+        REPORT_FILES,
+        cycle_report,
+        summary_line,
+        table_markdown,
+        write_report,
+    )
+    from rt_drake.phase import Phase
     from rt_drake.resources import resolve_scenario_path
     from rt_drake.scenario import load_scenario
     from rt_drake.simulation import OnlineMotions, StationOptions, run_cycle
 
-    if not args.speed > 0:
-        raise InputError(f"--speed must be > 0, got {args.speed}")
-    if not 0 < args.time_step <= 0.01:
-        raise InputError(f"--time-step must be in (0, 0.01] s, got {args.time_step}")
     path = resolve_scenario_path(args.scenario)
+    output_directory(
+        args.out, "--out", (*REPORT_FILES, REPLAY_FILE), {"scenario file": path}
+    )
     scenario = load_scenario(path)
     meshcat = StartMeshcat()
     motions = OnlineMotions(
@@ -84,31 +106,49 @@ def run(args: argparse.Namespace) -> int:
         move_speed=args.speed,
         seed=args.seed,
     )
+    phases = [p for p in Phase if p is not Phase.DONE]
+    names = [o.name for o in scenario.objects]
+    progress = Progress("rt-drake run", len(names) * len(phases), "phase")
+
+    def show(index: int, phase: Phase) -> None:
+        if phase is Phase.DONE:
+            progress.step(len(names) * len(phases), "done")
+            return
+        where = f"object {index + 1}/{len(names)} {names[index]}: {phase.label}"
+        progress.step(index * len(phases) + phases.index(phase), where)
+
     start = time.perf_counter()
-    result = run_cycle(
-        scenario,
-        motions,
-        meshcat=meshcat,
-        options=StationOptions(time_step=args.time_step),
-    )
+    try:
+        result = run_cycle(
+            scenario,
+            motions,
+            meshcat=meshcat,
+            options=StationOptions(time_step=args.time_step),
+            pipelined=not args.sequential_planning,
+            progress=show,
+        )
+    finally:
+        progress.close()
     wall_s = time.perf_counter() - start
     report = cycle_report(
         result.records,
         scenario=str(path),
         grasp_constraint=not args.no_grasp_constraint,
         speed=args.speed,
+        pipelined_planning=not args.sequential_planning,
+        vacuum=scenario.vacuum.model,
         time_step_s=args.time_step,
         sim_time_s=result.sim_time,
         max_tracking_error_rad=result.max_tracking_error,
         simulation_wall_s=wall_s,
     )
     json_path, md_path = write_report(report, args.out)
-    replay = args.out / "replay.html"
-    replay.write_text(meshcat.StaticHtml())
+    replay = args.out / REPLAY_FILE
+    write_text_atomically(replay, meshcat.StaticHtml())
     print(table_markdown(report))
     for entry in report["objects"]:
         print(f"MOVE {entry['name']} holds {entry['guarantee']}")
-    print(f"cycle total {report['total_s']:.3f} s; simulated in {wall_s:.1f} s wall")
+    print(f"{summary_line(report)}; simulated in {wall_s:.1f} s wall")
     print(f"wrote {json_path}, {md_path}, {replay}")
     if args.meshcat:
         print(f"Meshcat: {meshcat.web_url()} (Ctrl-C to stop)")

@@ -3,7 +3,9 @@
 Builds the scenario's plant (robot at home, objects at their start poses, or
 at their goals with ``--goals``), publishes it to Drake's Meshcat and, with
 ``--html``, writes a self-contained HTML file of the scene that opens offline
-in a browser.
+in a browser. ``--html`` is checked before anything is built
+(``rt_drake.cli._output``: an ``.html``, never the scenario file) and
+written atomically.
 """
 
 from __future__ import annotations
@@ -11,6 +13,8 @@ from __future__ import annotations
 import argparse
 import time
 from pathlib import Path
+
+from rt_drake.cli._output import output_file
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -42,17 +46,20 @@ def run(args: argparse.Namespace) -> int:
     """Show the scene; return 0."""
     from pydrake.geometry import StartMeshcat
 
+    from rt_drake.atomic_file import write_text_atomically
     from rt_drake.resources import resolve_scenario_path
     from rt_drake.scenario import load_scenario
     from rt_drake.visualization import publish_scene
 
-    scenario = load_scenario(resolve_scenario_path(args.scenario))
+    path = resolve_scenario_path(args.scenario)
+    if args.html is not None:
+        output_file(args.html, "--html", ".html", {"scenario file": path})
+    scenario = load_scenario(path)
     meshcat = StartMeshcat()
     publish_scene(scenario, meshcat, at_goals=args.goals)
     print(f"Meshcat: {meshcat.web_url()}")
     if args.html is not None:
-        args.html.parent.mkdir(parents=True, exist_ok=True)
-        args.html.write_text(meshcat.StaticHtml())
+        write_text_atomically(args.html, meshcat.StaticHtml())
         print(f"wrote {args.html}")
     if args.wait or args.html is None:
         print("serving until Ctrl-C")

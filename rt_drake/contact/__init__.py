@@ -42,6 +42,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers
         WrenchPolytope,
         contact_wrench_polytope,
         is_realizable,
+        with_suction_force,
     )
 
 #: Public name -> submodule defining it, imported on first access.
@@ -59,6 +60,7 @@ _LAZY = {
     "WrenchPolytope": "wrench_polytope",
     "contact_wrench_polytope": "wrench_polytope",
     "is_realizable": "wrench_polytope",
+    "with_suction_force": "wrench_polytope",
     "worst_cup_polytope": "worst_cup",
 }
 
@@ -79,6 +81,7 @@ __all__ = [
     "object_wrench_sampler",
     "save_polytope",
     "suction_wrench",
+    "with_suction_force",
     "worst_cup_polytope",
 ]
 

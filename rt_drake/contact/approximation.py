@@ -24,8 +24,19 @@ from collections.abc import Callable
 import numpy as np
 from scipy.spatial import ConvexHull
 
-from rt_drake.contact.wrench_polytope import WrenchPolytope, wrench_scale
+from rt_drake.contact.wrench_polytope import (
+    WrenchPolytope,
+    is_realizable,
+    wrench_scale,
+)
 from rt_drake.errors import InputError
+
+#: Largest ``max_vertices`` accepted: the hull of N points in 6-D has up to
+#: O(N^3) facets, each tested against every sample at every step.
+MAX_VERTICES = 200
+#: Largest number of guiding samples accepted (200 vertices from 20 000
+#: samples take about 20 s; from 100 000, 80 s).
+MAX_SAMPLES = 20_000
 
 
 @dataclasses.dataclass(frozen=True)
@@ -86,6 +97,20 @@ def _initial_simplex(
     return simplex
 
 
+def _outside_counts(samples: np.ndarray, equations: np.ndarray, atol: float):
+    """Per facet ``[a, b]``, the number of samples with ``a . s + b > atol``.
+
+    In chunks of samples, so memory stays bounded (samples x facets floats
+    would not: 100 000 samples and 10 000 facets are 8 GB).
+    """
+    counts = np.zeros(len(equations), dtype=np.int64)
+    chunk = max(1, 2**22 // max(len(equations), 1))  # (chunk, facets): 32 MB
+    for start in range(0, len(samples), chunk):
+        block = samples[start : start + chunk] @ equations[:, :-1].T
+        counts += np.sum(block + equations[:, -1] > atol, axis=0)
+    return counts
+
+
 def guided_approximation(
     polytope: WrenchPolytope,
     guiding_samples: np.ndarray | Callable[[int], np.ndarray],
@@ -109,16 +134,30 @@ def guided_approximation(
     Raises:
         ValueError: On bad arguments, or when no guiding sample lies in W_c.
     """
-    if isinstance(max_vertices, bool) or not isinstance(max_vertices, int):
-        raise InputError(f"max_vertices must be an integer, got {max_vertices!r}")
-    if max_vertices < 7:
-        raise InputError(f"max_vertices must be >= 7 (a 6-simplex), got {max_vertices}")
+    for name, value, high in (
+        ("max_vertices", max_vertices, MAX_VERTICES),
+        ("sample_count", sample_count, MAX_SAMPLES),
+    ):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+            raise InputError(f"{name} must be an integer, got {value!r}")
+        low = 7 if name == "max_vertices" else 1  # a 6-simplex; one sample
+        if not low <= value <= high:
+            raise InputError(f"{name} must be in [{low}, {high}], got {value}")
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise InputError(f"seed must be an integer >= 0, got {seed!r}")
+    if not (np.isfinite(tol) and tol >= 0.0):
+        raise InputError(f"tol must be finite and >= 0, got {tol!r}")
     if callable(guiding_samples):
         guiding_samples = guiding_samples(sample_count)
     wrenches = np.asarray(guiding_samples, dtype=float)
-    if wrenches.ndim != 2 or wrenches.shape[1] != 6 or len(wrenches) == 0:
+    if (
+        wrenches.ndim != 2
+        or wrenches.shape[1] != 6
+        or not 1 <= len(wrenches) <= MAX_SAMPLES
+    ):
         raise InputError(
-            f"guiding samples must be (N, 6) wrenches, got {wrenches.shape}"
+            f"guiding samples must be (N, 6) wrenches, 1 <= N <= {MAX_SAMPLES}, "
+            f"got {wrenches.shape}"
         )
     if not np.all(np.isfinite(wrenches)):
         raise InputError("guiding samples contain NaN or inf")
@@ -134,8 +173,7 @@ def guided_approximation(
         hull = ConvexHull(np.array(points))
         if len(points) >= max_vertices:
             break
-        outside = samples @ hull.equations[:, :-1].T + hull.equations[:, -1] > atol
-        counts = outside.sum(axis=0)
+        counts = _outside_counts(samples, hull.equations, atol)
         if counts.max() == 0:
             break  # every sample is covered
         face = hull.equations[np.argmax(counts)]
@@ -149,7 +187,7 @@ def guided_approximation(
     _, first = np.unique(rows.round(12), axis=0, return_index=True)
     rows = rows[np.sort(first)]
     F, g = rows[:, :-1], rows[:, -1]
-    covered = int(np.all(wrenches[inside] @ F.T <= g + tol, axis=1).sum())
+    covered = int(is_realizable(wrenches[inside], F, g, tol).sum())
     return GuidedApproximation(
         F=F,
         g=g,

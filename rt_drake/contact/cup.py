@@ -31,12 +31,31 @@ import numpy as np
 
 from rt_drake.errors import InputError
 
+#: Accepted range of each real parameter, [low, high] in SI units: the range
+#: of physically sensible suction cups, so that a typo (1e-300, 1e300) is
+#: refused instead of producing a degenerate polytope (all-zero rows, or
+#: vertices that violate their own H-representation in floating point).
+#: Radius 0.1 mm (micro cups) to 0.5 m (a 1 m cup); friction of an elastomer
+#: lip on packaging 0 to 1.5; forces 1 mN to 100 kN (full vacuum on a 0.5 m
+#: radius cup is 79 kN).
+PARAMETER_RANGES: dict[str, tuple[float, float]] = {
+    "radius": (1e-4, 0.5),
+    "friction": (0.0, 1.5),
+    "suction_force": (1e-3, 1e5),
+    "max_normal_force": (1e-3, 1e5),
+}
+#: Accepted range of the counts (contact points m, friction polygon sides k).
+#: The exact polytope's cost grows steeply with both; its own limit is a
+#: memory estimate (``rt_drake.contact.wrench_polytope``), usually lower.
+COUNT_RANGES: dict[str, tuple[int, int]] = {"points": (3, 1000), "sides": (3, 1000)}
+
 
 @dataclasses.dataclass
 class CupParameters:
     """Point-contact model of a suction cup (defaults: the paper's cup).
 
-    Attributes:
+    Attributes (accepted ranges: :data:`PARAMETER_RANGES`,
+    :data:`COUNT_RANGES`):
         radius: Radius r of the circle of contact points, in m.
         points: Number m of contact points on the rim (>= 3).
         friction: Coulomb friction coefficient mu (>= 0).
@@ -66,14 +85,16 @@ class CupParameters:
         self.validate()
 
     def validate(self) -> None:
-        """Raise ValueError naming the first parameter that is out of range."""
-        for name in ("points", "sides"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-                raise InputError(f"cup {name} must be an integer, got {value!r}")
-            if value < 3:
-                raise InputError(f"cup {name} must be >= 3, got {value!r}")
-        for name in ("radius", "friction", "suction_force", "max_normal_force"):
+        """Raise InputError naming the first parameter that is out of range."""
+        for name, (first, last) in COUNT_RANGES.items():
+            count = getattr(self, name)
+            if isinstance(count, bool) or not isinstance(count, (int, np.integer)):
+                raise InputError(f"cup {name} must be an integer, got {count!r}")
+            if not first <= count <= last:
+                raise InputError(
+                    f"cup {name} must be in [{first}, {last}], got {count!r}"
+                )
+        for name, (low, high) in PARAMETER_RANGES.items():
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(
                 value, (int, float, np.integer, np.floating)
@@ -81,15 +102,14 @@ class CupParameters:
                 raise InputError(f"cup {name} must be a number, got {value!r}")
             if not math.isfinite(value):
                 raise InputError(f"cup {name} must be finite, got {value!r}")
-        for name in ("radius", "suction_force", "max_normal_force"):
-            value = getattr(self, name)
-            if value <= 0.0:
-                raise InputError(f"cup {name} must be > 0, got {value!r}")
-        if self.friction < 0.0:
-            raise InputError(f"cup friction must be >= 0, got {self.friction!r}")
-        for name, nominal, low in (
-            ("friction_min", "friction", 0.0),
-            ("suction_force_min", "suction_force", None),
+            if not low <= value <= high:
+                raise InputError(
+                    f"cup {name} must be in [{low:g}, {high:g}]{_UNITS[name]}, "
+                    f"got {value!r}"
+                )
+        for name, nominal in (
+            ("friction_min", "friction"),
+            ("suction_force_min", "suction_force"),
         ):
             value = getattr(self, name)
             if value is None:
@@ -98,12 +118,11 @@ class CupParameters:
                 value, (int, float, np.integer, np.floating)
             ):
                 raise InputError(f"cup {name} must be a number, got {value!r}")
-            if not math.isfinite(value) or (
-                value < low if low is not None else value <= 0.0
-            ):
-                bound = ">= 0" if low is not None else "> 0"
+            low = PARAMETER_RANGES[nominal][0]
+            if not math.isfinite(value) or value < low:
                 raise InputError(
-                    f"cup {name} must be finite and {bound}, got {value!r}"
+                    f"cup {name} must be finite and >= {low:g}{_UNITS[nominal]}, "
+                    f"got {value!r}"
                 )
             if value > getattr(self, nominal):
                 raise InputError(
@@ -170,6 +189,14 @@ class CupParameters:
 
 #: Fields of CupParameters that describe a range of cups, not one cup.
 _RANGE_FIELDS = ("friction_min", "suction_force_min")
+
+
+_UNITS = {
+    "radius": " m",
+    "friction": "",
+    "suction_force": " N",
+    "max_normal_force": " N",
+}
 
 
 def contact_positions(cup: CupParameters) -> np.ndarray:

@@ -38,10 +38,13 @@ from collections.abc import Iterator, Sequence
 import numpy as np
 
 from rt_drake.contact.summand import Summand, cyclic_permutations, make_summand
+from rt_drake.errors import TooLargeError
 
 #: A combination's next direction must stick out of the span of the previous
 #: ones by this much (directions are unit vectors), or it is skipped.
 _INDEPENDENT = 1e-7
+#: Bytes per candidate vertex combination (codes, sort, decode), measured.
+BYTES_PER_VERTEX_CODE = 70
 
 
 @dataclasses.dataclass(frozen=True)
@@ -203,17 +206,28 @@ def _vertex_tuples(
     seeds: np.ndarray,
     sizes: Sequence[int],
     perms: list[np.ndarray] | None,
+    max_memory: float | None = None,
 ) -> np.ndarray:
     """Return (count, m) vertex indices, one per summand, of the sum's vertices.
 
     Candidates come from the facets ``seeds`` (incidence rows); with ``perms``
     (vertex permutations of the symmetry) one tuple per orbit is tested and
     the rest follow by rotation. The test uses every facet of ``incidence``.
+    Raises TooLargeError, before allocating them, if the candidates would
+    take more than ``max_memory`` bytes.
     """
     m, base = len(sizes), max(sizes)
     if float(base) ** m >= 2.0**62:
-        raise ValueError(f"{m} summands of {base} vertices: too many to encode")
+        raise TooLargeError(f"{m} summands of {base} vertices: too many to encode")
     starts = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+    per_summand = np.add.reduceat(seeds.astype(np.float64), starts[:-1], axis=1)
+    count = float(np.prod(per_summand, axis=1).sum())
+    if max_memory is not None and BYTES_PER_VERTEX_CODE * count > max_memory:
+        raise TooLargeError(
+            f"{count:.3g} candidate vertex combinations need about "
+            f"{BYTES_PER_VERTEX_CODE * count / 2**30:.3g} GB "
+            f"(limit {max_memory / 2**30:.3g} GB)"
+        )
     weights = base ** np.arange(m, dtype=np.int64)
     pieces = []
     for row in seeds:
@@ -260,6 +274,7 @@ def minkowski_sum(
     offset: np.ndarray,
     symmetry: np.ndarray | None = None,
     tol: float = 1e-9,
+    max_memory: float | None = None,
 ) -> MinkowskiSum:
     """Return the exact H- and V-representation of ``offset + sum conv(V_s)``.
 
@@ -269,16 +284,20 @@ def minkowski_sum(
         symmetry: Optional orthogonal (n, n) R mapping summand s onto summand
             s + 1 (mod m) and fixing ``offset``; speeds up the enumeration.
         tol: Relative tolerance of "on a face", times the summands' extent.
+        max_memory: Bytes the candidate vertex combinations may take (counted
+            exactly before they are made); None: no limit.
 
     Raises:
         ValueError: If a summand has dimension > 3 or ``symmetry`` is wrong.
+        TooLargeError: The vertex candidates would exceed ``max_memory``.
     """
     offset = np.asarray(offset, dtype=float)
     full = [np.asarray(v, dtype=float).reshape(-1, offset.size) for v in summands]
     base = offset + sum(v[0] for v in full)
     spread = np.vstack([v - v[0] for v in full])
     atol = tol * max(float(np.abs(spread).max(initial=0.0)), 1.0)
-    _, singular, vt = np.linalg.svd(spread, full_matrices=True)
+    # vt must be (n, n); u need not be (N, N) (N points: N^2 floats).
+    _, singular, vt = np.linalg.svd(spread, full_matrices=len(spread) < spread.shape[1])
     d = int(np.sum(singular > atol))
     span, complement = vt[:d], vt[d:]
     parts = [make_summand(v, v @ span.T, atol) for v in full]
@@ -295,7 +314,7 @@ def minkowski_sum(
         normals, seeds = _facets(parts, d, atol, rotation)
         incidence = _incidence(normals, parts, atol)
         sizes = [len(p.local) for p in parts]
-        tuples = _vertex_tuples(incidence, seeds, sizes, perms)
+        tuples = _vertex_tuples(incidence, seeds, sizes, perms, max_memory)
     vertices = offset + sum(p.full[tuples[:, s]] for s, p in enumerate(parts))
     rows = normals @ span
     g = rows @ offset + sum(np.max(p.full @ rows.T, axis=0) for p in parts)

@@ -64,6 +64,10 @@ def object_wrench_sampler(
     p = np.asarray(p_CoOcm_C, dtype=float)
     if p.shape != (3,) or not np.all(np.isfinite(p)):
         raise InputError(f"p_CoOcm_C must be 3 finite numbers, got {p_CoOcm_C!r}")
+    if not (np.isfinite(max_tilt) and 0.0 <= max_tilt <= np.pi):
+        raise InputError(f"max_tilt must be in [0, pi] rad, got {max_tilt!r}")
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise InputError(f"seed must be an integer >= 0, got {seed!r}")
     rng = np.random.default_rng(seed)
     down = np.diag([1.0, -1.0, -1.0])  # R_WC of a cup facing straight down
 

@@ -29,8 +29,14 @@ from rt_drake.contact.cup import (
     grasp_matrices,
     suction_wrench,
 )
+from rt_drake.contact.exact_cost import DEFAULT_MAX_MEMORY, check_exact_cost
 from rt_drake.contact.minkowski import minkowski_sum
 from rt_drake.errors import InputError
+
+#: A row of F whose norm is below this (relative to the largest row) is zero.
+ZERO_ROW = 1e-12
+#: Relative violation of ``F v <= g`` a vertex may have (rounding).
+VERTEX_TOLERANCE = 1e-7
 
 
 @dataclasses.dataclass(frozen=True)
@@ -60,19 +66,118 @@ def is_realizable(
     """Return ``all(F w <= g + tol)`` for each wrench of a (..., 6) array.
 
     Args:
-        wrenches: Wrenches ``[torque; force]`` on the object in C, (..., 6).
-        F: (rows, 6) H-representation matrix.
-        g: (rows,) offsets.
-        tol: Allowed violation, in the units of ``F w`` (distance if |F_j| = 1).
+        wrenches: Wrenches ``[torque; force]`` on the object in C, (..., 6),
+            finite.
+        F: (rows, 6) H-representation matrix: finite, no all-zero row (a zero
+            row constrains nothing, so it is a corrupted polytope).
+        g: (rows,) offsets, finite.
+        tol: Allowed violation, in the units of ``F w`` (distance if |F_j| = 1),
+            finite and >= 0.
 
     Returns:
         A boolean array of shape ``wrenches.shape[:-1]`` (a numpy bool for one
         wrench).
+
+    Raises:
+        InputError: a shape, NaN or inf, a zero row of F, or a bad ``tol``.
     """
     wrenches = np.asarray(wrenches, dtype=float)
+    F = np.asarray(F, dtype=float)
+    check_h_representation(F, g)
     if wrenches.shape[-1:] != (F.shape[1],):
         raise InputError(f"{wrenches.shape=} but {F.shape=}: need (..., 6) wrenches")
-    return np.all(wrenches @ F.T <= g + tol, axis=-1)
+    if not np.all(np.isfinite(wrenches)):
+        bad = np.argwhere(~np.isfinite(wrenches))[0]
+        raise InputError(
+            f"wrenches must be finite, got {wrenches[tuple(bad)]} at index "
+            f"{tuple(int(i) for i in bad)}"
+        )
+    if not (np.isfinite(tol) and tol >= 0.0):
+        raise InputError(f"tol must be finite and >= 0, got {tol!r}")
+    flat = wrenches.reshape(-1, F.shape[1])
+    inside = np.empty(len(flat), dtype=bool)
+    chunk = max(1, 2**22 // max(len(g), 1))  # (chunk, rows) floats: 32 MB
+    for start in range(0, len(flat), chunk):
+        block = flat[start : start + chunk] @ F.T
+        inside[start : start + chunk] = np.all(block <= g + tol, axis=-1)
+    return inside.reshape(wrenches.shape[:-1])[()]
+
+
+def check_h_representation(F: np.ndarray, g: np.ndarray) -> None:
+    """Raise InputError unless ``F w <= g`` is a well-formed H-representation.
+
+    F is (rows, 6) and finite with no all-zero row (``0 <= g_j`` accepts
+    every wrench: a corrupted or underflowed row); g is (rows,) and finite.
+    """
+    F = np.asarray(F, dtype=float)
+    g = np.asarray(g, dtype=float)
+    if F.ndim != 2 or F.shape[1] != 6 or g.shape != (F.shape[0],):
+        raise InputError(f"need F (rows, 6) and g (rows,), got {F.shape=} {g.shape=}")
+    if not np.all(np.isfinite(F)):
+        row = int(np.flatnonzero(~np.all(np.isfinite(F), axis=1))[0])
+        raise InputError(f"F must be finite, got row {row} = {F[row].tolist()}")
+    if not np.all(np.isfinite(g)):
+        row = int(np.flatnonzero(~np.isfinite(g))[0])
+        raise InputError(f"g must be finite, got g[{row}] = {g[row]}")
+    norms = np.linalg.norm(F, axis=1)
+    if np.any(norms <= ZERO_ROW * max(float(norms.max(initial=0.0)), 1.0)):
+        row = int(np.flatnonzero(norms <= ZERO_ROW * max(norms.max(), 1.0))[0])
+        raise InputError(
+            f"F row {row} is zero ({F[row].tolist()}): it constrains nothing"
+        )
+
+
+def check_polytope(polytope: WrenchPolytope, tol: float = VERTEX_TOLERANCE) -> None:
+    """Raise InputError unless a computed or loaded W_c is consistent.
+
+    The H-representation is well formed (:func:`check_h_representation`),
+    the vertices are finite and satisfy it: ``F v <= g + tol * s`` with
+    ``s`` the largest |vertex| component (a relative tolerance).
+    """
+    check_h_representation(polytope.F, polytope.g)
+    vertices = np.asarray(polytope.vertices, dtype=float)
+    if vertices.ndim != 2 or vertices.shape[1:] != (6,) or len(vertices) == 0:
+        raise InputError(f"need vertices (count >= 1, 6), got {vertices.shape}")
+    if not np.all(np.isfinite(vertices)):
+        raise InputError("the vertices of the wrench polytope are not finite")
+    scale = max(float(np.abs(vertices).max()), 1e-300)
+    F, g = np.asarray(polytope.F, dtype=float), np.asarray(polytope.g, dtype=float)
+    chunk = max(1, 2**22 // max(len(g), 1))  # (chunk, rows) floats: 32 MB
+    excess = max(
+        float((vertices[i : i + chunk] @ F.T - g).max(initial=0.0))
+        for i in range(0, len(vertices), chunk)
+    )
+    excess /= scale
+    if excess > tol:
+        raise InputError(
+            f"vertices violate their own H-representation by {excess:.3g} "
+            f"(relative, tolerance {tol:g}): numerically unreliable for {polytope.cup}"
+        )
+
+
+def with_suction_force(
+    polytope: WrenchPolytope, suction_force: float
+) -> WrenchPolytope:
+    """Return W_c of the same cup with another suction force P' A (N): exact, cheap.
+
+    The suction force enters W_c only as the constant wrench
+    ``[0, 0, 0, 0, 0, -P A]`` added to the Minkowski sum of the rim forces
+    (module docstring), so changing it translates the set by
+    ``d = (P A - P' A) e_z`` (force z component): the rows F stay, the offsets
+    become ``g' = g + F d = g + (P A - P' A) F[:, 5]`` and the vertices move by
+    d. A weaker vacuum (P' < P) moves the set toward +f_z: less pull.
+
+    Raises:
+        InputError: ``suction_force`` not > 0 (the cup parameters' own check).
+    """
+    cup = dataclasses.replace(polytope.cup, suction_force=float(suction_force))
+    shift = polytope.cup.suction_force - cup.suction_force
+    return WrenchPolytope(
+        cup=cup,
+        F=polytope.F,
+        g=polytope.g + shift * polytope.F[:, 5],
+        vertices=polytope.vertices + np.array([0.0] * 5 + [shift]),
+    )
 
 
 def wrench_scale(cup: CupParameters) -> np.ndarray:
@@ -87,24 +192,45 @@ def rotation_symmetry(cup: CupParameters) -> np.ndarray:
     return symmetry
 
 
-def contact_wrench_polytope(cup: CupParameters) -> WrenchPolytope:
+def contact_wrench_polytope(
+    cup: CupParameters, max_memory: float = DEFAULT_MAX_MEMORY
+) -> WrenchPolytope:
     """Compute the exact W_c of a cup: minimal H-rep and vertices.
 
     The paper's cup (m = 6, mu = 0.3, k = 4, 33.3 N, 20 N) gives 834 facets
-    and 1779 vertices.
+    and 1779 vertices. The cost is estimated first
+    (:func:`rt_drake.contact.exact_cost.exact_cost`) and the result checked
+    (:func:`check_polytope`).
+
+    Args:
+        cup: The cup model.
+        max_memory: Bytes the enumeration may use (estimated up front, then
+            counted before the largest allocation).
+
+    Raises:
+        InputError: a parameter out of range, or a result that is not a
+            consistent polytope.
+        TooLargeError: the estimate exceeds ``max_memory`` (the message gives
+            the estimate and the largest accepted points and sides).
     """
     cup.validate()
+    check_exact_cost(cup, max_memory)
     scale = wrench_scale(cup)
     pyramid = friction_pyramid(cup)
     summands = [(pyramid @ G.T) * scale for G in grasp_matrices(cup)]
     exact = minkowski_sum(
-        summands, suction_wrench(cup) * scale, symmetry=rotation_symmetry(cup)
+        summands,
+        suction_wrench(cup) * scale,
+        symmetry=rotation_symmetry(cup),
+        max_memory=max_memory,
     )
     F = exact.F * scale  # (a . S w <= b) reads ((a S) . w <= b)
     norms = np.linalg.norm(F, axis=1)
-    return WrenchPolytope(
+    polytope = WrenchPolytope(
         cup=cup,
         F=F / norms[:, None],
         g=exact.g / norms,
         vertices=exact.vertices / scale,
     )
+    check_polytope(polytope)
+    return polytope

@@ -10,11 +10,17 @@
 """
 
 from rt_drake.experiments.cycle_report import (
+    REPORT_FILES,
     cycle_report,
+    summary_line,
     table_markdown,
     write_report,
 )
-from rt_drake.experiments.robust_report import robust_table, write_robust_report
+from rt_drake.experiments.robust_report import (
+    ROBUST_FILES,
+    robust_table,
+    write_robust_report,
+)
 from rt_drake.experiments.robust_transport import (
     robust_trial,
     run_robust_transport_experiment,
@@ -33,14 +39,18 @@ from rt_drake.experiments.transport import (
     transport_trial,
 )
 from rt_drake.experiments.transport_report import (
+    TRANSPORT_FILES,
     transport_table,
     write_transport_report,
 )
 
 __all__ = [
+    "REPORT_FILES",
+    "ROBUST_FILES",
     "SLIP_ROTATION",
     "SLIP_TRANSLATION",
     "SPEED_FACTORS",
+    "TRANSPORT_FILES",
     "Rollout",
     "critical_speed",
     "cycle_report",
@@ -50,6 +60,7 @@ __all__ = [
     "run_transport_experiment",
     "simulate_move",
     "summarize",
+    "summary_line",
     "table_markdown",
     "transport_table",
     "transport_trial",

@@ -8,6 +8,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from rt_drake.atomic_file import write_atomically
+
 
 def _pyplot():
     import matplotlib
@@ -19,11 +21,15 @@ def _pyplot():
 
 
 def _save(fig, path: Path) -> Path:
-    """Write ``fig`` as a PNG at ``path`` and release it."""
+    """Write ``fig`` as a PNG at ``path`` (atomically) and release it."""
     plt = _pyplot()
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    try:
+        write_atomically(
+            path, lambda stream: fig.savefig(stream, format="png", dpi=120)
+        )
+    finally:
+        plt.close(fig)
     return path
 
 

@@ -12,7 +12,11 @@ import json
 from pathlib import Path
 from typing import Any
 
+from rt_drake.atomic_file import write_text_atomically
 from rt_drake.experiments.plots import plot_robustness
+
+#: The files :func:`write_robust_report` writes into its directory.
+ROBUST_FILES = ("results.json", "robustness.png", "report.md")
 
 
 def robust_table(results: dict[str, Any]) -> str:
@@ -65,10 +69,12 @@ def summary_lines(results: dict[str, Any]) -> list[str]:
 
 
 def write_robust_report(results: dict[str, Any], out_dir: Path) -> list[Path]:
-    """Write results.json, report.md and robustness.png; return the paths."""
-    out_dir.mkdir(parents=True, exist_ok=True)
+    """Write results.json, robustness.png and report.md; return the paths.
+
+    The files are :data:`ROBUST_FILES`, each written atomically.
+    """
     written = [out_dir / "results.json"]
-    written[0].write_text(json.dumps(results, indent=1) + "\n")
+    write_text_atomically(written[0], json.dumps(results, indent=1) + "\n")
     written.append(plot_robustness(results["trials"], out_dir / "robustness.png"))
     u, cup = results["uncertainty"], results["cup"]
     com = ", ".join(f"{1e3 * v:.3g}" for v in u["com"])
@@ -94,7 +100,8 @@ def write_robust_report(results: dict[str, Any], out_dir: Path) -> list[Path]:
         "moments, centre of mass at a random corner), on the worst cup of the",
         "range. ok: it moved less than 5 mm and 3 deg on the cup. Price: robust",
         "/ nominal duration. Tightness: robust duration / the duration that",
-        "holds a dense sample of the set (128 corners and 200 random objects),",
+        "holds a dense sample of the set (its corners that are bodies and 200",
+        "random bodies),",
         "a lower bound of the robust optimum. Soundness: each robust plan",
         "checked at 1 kHz for that sample's objects by another route than the",
         "retimer's (Drake's body accelerations, Newton-Euler).",
@@ -105,8 +112,8 @@ def write_robust_report(results: dict[str, Any], out_dir: Path) -> list[Path]:
         "![price and gain of robustness](robustness.png)",
     ]
     written.append(out_dir / "report.md")
-    written[-1].write_text("\n".join(text) + "\n")
+    write_text_atomically(written[-1], "\n".join(text) + "\n")
     return written
 
 
-__all__ = ["robust_table", "summary_lines", "write_robust_report"]
+__all__ = ["ROBUST_FILES", "robust_table", "summary_lines", "write_robust_report"]

@@ -19,7 +19,7 @@ from pydrake.multibody.tree import SpatialInertia
 from pydrake.trajectories import PiecewisePolynomial, Trajectory
 
 from rt_drake.retiming import TimeScaled
-from rt_drake.scenario import ObjectConfig, Scenario, Timing
+from rt_drake.scenario import ObjectConfig, Scenario, Vacuum
 from rt_drake.simulation import UPDATE_PERIOD, Motion, run_cycle
 
 #: m and rad: a rollout slipped if the object moved more on the cup.
@@ -54,7 +54,7 @@ class Rollout:
         }
 
 
-class _Replay:
+class Replay:
     """A MotionSource that stands at the grasp, then plays a given MOVE."""
 
     def __init__(self, q_grasp: np.ndarray, move: Trajectory) -> None:
@@ -63,14 +63,13 @@ class _Replay:
         )
         self._move = move
 
-    def approach(self, q_start: np.ndarray, obj: ObjectConfig) -> Motion:  # noqa: D102
-        return Motion(self._hold)
-
-    def reach(self, q_start: np.ndarray, obj: ObjectConfig) -> Motion:  # noqa: D102
+    def pick(  # noqa: D102
+        self, q_start: np.ndarray, obj: ObjectConfig, retreat: bool
+    ) -> Motion:
         return Motion(self._hold)
 
     def move(  # noqa: D102
-        self, q_start: np.ndarray, obj: ObjectConfig, reach: Motion | None
+        self, q_start: np.ndarray, obj: ObjectConfig, pick: Motion | None
     ) -> Motion:
         return Motion(self._move)
 
@@ -83,7 +82,7 @@ def rollout_scenario(trial: Scenario, q_grasp: np.ndarray) -> Scenario:
     return dataclasses.replace(
         trial,
         robot=dataclasses.replace(trial.robot, home=[float(q) for q in q_grasp]),
-        timing=Timing(attach_s=ROLLOUT_WAIT_S, detach_s=ROLLOUT_WAIT_S),
+        vacuum=Vacuum(attach_s=ROLLOUT_WAIT_S, detach_s=ROLLOUT_WAIT_S),
     )
 
 
@@ -102,7 +101,7 @@ def simulate_move(
     trajectory = move if speed == 1.0 else TimeScaled(move, speed)
     result = run_cycle(
         scenario,
-        _Replay(q_grasp, trajectory),
+        Replay(q_grasp, trajectory),
         max_sim_time=30.0,
         object_inertias=object_inertias,
     )
@@ -131,6 +130,7 @@ __all__ = [
     "SLIP_ROTATION",
     "SLIP_TRANSLATION",
     "SPEED_FACTORS",
+    "Replay",
     "Rollout",
     "critical_speed",
     "rollout_scenario",

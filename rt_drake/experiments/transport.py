@@ -13,7 +13,8 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
-from concurrent.futures import ProcessPoolExecutor
+from collections.abc import Callable
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from multiprocessing import get_context
 from pathlib import Path
 from typing import Any
@@ -146,8 +147,11 @@ def run_transport_experiment(
     seed: int = 0,
     object_name: str | None = None,
     workers: int = 1,
+    progress: Callable[[int, int], None] | None = None,
 ) -> dict[str, Any]:
     """Run n trials (in ``workers`` processes); return results and a summary.
+
+    ``progress(done, n)`` is called as each trial finishes (and with 0 first).
 
     Raises:
         InputError: fewer than one trial or one worker.
@@ -171,11 +175,19 @@ def run_transport_experiment(
         (str(scenario_path), name, i, X_s.GetAsMatrix4(), X_g.GetAsMatrix4(), seed)
         for i, (X_s, X_g) in enumerate(pairs)
     ]
+    report = progress or (lambda done, total: None)
+    report(0, n)
+    trials: list[dict[str, Any]] = []
     if workers == 1:
-        trials = [_trial_job(job) for job in jobs]
+        for job in jobs:
+            trials.append(_trial_job(job))
+            report(len(trials), n)
     else:
         with ProcessPoolExecutor(workers, mp_context=get_context("spawn")) as pool:
-            trials = list(pool.map(_trial_job, jobs))
+            for future in as_completed([pool.submit(_trial_job, j) for j in jobs]):
+                trials.append(future.result())
+                report(len(trials), n)
+        trials.sort(key=lambda trial: trial["index"])
     return {
         "object": name,
         "seed": seed,

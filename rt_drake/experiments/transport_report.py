@@ -10,7 +10,17 @@ import json
 from pathlib import Path
 from typing import Any
 
+from rt_drake.atomic_file import write_text_atomically
 from rt_drake.experiments.plots import plot_durations, plot_margins, plot_profiles
+
+#: The files :func:`write_transport_report` writes into its directory.
+TRANSPORT_FILES = (
+    "results.json",
+    "sd_profiles.png",
+    "grasp_margin.png",
+    "durations.png",
+    "report.md",
+)
 
 
 def transport_table(results: dict[str, Any]) -> str:
@@ -37,11 +47,13 @@ def transport_table(results: dict[str, Any]) -> str:
 
 
 def write_transport_report(results: dict[str, Any], out_dir: Path) -> list[Path]:
-    """Write results.json, report.md and the PNG plots; return the paths."""
-    out_dir.mkdir(parents=True, exist_ok=True)
+    """Write results.json, report.md and the PNG plots; return the paths.
+
+    The files are :data:`TRANSPORT_FILES`, each written atomically.
+    """
     s = results["summary"]
     written = [out_dir / "results.json"]
-    written[0].write_text(json.dumps(results, indent=1) + "\n")
+    write_text_atomically(written[0], json.dumps(results, indent=1) + "\n")
     first = results["trials"][0]
     written += [
         plot_profiles(first, out_dir / "sd_profiles.png"),
@@ -80,8 +92,8 @@ def write_transport_report(results: dict[str, Any], out_dir: Path) -> list[Path]
         "![durations](durations.png)",
     ]
     written.append(out_dir / "report.md")
-    written[-1].write_text("\n".join(text) + "\n")
+    write_text_atomically(written[-1], "\n".join(text) + "\n")
     return written
 
 
-__all__ = ["transport_table", "write_transport_report"]
+__all__ = ["TRANSPORT_FILES", "transport_table", "write_transport_report"]

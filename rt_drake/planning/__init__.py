@@ -7,7 +7,8 @@
 - :mod:`.path`: the clamped C2 spline handed to the retimer.
 - :mod:`.dense_check`, :mod:`.bounds`, :mod:`.kinematics`: the spline's
   dense check, certified by clearance; :mod:`.smooth`: its refinement.
-- :mod:`.connect`, :mod:`.cycle_planner`: the phases APPROACH, REACH, MOVE.
+- :mod:`.connect`, :mod:`.cycle_planner`: the phases APPROACH, REACH, MOVE;
+  :mod:`.pick`: retreat, APPROACH and REACH blended into one path.
 - :mod:`.transport`: random transport queries (the paper's Table I).
 """
 
@@ -20,6 +21,7 @@ from rt_drake.planning.errors import (
     UnreachablePoseError,
 )
 from rt_drake.planning.path import GeometricPath
+from rt_drake.planning.pick import PlannedPick
 from rt_drake.planning.result import PlannedPath, PlanTiming
 from rt_drake.planning.scene import PlanningScene
 from rt_drake.planning.transport import sample_transports
@@ -31,6 +33,7 @@ __all__ = [
     "NoPathError",
     "PlanTiming",
     "PlannedPath",
+    "PlannedPick",
     "PlanningError",
     "PlanningScene",
     "StartInCollisionError",

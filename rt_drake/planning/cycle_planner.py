@@ -7,6 +7,9 @@
   costed by the previous solution; no RRT. The target's grasped face is
   modelled ``TOUCH_ALLOWANCE`` lower, so the cup may touch (and press 2 mm
   into) that face and nothing else of the object.
+- PICK (:meth:`CyclePlanner.plan_pick`, :mod:`.pick`): APPROACH and REACH
+  blended into one path without a stop at the approach pose, after a
+  vertical retreat from an object just placed.
 - MOVE: the object attached to the cup, through four anchors: grasp, lift
   (the grasp raised by ``approach_offset``; the IK line of the REACH passed
   in, reversed, when that REACH came down from there), above the place pose
@@ -32,16 +35,19 @@ import zlib
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 
+from rt_drake.errors import InputError
 from rt_drake.phase import Phase
 from rt_drake.planning.connect import Attempt, describe, ik_line, through
 from rt_drake.planning.errors import (
     GoalInCollisionError,
     PlanningError,
+    PlanningInputError,
     StartInCollisionError,
     UnreachablePoseError,
 )
 from rt_drake.planning.geometry import face_under_cup
 from rt_drake.planning.ik import CupIk, initial_guesses, nearest_valid_solution
+from rt_drake.planning.pick import PlannedPick, plan_pick
 from rt_drake.planning.result import PlannedPath
 from rt_drake.planning.scene import PlanningScene
 from rt_drake.plant import home_configuration
@@ -55,6 +61,8 @@ GRASP_TOLERANCE_M = 0.002
 GRASP_TOLERANCE_RAD = 0.02
 #: s, default time budget of one planning call.
 BUDGET_S = 1.0
+#: s, the largest budget accepted (a call that finds no path uses it all).
+MAX_BUDGET_S = 600.0
 #: heights of MOVE's above-place anchor tried, in units of approach_offset.
 ABOVE_FRACTIONS = (1.0, 0.5, 0.25)
 
@@ -79,6 +87,16 @@ class CyclePlanner:
         budget_s: float = BUDGET_S,
         scene: PlanningScene | None = None,
     ) -> None:
+        if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)):
+            raise InputError(f"planner seed must be an integer, got {seed!r}")
+        if not (
+            isinstance(budget_s, (int, float, np.number))
+            and np.isfinite(budget_s)
+            and 0.0 < budget_s <= MAX_BUDGET_S
+        ):
+            raise InputError(
+                f"planning budget must be in (0, {MAX_BUDGET_S:g}] s, got {budget_s!r}"
+            )
         self.scenario = scenario
         self.seed = seed
         self.budget_s = budget_s
@@ -92,6 +110,8 @@ class CyclePlanner:
     def set_object_pose(self, name: str, X_WO: RigidTransform | None) -> None:
         """Move object ``name`` to X_WO (None: the object left the cell)."""
         self.scenario.object(name)
+        if X_WO is not None:
+            _check_pose(X_WO, f"pose of object '{name}'")
         self.object_poses[name] = X_WO
 
     def grasps(self, name: str) -> list[RigidTransform]:
@@ -104,6 +124,7 @@ class CyclePlanner:
     def plan_approach(self, q_current: np.ndarray, name: str) -> PlannedPath:
         """Path from ``q_current`` to the cup above object ``name``."""
         attempt = self._begin(Phase.APPROACH, name)
+        q_current = self._configuration(attempt, q_current, "q_current")
         with attempt.watch("scene"):
             self.prepare(Phase.APPROACH, name, q_current)
         self._check_start(attempt, q_current)
@@ -118,6 +139,7 @@ class CyclePlanner:
     def plan_reach(self, q_approach: np.ndarray, name: str) -> PlannedPath:
         """Straight descent from ``q_approach`` to the grasp of ``name``."""
         attempt = self._begin(Phase.REACH, name)
+        q_approach = self._configuration(attempt, q_approach, "q_approach")
         X_start = self.scene.cup_pose(q_approach)
         X_OC = self._nearest_grasp(attempt, X_start)
         with attempt.watch("scene"):
@@ -140,6 +162,16 @@ class CyclePlanner:
         planned = through(self.scene, self.ik, list(chain), X_OC, attempt)
         return dataclasses.replace(planned, descent=chain)
 
+    def plan_pick(
+        self, q_start: np.ndarray, name: str, retreat: bool = False
+    ) -> PlannedPick:
+        """APPROACH and REACH of ``name`` as one path, after a retreat if asked.
+
+        ``retreat``: the cup rests on a placed object at ``q_start`` and first
+        rises vertically off it (:mod:`.pick`).
+        """
+        return plan_pick(self, q_start, name, retreat)
+
     def plan_move(
         self,
         q_grasp: np.ndarray,
@@ -157,9 +189,12 @@ class CyclePlanner:
                 lifts along its descent, reversed, when that fits.
         """
         attempt = self._begin(Phase.MOVE, name)
+        q_grasp = self._configuration(attempt, q_grasp, "q_grasp")
         obj = self.scenario.object(name)
         if X_WO_goal is None:
             X_WO_goal = obj.goal.GetDeterministicValue()
+        else:
+            _check_pose(X_WO_goal, "goal pose X_WO_goal", attempt)
         X_OC = self._nearest_grasp(attempt, self.scene.cup_pose(q_grasp))
         X_grasp = self._pose(attempt) @ X_OC
         error = self.scene.cup_pose(q_grasp).InvertAndCompose(X_grasp)
@@ -217,6 +252,10 @@ class CyclePlanner:
         """
         phase = Phase.APPROACH if X_OC is None else Phase.MOVE
         attempt = self._begin(phase, name)
+        q_start = self._configuration(attempt, q_start, "q_start")
+        q_goal = self._configuration(attempt, q_goal, "q_goal")
+        if X_OC is not None:
+            _check_pose(X_OC, "grasp X_OC", attempt)
         with attempt.watch("scene"):
             self.prepare(phase, name, q_start, X_OC)
         self._check_start(attempt, q_start)
@@ -240,9 +279,10 @@ class CyclePlanner:
         Uses the scene as last prepared; ``phase`` and ``name`` label errors.
         Raises UnreachablePoseError or GoalInCollisionError.
         """
-        return self._solve(
-            self._begin(phase, name, check=False), "cup", [X_WC], q_near
-        )[1]
+        attempt = self._begin(phase, name, check=False)
+        q_near = self._configuration(attempt, q_near, "q_near")
+        _check_pose(X_WC, "cup pose X_WC", attempt)
+        return self._solve(attempt, "cup", [X_WC], q_near)[1]
 
     # -- scene --------------------------------------------------------------
 
@@ -311,6 +351,30 @@ class CyclePlanner:
             ),
         )
 
+    def _configuration(self, attempt: Attempt, q: object, name: str) -> np.ndarray:
+        """``q`` (argument ``name``) as (n,) joint positions; PlanningInputError if not.
+
+        Wrong size, NaN or inf are refused before any query sees them.
+        """
+        n = self.scene.plant.num_positions()
+        try:
+            array = np.asarray(q, dtype=float)
+        except (TypeError, ValueError):
+            array = None
+        if array is None or array.shape != (n,) or not np.all(np.isfinite(array)):
+            shown = (
+                f"{array.size} values {np.array2string(array, precision=4)}"
+                if array is not None
+                else repr(q)
+            )
+            raise PlanningInputError(
+                attempt.phase,
+                attempt.name,
+                f"configuration {name} must be {n} finite joint positions (rad), "
+                f"got {shown}",
+            )
+        return array
+
     def _valid(self, q: np.ndarray) -> bool:
         return self.scene.within_limits(q) and self.scene.is_free(q)
 
@@ -365,8 +429,20 @@ class CyclePlanner:
         return chain
 
 
+def _check_pose(X: RigidTransform, what: str, attempt: Attempt | None = None) -> None:
+    """Refuse a pose that is not a finite RigidTransform."""
+    finite = isinstance(X, RigidTransform) and np.all(np.isfinite(X.GetAsMatrix4()))
+    if finite:
+        return
+    detail = f"{what} must be a finite RigidTransform, got {X}"
+    if attempt is None:
+        raise InputError(detail)
+    raise PlanningInputError(attempt.phase, attempt.name, detail)
+
+
 __all__ = [
     "BUDGET_S",
+    "MAX_BUDGET_S",
     "CyclePlanner",
     "GRASP_TOLERANCE_M",
     "GRASP_TOLERANCE_RAD",

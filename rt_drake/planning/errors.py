@@ -6,7 +6,7 @@ cell::top_plate)``.
 
 from __future__ import annotations
 
-from rt_drake.errors import RtDrakeError
+from rt_drake.errors import InputError, RtDrakeError
 from rt_drake.phase import Phase
 
 
@@ -24,6 +24,13 @@ class PlanningError(RtDrakeError):
         self.object = obj
         self.detail = detail
         super().__init__(f"{phase.label} {obj}: {detail}")
+
+
+class PlanningInputError(PlanningError, InputError):
+    """A configuration or pose given to the planner is malformed.
+
+    Wrong size, NaN or inf: refused before any collision query or IK.
+    """
 
 
 class UnreachablePoseError(PlanningError):
@@ -46,6 +53,7 @@ __all__ = [
     "GoalInCollisionError",
     "NoPathError",
     "PlanningError",
+    "PlanningInputError",
     "StartInCollisionError",
     "UnreachablePoseError",
 ]

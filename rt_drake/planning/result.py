@@ -96,10 +96,10 @@ class PlannedPath:
         X_OC: the grasp used (pose of the cup frame C in the object frame O),
             the scenario's or its yaw flip about z_C.
         timing: wall time of each stage.
-        descent: REACH only: the IK chain of the straight descent (rad, one
-            configuration per ``LINE_STEP`` from the approach pose to the
-            grasp), which a MOVE from the same grasp may lift along in
-            reverse; None otherwise.
+        descent: REACH and the blended pick only: the IK chain of the
+            straight descent (rad, one configuration per ``LINE_STEP``, or
+            closer, from the approach pose to the grasp), which a MOVE from
+            the same grasp may lift along in reverse; None otherwise.
     """
 
     phase: Phase

@@ -42,7 +42,7 @@ from rt_drake.planning.geometry import (
     object_geometries,
     shrink_face,
 )
-from rt_drake.plant import CUP_FRAME, ObjectMode, add_scenario_models
+from rt_drake.plant import ObjectMode, add_scenario_models, scenario_cup_frame
 from rt_drake.scenario import Scenario
 
 #: Edge step of the checker's straight-line checks, in the weighted metric
@@ -78,7 +78,7 @@ class PlanningScene:
             )
         self.scenario = scenario
         self.plant = plant
-        self.cup_frame = plant.GetFrameByName(CUP_FRAME)
+        self.cup_frame = scenario_cup_frame(plant, scenario)
         self.lower = plant.GetPositionLowerLimits()
         self.upper = plant.GetPositionUpperLimits()
         self._query_port = diagram.scene_graph().get_query_output_port()
@@ -113,6 +113,7 @@ class PlanningScene:
             self_collision_padding=0.0,
         )
         self.bounds.set_self_pairs(self.checker.IsCollisionFilteredBetween)
+        self._fk_context = plant.CreateDefaultContext()  # cup_poses' scratch
         self._labels: dict = {}  # GeometryId of an added shape -> label
         self._groups: dict[str, object] = {}  # group -> key of what it holds
         self.held: str | None = None
@@ -221,6 +222,19 @@ class PlanningScene:
         return self.plant.CalcRelativeTransform(
             context, self.plant.world_frame(), self.cup_frame
         )
+
+    def cup_poses(self, q: np.ndarray) -> list[RigidTransform]:
+        """X_WC at each row of q (N, n): forward kinematics only, no geometry."""
+        world = self.plant.world_frame()
+        poses = []
+        for row in np.atleast_2d(q):
+            self.plant.SetPositions(self._fk_context, row)
+            poses.append(
+                self.plant.CalcRelativeTransform(
+                    self._fk_context, world, self.cup_frame
+                )
+            )
+        return poses
 
     def collisions(self, q: np.ndarray) -> list[str]:
         """Name the colliding pairs at q: ``"vs060::link3 with cell::top_plate"``."""

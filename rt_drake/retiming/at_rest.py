@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rt_drake.dynamics import HeldObject
+from rt_drake.inertial_set import SetVertex
 from rt_drake.retiming.errors import GraspUnstableAtRestError, TorqueLimitAtRestError
 from rt_drake.retiming.limits import GraspConstraint, JointLimits
 
@@ -40,7 +40,7 @@ def check_grasp_at_rest(
 
 
 def set_grasp_at_rest(
-    s: float, c: np.ndarray, worst: HeldObject, grasp: GraspConstraint
+    s: float, c: np.ndarray, worst: SetVertex, grasp: GraspConstraint
 ) -> None:
     """Raise: the worst object of the set slips at rest at ``s``.
 
@@ -64,7 +64,7 @@ def set_grasp_at_rest(
 
 
 def set_torque_at_rest(
-    s: float, row: int, ratio: float, worst: HeldObject, limits: JointLimits
+    s: float, row: int, ratio: float, worst: SetVertex, limits: JointLimits
 ) -> None:
     """Raise: holding the arm with the worst object exceeds a torque limit.
 

@@ -40,11 +40,15 @@ overshoots measured at 100 grid points stay below 3 %).
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 
 from rt_drake.dynamics import PathCoefficients
+from rt_drake.retiming import between_kernels as K
+from rt_drake.retiming.joint_path import JointPath
 from rt_drake.retiming.limits import JointLimits
 from rt_drake.retiming.passes import VAR_BOUND, StageRows
 from rt_drake.retiming.samples import PathSamples
+from rt_drake.retiming.seidel import kernel_array
 
 #: Interior points per segment: theta = 1/8, 2/8, ..., 7/8.
 SUBPOINTS = 7
@@ -57,36 +61,68 @@ MAX_SPLIT = 8
 _THETA = np.arange(1, SUBPOINTS + 1) / (SUBPOINTS + 1)
 #: The sub-points of the interior joint rows (theta = 1/4, 1/2, 3/4) and the
 #: midpoint.
-INTERIOR_POINTS = np.array([1, 3, 5])
+_INTERIOR_POINTS = np.array([1, 3, 5], dtype=np.int64)
 MIDDLE = 3
 
 
 class Segments:
     """The grid's segments at their sub-points: path derivatives, stencils.
 
-    Built once per grid (it does not depend on the profile).
+    Built once per grid (it does not depend on the profile). For a cubic
+    path q' and q'' at the sub-points follow from their grid values; for
+    another path they are evaluated.
 
     Attributes:
         s: (G,) grid; ds: (N,) steps.
         dq, ddq: (N, K, n) q'(s), q''(s) at the sub-points.
     """
 
-    def __init__(self, samples: PathSamples, knots: np.ndarray) -> None:
+    def __init__(
+        self, samples: PathSamples, knots: np.ndarray, path: JointPath
+    ) -> None:
         self.s = samples.s
         self.ds = np.diff(self.s)
-        # Inside one cubic piece q'' is linear, so with J = q''_{i+1} - q''_i,
-        # q'(s_i + theta ds) = q'_i + theta ds (q''_i + theta J / 2) and
-        # q''(s_i + theta ds) = q''_i + theta J.
-        ddq = samples.ddq
-        jump = (ddq[1:] - ddq[:-1])[:, None]  # (N, 1, n)
-        theta = _THETA[None, :, None]
-        ds = self.ds[:, None, None]
-        self.dq = samples.dq[:-1, None] + theta * ds * (
-            ddq[:-1, None] + 0.5 * theta * jump
-        )
-        self.ddq = ddq[:-1, None] + theta * jump
+        count, n = len(self.ds), samples.dq.shape[1]
+        if path.cubic:  # exact from the grid values (q'' linear per segment)
+            self.dq = np.empty((count, len(_THETA), n))
+            self.ddq = np.empty((count, len(_THETA), n))
+            K.sub_derivatives(
+                kernel_array(samples.dq),
+                kernel_array(samples.ddq),
+                self.ds,
+                _THETA,
+                self.dq,
+                self.ddq,
+            )
+        else:
+            points = self.s[:-1, None] + _THETA * self.ds[:, None]
+            self.dq = kernel_array(path(points, 1))
+            self.ddq = kernel_array(path(points, 2))
         self.step = 2.0 * _THETA * self.ds[:, None]  # x(s) = x_i + step u_i
         self._index, self._weights = _lagrange(self.s, knots)
+
+    def enforced_wrenches(
+        self, wrench: PathCoefficients, x: np.ndarray, u: np.ndarray
+    ) -> np.ndarray:
+        """The (3N + 1, 6) wrenches the stage LPs enforce.
+
+        At every grid point, both ends of every segment and its midpoint
+        (interpolated), see :func:`.between_kernels.enforced_wrenches`; the
+        exactness check evaluates every grasp row at them.
+        """
+        count = len(self.ds)
+        out = np.empty((3 * count + 1, 6))
+        K.enforced_wrenches(
+            *(kernel_array(v) for v in wrench),
+            kernel_array(x),
+            kernel_array(u),
+            self.s,
+            self._weights,
+            self._index,
+            MIDDLE,
+            out,
+        )
+        return out
 
     def interpolate(self, values: np.ndarray, point: int | None = None) -> np.ndarray:
         """(G, m) values at the grid points -> (N, K, m) at the sub-points.
@@ -106,27 +142,22 @@ def interior_rows(segments: Segments, limits: JointLimits) -> StageRows:
     min_j v_j^2 / q'_j(s)^2`` (inactive where every q'_j is 0) and the
     accelerations of every joint, each sign.
     """
-    points = INTERIOR_POINTS
-    with np.errstate(divide="ignore"):
-        cap = np.min(limits.velocity**2 / segments.dq[:, points] ** 2, axis=2)
-    bounded = cap < VAR_BOUND  # (N, 3)
-    velocity = (
-        np.where(bounded, segments.step[:, points], 0.0),
-        np.where(bounded, 1.0, 0.0),
-        np.where(bounded, -np.minimum(cap, VAR_BOUND), -1.0),
+    count, n = len(segments.ds), segments.dq.shape[2]
+    width = len(_INTERIOR_POINTS) * (1 + 2 * n)
+    A, B, C = (np.empty((count, width)) for _ in range(3))
+    K.interior_rows(
+        segments.dq,
+        segments.ddq,
+        segments.step,
+        _INTERIOR_POINTS,
+        kernel_array(limits.velocity),
+        kernel_array(limits.acceleration),
+        VAR_BOUND,
+        A,
+        B,
+        C,
     )
-    dq = segments.dq[:, points]  # (N, 3, n)
-    ddq = segments.ddq[:, points]
-    step = segments.step[:, points, None]
-    count = len(segments.ds)
-    A = (dq + step * ddq).reshape(count, -1)
-    B = ddq.reshape(count, -1)
-    C = -np.broadcast_to(np.tile(limits.acceleration, len(points)), A.shape)
-    return StageRows(
-        np.hstack([velocity[0], A, -A]),
-        np.hstack([velocity[1], B, -B]),
-        np.hstack([velocity[2], C, C]),
-    )
+    return StageRows(A, B, C)
 
 
 def grasp_midpoint_rows(
@@ -171,40 +202,43 @@ def joint_cuts(
         rows elsewhere), or None if no joint limit is exceeded.
     """
     dq, ddq, step = segments.dq, segments.ddq, segments.step
-    x_sub = np.maximum(x[:-1, None] + step * u[:, None], 0.0)
-    velocity = np.abs(dq) * np.sqrt(x_sub)[..., None] / limits.velocity
-    acceleration = (dq * u[:, None, None] + ddq * x_sub[..., None]) / (
-        limits.acceleration
+    count, n = len(u), dq.shape[2]
+    worst = np.empty((3, count, n), dtype=np.int64)
+    excess = np.empty((3, count, n))
+    K.joint_excess(
+        dq,
+        ddq,
+        step,
+        kernel_array(x),
+        kernel_array(u),
+        kernel_array(limits.velocity),
+        kernel_array(limits.acceleration),
+        worst,
+        excess,
     )
-    rows = np.arange(len(u))[:, None]
-    joints = np.arange(dq.shape[2])
+    exceeded = excess > tolerance  # (3, N, n)
+    if not exceeded.any():
+        return None
+    rows = np.arange(count)[:, None]
+    joints = np.arange(n)
     columns = []
     # Velocity: (2 theta ds) u + x - v^2 / q'^2 <= 0 at the worst theta.
-    worst = np.argmax(velocity, axis=1)  # (N, n)
-    exceeded = velocity[rows, worst, joints] > 1.0 + tolerance
-    if exceeded.any():
-        q1 = dq[rows, worst, joints]
-        with np.errstate(divide="ignore"):
-            cap = limits.velocity**2 / q1**2
-        columns.append((step[rows, worst], np.ones_like(q1), -cap, exceeded))
+    q1 = dq[rows, worst[0], joints]
+    with np.errstate(divide="ignore"):
+        cap = limits.velocity**2 / q1**2
+    columns.append((step[rows, worst[0]], np.ones_like(q1), -cap, exceeded[0]))
     # Acceleration, each sign: sign ((q' + 2 theta ds q'') u + q'' x) - a <= 0.
-    for sign in (1.0, -1.0):
-        value = sign * acceleration
-        worst = np.argmax(value, axis=1)
-        exceeded = value[rows, worst, joints] > 1.0 + tolerance
-        if not exceeded.any():
-            continue
-        q1, q2 = dq[rows, worst, joints], ddq[rows, worst, joints]
+    for kind, sign in ((1, 1.0), (2, -1.0)):
+        q1 = dq[rows, worst[kind], joints]
+        q2 = ddq[rows, worst[kind], joints]
         columns.append(
             (
-                sign * (q1 + step[rows, worst] * q2),
+                sign * (q1 + step[rows, worst[kind]] * q2),
                 sign * q2,
                 -np.broadcast_to(limits.acceleration, q1.shape),
-                exceeded,
+                exceeded[kind],
             )
         )
-    if not columns:
-        return None
     A, B, C, active = (np.hstack(parts) for parts in zip(*columns, strict=True))
     used = active.any(axis=0)
     A, B, C, active = A[:, used], B[:, used], C[:, used], active[:, used]
@@ -224,8 +258,10 @@ def refinement_points(
     x: np.ndarray,
     u: np.ndarray,
     limits: JointLimits,
-    grasp_ratio: np.ndarray | None,
+    normals: np.ndarray | None,
+    row_max: np.ndarray | None,
     tolerance: float,
+    grasp_ratio: np.ndarray | None = None,
 ) -> np.ndarray:
     """Grid points to add where torque or grasp is exceeded in a segment.
 
@@ -235,31 +271,52 @@ def refinement_points(
         x: (G,) ``s'^2`` at the grid points.
         u: (G-1,) ``s''`` per segment.
         limits: Joint limits.
-        grasp_ratio: (N, K) the grasp's largest ``F_k w / g_k`` at the
-            sub-points (and, for a set of objects, its torque ratio), from
-            the grasp rows' ``between``; None: nothing to look at.
+        normals: (6, R) grasp rows ``F / g`` (transposed) of one object, or
+            None.
+        row_max: (R,) each grasp row's largest ``F_k w / g_k`` at the grid
+            points (from the exactness check), or None.
         tolerance: Relative excess allowed.
+        grasp_ratio: For a set of objects, (N, K) its worst object's largest
+            ``F_k w / g_k`` and torque ratio at the sub-points (from
+            :meth:`.robust_grasp.SetRows.between`; the samples' torques are
+            then the arm's alone and not checked here), or None.
 
     Returns:
         Sorted new s values (empty: nothing exceeded).
     """
-    torque = (
+    checks: list[tuple[PathCoefficients, np.ndarray, bool]] = []
+    if (
         samples.torque is not None
         and limits.torque is not None
         and samples.torque_set is None  # a set's torques come with its grasp
-    )
-    if not torque and grasp_ratio is None:
+    ):
+        checks.append((samples.torque, np.diag(1.0 / limits.torque), True))
+    if samples.wrench is not None and normals is not None and row_max is not None:
+        rows = np.flatnonzero(row_max > 1.0 - ROW_SCREEN)
+        if rows.size:
+            checks.append((samples.wrench, normals[:, rows], False))
+    if not checks and grasp_ratio is None:
         return np.zeros(0)
-    x_sub = subpoint_x(segments, x, u)
-    ratio = np.zeros_like(x_sub)
-    if torque:
-        assert samples.torque is not None and limits.torque is not None
-        a, b, c = (segments.interpolate(v) for v in samples.torque)
-        value = a * u[:, None, None] + b * x_sub[..., None] + c
-        ratio = np.maximum(ratio, np.max(np.abs(value) / limits.torque, axis=2))
+    excess = np.full(len(u), -np.inf)
     if grasp_ratio is not None:
-        ratio = np.maximum(ratio, grasp_ratio)
-    excess = ratio.max(axis=1) - 1.0
+        excess = grasp_ratio.max(axis=1) - 1.0
+    part = np.empty(len(u))
+    x, u = kernel_array(x), kernel_array(u)
+    for (a, b, c), rows_map, absolute in checks:
+        K.affine_excess(
+            segments._weights,
+            segments._index,
+            kernel_array(a),
+            kernel_array(b),
+            kernel_array(c),
+            segments.step,
+            x,
+            u,
+            kernel_array(rows_map),
+            absolute,
+            part,
+        )
+        np.maximum(excess, part, out=excess)
     split = np.flatnonzero(excess > tolerance)
     if not split.size:
         return np.zeros(0)
@@ -288,27 +345,46 @@ def _lagrange(s: np.ndarray, knots: np.ndarray) -> tuple[np.ndarray, np.ndarray]
     on_grid = on_grid[np.abs(s[on_grid] - knots) <= 1e-12]
     bounds = np.unique(np.concatenate([[0, count], on_grid]))
     piece = np.searchsorted(bounds, np.arange(count), side="right") - 1
-    low, high = bounds[piece], bounds[piece + 1]
-    size = np.minimum(4, high - low + 1)  # points available in the piece
-    start = np.clip(np.arange(count) - 1, low, high - size + 1)
-    offsets = np.arange(4)
-    index = np.minimum(start[:, None] + offsets, high[:, None])  # (N, 4)
-    nodes = s[index]
-    valid = offsets < size[:, None]  # (N, 4)
-    t = s[:-1, None] + _THETA * np.diff(s)[:, None]  # (N, K)
-    # w_k(t) = prod_{m != k} (t - t_m) / (t_k - t_m) over the valid nodes m
-    # (t is never a node: the sub-points lie strictly inside the segments).
-    factors = np.where(valid[:, None, :], t[..., None] - nodes[:, None, :], 1.0)
-    numerators = np.prod(factors, axis=2, keepdims=True) / factors  # (N, K, 4)
-    gaps = nodes[:, :, None] - nodes[:, None, :]  # (N, k, m)
-    gaps[:, offsets, offsets] = 1.0
-    gaps = np.where(valid[:, None, :], gaps, 1.0)
-    weights = numerators / np.prod(gaps, axis=2)[:, None, :]
-    return index, np.where(valid[:, None, :], weights, 0.0)
+    index = np.empty((count, 4), dtype=np.int64)
+    weights = np.empty((count, len(_THETA), 4))
+    _lagrange_kernel(
+        kernel_array(s),
+        bounds[piece].astype(np.int64),
+        bounds[piece + 1].astype(np.int64),
+        _THETA,
+        index,
+        weights,
+    )
+    return index, weights
+
+
+@njit(cache=True)
+def _lagrange_kernel(s, low, high, theta, index, weights):  # noqa: D417
+    """Fill ``index`` (N, 4) and ``weights`` (N, K, 4) (see :func:`_lagrange`).
+
+    ``w_k(t) = prod_{m != k} (t - t_m) / (t_k - t_m)`` over the nodes of the
+    piece; unused slots (a piece with fewer than four points) get weight 0.
+    """
+    for i in range(index.shape[0]):
+        size = min(4, high[i] - low[i] + 1)
+        start = min(max(i - 1, low[i]), high[i] - size + 1)
+        for k in range(4):
+            index[i, k] = min(start + k, high[i])
+        for j in range(theta.shape[0]):
+            t = s[i] + theta[j] * (s[i + 1] - s[i])
+            for k in range(4):
+                if k >= size:
+                    weights[i, j, k] = 0.0
+                    continue
+                w = 1.0
+                for m in range(size):
+                    if m != k:
+                        t_k, t_m = s[index[i, k]], s[index[i, m]]
+                        w *= (t - t_m) / (t_k - t_m)
+                weights[i, j, k] = w
 
 
 __all__ = [
-    "INTERIOR_POINTS",
     "MAX_SPLIT",
     "MIDDLE",
     "ROW_SCREEN",

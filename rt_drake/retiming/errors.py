@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import enum
 
-from rt_drake.errors import RtDrakeError
+from rt_drake.errors import InputError, RtDrakeError
 
 
 class RetimeStatus(enum.Enum):
@@ -33,8 +33,11 @@ class RetimeError(RtDrakeError):
         self.s = s
 
 
-class RetimeInputError(RetimeError, ValueError):
-    """The path, limits or grasp are malformed (shape, NaN, sign)."""
+class RetimeInputError(RetimeError, InputError):
+    """The path, limits or grasp are malformed (shape, NaN, sign).
+
+    Also an :class:`~rt_drake.errors.InputError` (and a ``ValueError``).
+    """
 
     status = RetimeStatus.BAD_INPUT
 

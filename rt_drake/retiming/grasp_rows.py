@@ -16,15 +16,11 @@ from typing import NamedTuple
 import numpy as np
 from toppra.constraint import LinearConstraint
 
-from rt_drake.dynamics import PathCoefficients
 from rt_drake.retiming import rows as R
 from rt_drake.retiming.at_rest import check_grasp_at_rest
 from rt_drake.retiming.between import (
-    MIDDLE,
-    ROW_SCREEN,
     Segments,
     grasp_midpoint_rows,
-    subpoint_x,
 )
 from rt_drake.retiming.limits import GraspConstraint
 from rt_drake.retiming.passes import AffineConstraint
@@ -109,45 +105,15 @@ class ObjectRows:
     ) -> Check:
         """Every row at every enforced wrench; add the rows missed."""
         assert samples.wrench is not None
-        s = samples.s
-        enforced = _enforced_wrenches(samples.wrench, x, u, s)
-        middle = _midpoint_wrenches(segments, samples.wrench, x, u)
+        enforced = segments.enforced_wrenches(samples.wrench, x, u)
         ratio, violated, row_max = R.wrench_ratios(
-            np.vstack([enforced, middle]), self.normals, self.grasp.g, ROW_TOLERANCE
+            enforced, self.normals, self.grasp.g, ROW_TOLERANCE
         )
         missed = np.setdiff1d(violated, self.rows) if violated.size else violated
         if missed.size:
             self.rows = np.union1d(self.rows, missed)
             self.repairs += 1
-        return Check(bool(missed.size), ratio[: len(s)], row_max)
-
-    def between(
-        self,
-        samples: PathSamples,
-        segments: Segments,
-        x: np.ndarray,
-        u: np.ndarray,
-        screen: np.ndarray,
-        tolerance: float | None = None,
-    ) -> tuple[np.ndarray | None, bool]:
-        """The grasp ratio (N, K) at the sub-points, floored at 0.
-
-        Only the rows whose largest value at the enforced wrenches
-        (``screen``) comes within :data:`~.between.ROW_SCREEN` of their bound
-        (None if there is none). One object never adds cuts (the retimer adds
-        grid points instead): the second value is always False.
-        """
-        assert samples.wrench is not None
-        rows = np.flatnonzero(screen > 1.0 - ROW_SCREEN)
-        if not rows.size:
-            return None, False
-        x_sub = subpoint_x(segments, x, u)
-        a, b, c = (segments.interpolate(v) for v in samples.wrench)
-        value = a * u[:, None, None] + b * x_sub[..., None] + c
-        ratio = np.maximum(
-            np.zeros_like(x_sub), np.max(value @ self.normals[:, rows], axis=2)
-        )
-        return ratio, False
+        return Check(bool(missed.size), ratio[: len(samples.s)], row_max)
 
     @property
     def row_count(self) -> int:
@@ -158,37 +124,6 @@ class ObjectRows:
     def object_count(self) -> int:
         """Objects whose rows the LPs used."""
         return 1
-
-
-def _midpoint_wrenches(
-    segments: Segments, wrench: PathCoefficients, x: np.ndarray, u: np.ndarray
-) -> np.ndarray:
-    """The (N, 6) wrenches the midpoint rows enforce (interpolated coefficients).
-
-    Checked with the rest, so that a row missing there is added too: the
-    profile is then TOPP-RA's with every row at the grid points and midpoints.
-    """
-    a, b, c = (segments.interpolate(v, MIDDLE) for v in wrench)
-    x_middle = (x[:-1] + segments.ds * u)[:, None]
-    return a * u[:, None] + b * x_middle + c
-
-
-def _enforced_wrenches(
-    wrench: PathCoefficients, x: np.ndarray, u: np.ndarray, s: np.ndarray
-) -> np.ndarray:
-    """The (2N+1, 6) wrenches ``w = a u + b x + c`` the stage LPs enforced.
-
-    Stage i (i < N) enforced ``s_i`` at ``(u_i, x_i)`` (rows 0..N-1) and
-    ``s_{i+1}`` at ``(u_i, x_i + 2 ds_i u_i)`` (rows N+1..2N). Row N is the
-    end point at ``(u_{N-1}, x_N)``, for its margin.
-    """
-    a, b, c = wrench
-    ds = np.diff(s)
-    u_at = np.append(u, u[-1])[:, None]
-    x_next = (x[:-1] + 2.0 * ds * u)[:, None]
-    here = a * u_at + b * x[:, None] + c
-    following = a[1:] * u[:, None] + b[1:] * x_next + c[1:]
-    return np.vstack([here, following])
 
 
 __all__ = ["ROW_TOLERANCE", "Check", "ObjectRows"]

@@ -10,6 +10,7 @@ list of objects (:meth:`GraspConstraint.for_objects`).
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
 
 import numpy as np
 from pydrake.common.schema import Transform
@@ -18,7 +19,9 @@ from pydrake.multibody.plant import MultibodyPlant
 
 from rt_drake.contact import CupParameters, cached_wrench_polytope
 from rt_drake.contact.worst_cup import worst_cup_polytope
+from rt_drake.contact.wrench_polytope import check_h_representation
 from rt_drake.dynamics import HeldObject
+from rt_drake.errors import InputError
 from rt_drake.inertial_set import ObjectSet, object_list, uncertain_object
 from rt_drake.retiming.errors import RetimeInputError
 from rt_drake.scenario import ObjectConfig, RobotConfig
@@ -73,24 +76,82 @@ class JointLimits:
     ) -> JointLimits:
         """Limits from the plant's model, overridden by the scenario's.
 
-        The model's upper limits (URDF velocity, drake:acceleration, effort)
-        are replaced by ``robot.*_limits`` where those are not empty.
+        The model's upper limits (URDF velocity, ``drake:acceleration``,
+        effort of the joints' actuators) are replaced by ``robot.*_limits``
+        where those are not empty. A model without some of them (no
+        ``drake:acceleration``, no transmissions) needs them by hand:
+        ``JointLimits(velocity, acceleration)`` (rad/s, rad/s^2, one per
+        joint), or the scenario's ``robot.acceleration_limits`` etc.
 
         Args:
             plant: Finalized plant holding only the path's joints.
             robot: Scenario robot section with optional overrides.
             torque: Whether to include the torque (effort) limits; they are
                 also included when ``robot.limit_torques`` is set.
+
+        Raises:
+            RetimeInputError: a limit the model lacks and nobody gave,
+                naming the joint and how to give it.
         """
-        velocity = plant.GetVelocityUpperLimits()
-        acceleration = plant.GetAccelerationUpperLimits()
-        effort = plant.GetEffortUpperLimits()
+        n = plant.num_velocities()
+        model = {
+            "velocity": plant.GetVelocityUpperLimits(),
+            "acceleration": plant.GetAccelerationUpperLimits(),
+            "torque": _effort_limits(plant),
+        }
+        given: dict[str, Sequence[float]] = {
+            "velocity": [],
+            "acceleration": [],
+            "torque": [],
+        }
         if robot is not None:
-            velocity = robot.velocity_limits or velocity
-            acceleration = robot.acceleration_limits or acceleration
-            effort = robot.torque_limits or effort
+            given = {
+                "velocity": robot.velocity_limits,
+                "acceleration": robot.acceleration_limits,
+                "torque": robot.torque_limits,
+            }
             torque = torque or robot.limit_torques
-        return cls(velocity, acceleration, effort if torque else None)
+        chosen = {}
+        for name in ("velocity", "acceleration", "torque"):
+            if name == "torque" and not torque:
+                continue
+            value = np.asarray(given[name] if len(given[name]) else model[name])
+            if len(given[name]) and value.size != n:
+                raise RetimeInputError(
+                    f"key 'robot.{name}_limits': {value.size} values but the plant "
+                    f"has {n} joints"
+                )
+            missing = np.flatnonzero(~np.isfinite(value))
+            if missing.size:
+                j = int(missing[0])
+                by_hand = "velocity, acceleration" + ", torque" * (name == "torque")
+                raise RetimeInputError(
+                    f"the model has no {name} limit for joint {j + 1} "
+                    f"({_joint_name(plant, j)}): give the limits by hand, "
+                    f"JointLimits({by_hand}), or the scenario's robot.{name}_limits"
+                )
+            chosen[name] = value
+        return cls(chosen["velocity"], chosen["acceleration"], chosen.get("torque"))
+
+
+def _effort_limits(plant: MultibodyPlant) -> np.ndarray:
+    """Per velocity: the effort limit of the joint's actuator (inf if none)."""
+    limits = np.full(plant.num_velocities(), np.inf)
+    for index in plant.GetJointActuatorIndices():
+        actuator = plant.get_joint_actuator(index)
+        joint = actuator.joint()
+        for k in range(joint.num_velocities()):
+            limits[joint.velocity_start() + k] = actuator.effort_limit()
+    return limits
+
+
+def _joint_name(plant: MultibodyPlant, velocity_index: int) -> str:
+    for index in plant.GetJointIndices():
+        joint = plant.get_joint(index)
+        start = joint.velocity_start()
+        if start <= velocity_index < start + joint.num_velocities():
+            return joint.name()
+    return f"velocity {velocity_index}"
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -122,12 +183,10 @@ class GraspConstraint:
     def __post_init__(self) -> None:
         F = np.array(self.F, dtype=float)
         g = np.array(self.g, dtype=float).reshape(-1)
-        if F.ndim != 2 or F.shape[1] != 6 or g.shape != (F.shape[0],):
-            raise RetimeInputError(
-                f"need F (R, 6) and g (R,), got {F.shape=} {g.shape=}"
-            )
-        if not (np.all(np.isfinite(F)) and np.all(np.isfinite(g))):
-            raise RetimeInputError("grasp constraint F, g must be finite")
+        try:  # shapes, NaN or inf, an all-zero row (it would constrain nothing)
+            check_h_representation(F, g)
+        except InputError as error:
+            raise RetimeInputError(f"grasp constraint: {error}") from None
         if np.any(g <= 0.0):
             raise RetimeInputError(
                 f"grasp constraint needs g > 0 (zero wrench inside), min g = {g.min()}"

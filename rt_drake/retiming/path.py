@@ -18,6 +18,13 @@ from scipy.interpolate import CubicSpline
 
 from rt_drake.retiming.errors import RetimeInputError
 
+#: Largest |q| of a waypoint (rad, or m for a prismatic joint): 16 turns, far
+#: beyond any arm's range; a larger value is a unit or typing error, and
+#: would make the trajectory (sampled every 1 ms) arbitrarily long.
+MAX_ABS_POSITION = 100.0
+#: Most waypoints accepted.
+MAX_WAYPOINTS = 100_000
+
 
 def chord_knots(waypoints: np.ndarray) -> np.ndarray:
     """Return the normalised cumulative chord-length knots of ``waypoints``.
@@ -58,8 +65,10 @@ def path_waypoints_and_knots(path: Any) -> tuple[np.ndarray, np.ndarray]:
     are then the normalised chord lengths.
 
     Raises:
-        RetimeInputError: fewer than 2 waypoints, NaN or inf, equal
-            consecutive waypoints, or knots not strictly increasing from 0 to 1.
+        RetimeInputError: fewer than 2 or more than :data:`MAX_WAYPOINTS`
+            waypoints, NaN or inf, a value beyond :data:`MAX_ABS_POSITION`,
+            equal consecutive waypoints, or knots not strictly increasing from
+            0 to 1.
     """
     if hasattr(path, "waypoints") and hasattr(path, "knots"):
         waypoints = np.asarray(path.waypoints, dtype=float)
@@ -67,14 +76,31 @@ def path_waypoints_and_knots(path: Any) -> tuple[np.ndarray, np.ndarray]:
     else:
         waypoints = np.asarray(path, dtype=float)
         knots = None
-    if waypoints.ndim != 2 or waypoints.shape[0] < 2 or waypoints.shape[1] < 1:
-        raise RetimeInputError(f"need (K >= 2, n) waypoints, got {waypoints.shape=}")
+    if (
+        waypoints.ndim != 2
+        or not 2 <= waypoints.shape[0] <= MAX_WAYPOINTS
+        or waypoints.shape[1] < 1
+    ):
+        raise RetimeInputError(
+            f"need (K >= 2, n) waypoints, K <= {MAX_WAYPOINTS}, got {waypoints.shape=}"
+        )
     if not np.all(np.isfinite(waypoints)):
         row = int(np.flatnonzero(~np.all(np.isfinite(waypoints), axis=1))[0])
         raise RetimeInputError(f"waypoint {row} is not finite: {waypoints[row]}")
+    if np.abs(waypoints).max() > MAX_ABS_POSITION:
+        where = np.unravel_index(np.argmax(np.abs(waypoints)), waypoints.shape)
+        index, joint = int(where[0]), int(where[1])
+        raise RetimeInputError(
+            f"waypoint {index}, joint {joint}: {waypoints[index, joint]:g} is beyond "
+            f"+-{MAX_ABS_POSITION:g} (rad or m)"
+        )
     if knots is None:
         knots = chord_knots(waypoints)
-    if knots.shape != (waypoints.shape[0],) or not np.all(np.diff(knots) > 0.0):
+    if (
+        knots.shape != (waypoints.shape[0],)
+        or not np.all(np.isfinite(knots))
+        or not np.all(np.diff(knots) > 0.0)
+    ):
         raise RetimeInputError(f"knots must increase strictly, got {knots}")
     if knots[0] != 0.0 or knots[-1] != 1.0:
         raise RetimeInputError(f"knots must run from 0 to 1, got {knots[[0, -1]]}")
@@ -116,6 +142,8 @@ def drake_path(path: Any) -> PiecewisePolynomial:
 
 
 __all__ = [
+    "MAX_ABS_POSITION",
+    "MAX_WAYPOINTS",
     "chord_knots",
     "drake_path",
     "path_spline",

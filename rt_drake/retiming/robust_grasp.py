@@ -38,8 +38,8 @@ from __future__ import annotations
 import numpy as np
 from toppra.constraint import LinearConstraint
 
-from rt_drake.dynamics import HeldObject, PathCoefficients
-from rt_drake.inertial_set import held_object
+from rt_drake.dynamics import PathCoefficients
+from rt_drake.inertial_set import SetVertex, set_vertex
 from rt_drake.retiming import rows as R
 from rt_drake.retiming.at_rest import set_grasp_at_rest, set_torque_at_rest
 from rt_drake.retiming.between import ROW_SCREEN, Segments, subpoint_x
@@ -274,9 +274,9 @@ class SetRows:
             1.0 - worst_rows(torque, *points, self._torque_normals, self.layout).ratio
         )
 
-    def vertex_object(self, vertex: int) -> HeldObject:
-        """The object at a vertex key."""
-        return held_object(self._vertex_weights(vertex) @ self.columns)
+    def vertex_object(self, vertex: int) -> SetVertex:
+        """The point of the outer set at a vertex key (mass, centre of mass)."""
+        return set_vertex(self._vertex_weights(vertex) @ self.columns)
 
     @property
     def row_count(self) -> int:

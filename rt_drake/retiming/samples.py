@@ -22,7 +22,6 @@ from typing import NamedTuple
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import Context
-from scipy.interpolate import CubicSpline
 
 from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import (
@@ -32,6 +31,7 @@ from rt_drake.dynamics import (
     path_wrench_coefficients,
 )
 from rt_drake.regressor import path_wrench_regressor, torque_regressor
+from rt_drake.retiming.joint_path import JointPath
 
 
 class PathSamples(NamedTuple):
@@ -63,7 +63,7 @@ class PathSamples(NamedTuple):
 
 def sample_path(
     plant: MultibodyPlant,
-    spline: CubicSpline,
+    spline: JointPath,
     s: np.ndarray,
     velocity_limit: np.ndarray,
     torque: bool,
@@ -87,7 +87,7 @@ def sample_path(
             ``held`` is ignored), or None.
     """
     q, dq, ddq = spline(s), spline(s, 1), spline(s, 2)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore"):  # q' = 0: no cap
         x_cap = np.min(velocity_limit**2 / dq**2, axis=1)
     if columns is not None:
         Y, kin = path_wrench_regressor(plant, q, dq, ddq, context, cup, torque)

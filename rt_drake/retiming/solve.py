@@ -58,6 +58,7 @@ from rt_drake.retiming.between import (
     joint_cuts,
     refinement_points,
 )
+from rt_drake.retiming.between_kernels import position_excess
 from rt_drake.retiming.errors import (
     PathNotControllableError,
     RetimeInputError,
@@ -65,6 +66,7 @@ from rt_drake.retiming.errors import (
 )
 from rt_drake.retiming.grasp_rows import ROW_TOLERANCE, ObjectRows
 from rt_drake.retiming.grid import initial_grid
+from rt_drake.retiming.joint_path import JointPath, ToppraPath, as_joint_path
 from rt_drake.retiming.limits import GraspConstraint, JointLimits
 from rt_drake.retiming.passes import (
     AffineConstraint,
@@ -72,10 +74,10 @@ from rt_drake.retiming.passes import (
     XBound,
     reachability,
 )
-from rt_drake.retiming.path import path_spline, toppra_path
 from rt_drake.retiming.robust_grasp import SetRows
 from rt_drake.retiming.samples import PathSamples, sample_path
 from rt_drake.retiming.samples import with_points as merge_samples
+from rt_drake.retiming.seidel import kernel_array
 from rt_drake.retiming.set_tables import parameter_columns
 from rt_drake.retiming.timed_path import TimedPath
 
@@ -84,6 +86,9 @@ from rt_drake.retiming.timed_path import TimedPath
 BETWEEN_TOLERANCE = 5e-4
 #: Rounds of grid refinement at most (each shrinks an overshoot about 4x).
 MAX_REFINEMENTS = 8
+#: Where a non-cubic path is checked against the position limits, in
+#: fractions of each segment.
+_DENSE = np.arange(1, 16) / 16
 #: Rounds of cuts for the joint limits inside segments, at most.
 MAX_CUT_ROUNDS = 4
 
@@ -167,21 +172,23 @@ def retime(
             once with ``CupFrame.of(plant, ...)`` when retiming often.
 
     Raises:
-        RetimeInputError: malformed path, limits or grid, or a path that
-            leaves the joint position limits.
+        RetimeInputError: malformed path, limits or grid, a path that
+            leaves the joint position limits, or ``sd_start``, ``sd_end``
+            not finite and >= 0, ``start_time`` not finite.
         GraspUnstableAtRestError: gravity alone breaks the grasp somewhere.
         TorqueLimitAtRestError: holding the arm still exceeds a torque limit.
         PathNotControllableError: no admissible speed reaches the end.
     """
-    spline = path_spline(path)  # checks the path
-    n = spline.c.shape[2]
+    _check_arguments(sd_start, sd_end, start_time)
+    spline = as_joint_path(path)  # checks the path
+    n = spline.num_joints
     if n != plant.num_positions() or n != limits.num_joints:
         raise RetimeInputError(
             f"path has {n} joints but {plant.num_positions()=} and {limits.num_joints=}"
         )
     context = context or plant.CreateDefaultContext()
     cup = cup or CupFrame.of(plant)
-    knots = spline.x
+    knots = spline.breaks
     torque = limits.torque is not None
     family: ObjectRows | SetRows | None = None
     held = columns = None
@@ -205,13 +212,13 @@ def retime(
             family.add(samples)
 
     samples = sample(initial_grid(gridpoints, knots))
-    check_position_limits(plant, samples)
+    check_position_limits(plant, samples, spline)
     hold_at_rest(samples)
     # The compiled passes do not need the path; toppra's TOPPRA class does.
-    toppra_spline = toppra_path(path) if engine == "toppra" else None
+    toppra_spline = ToppraPath(spline) if engine == "toppra" else None
     refinements = cut_rounds = set_cut_rounds = total_cuts = 0
     cuts: StageRows | None = None
-    segments = Segments(samples, knots)
+    segments = Segments(samples, knots, spline)
     joints = _joint_constraints(samples, segments, limits)
     while True:
         fixed = joints if cuts is None else [*joints, cuts]
@@ -219,8 +226,10 @@ def retime(
             samples, segments, fixed, family, toppra_spline, sd_start, sd_end, engine
         )
         x, u = profile.x, profile.u
-        between = None
-        if family is not None and profile.screen is not None:
+        between = normals = row_max = None
+        if isinstance(family, ObjectRows):  # one object: grid points, no cuts
+            normals, row_max = family.normals, profile.screen
+        elif family is not None and profile.screen is not None:
             tolerance = BETWEEN_TOLERANCE if set_cut_rounds < MAX_CUT_ROUNDS else None
             between, cut = family.between(
                 samples, segments, x, u, profile.screen, tolerance
@@ -230,13 +239,14 @@ def retime(
                 total_cuts += 1
                 continue
         points = refinement_points(
-            segments, samples, x, u, limits, between, BETWEEN_TOLERANCE
-        )
+            segments, samples, x, u, limits, normals, row_max, BETWEEN_TOLERANCE,
+            between,
+        )  # fmt: skip
         if points.size and refinements < MAX_REFINEMENTS:
             added = sample(points)
             hold_at_rest(added)
             samples = merge_samples(samples, added)
-            segments = Segments(samples, knots)
+            segments = Segments(samples, knots, spline)
             joints = _joint_constraints(samples, segments, limits)
             refinements += 1
             cuts = None  # made for the old segments
@@ -284,47 +294,47 @@ def retime(
     )
 
 
-def check_position_limits(plant: MultibodyPlant, samples: PathSamples) -> None:
+def check_position_limits(
+    plant: MultibodyPlant, samples: PathSamples, path: JointPath
+) -> None:
     """Raise if the path leaves the plant's joint position limits anywhere.
 
-    Exact for the cubic path: at the grid points, and at the extremes of
-    each joint inside each segment, the roots in (0, 1) of the quadratic
+    For a cubic path, exact: at the grid points, and at the extremes of each
+    joint inside each segment, the roots in (0, 1) of the quadratic
     ``d q_j(s_i + theta ds_i) / d theta`` (every segment lies inside one
-    cubic piece, :mod:`.grid`). A tolerance of 1e-9 rad absorbs rounding.
+    cubic piece, :mod:`.grid`; :func:`.between_kernels.position_excess`).
+    For another path, at the grid points and 15 points inside every segment.
+    A tolerance of 1e-9 rad absorbs rounding.
 
     Raises:
         RetimeInputError: naming the joint, the value, the limit and s.
     """
-    s, q, dq, ddq = samples.s, samples.q, samples.dq, samples.ddq
-    ds = np.diff(s)[:, None]
-    # dq/dtheta = c0 + c1 theta + c2 theta^2 within segment i.
-    c0, c1 = dq[:-1] * ds, ddq[:-1] * ds**2
-    c2 = 0.5 * (ddq[1:] - ddq[:-1]) * ds**2
-    values, where = [q], [np.broadcast_to(s[:, None], q.shape)]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        root = np.sqrt(np.maximum(c1**2 - 4.0 * c2 * c0, 0.0))
-        flat = np.abs(c2) <= 1e-12 * (np.abs(c1) + 1e-300)
-        roots = (
-            np.where(flat, -c0 / c1, (-c1 + root) / (2.0 * c2)),
-            np.where(flat, -1.0, (-c1 - root) / (2.0 * c2)),
-        )
-    for theta in roots:
-        theta = np.where((theta > 0.0) & (theta < 1.0), theta, 0.0)
-        values.append(q[:-1] + theta * (c0 + theta * (c1 / 2.0 + theta * c2 / 3.0)))
-        where.append(s[:-1, None] + theta * ds)
-    value, at = np.vstack(values), np.vstack(where)
     lower = plant.GetPositionLowerLimits()
     upper = plant.GetPositionUpperLimits()
-    below, above = value < lower - 1e-9, value > upper + 1e-9
-    if not (below.any() or above.any()):
+    s = samples.s
+    if path.cubic:
+        found, j, value, at = position_excess(
+            *(kernel_array(v) for v in (s, samples.q, samples.dq, samples.ddq)),
+            kernel_array(lower),
+            kernel_array(upper),
+            1e-9,
+        )
+    else:
+        where = np.union1d(s, (s[:-1, None] + np.diff(s)[:, None] * _DENSE).ravel())
+        q = path(where)
+        outside = (q < lower - 1e-9) | (q > upper + 1e-9)
+        found = bool(outside.any())
+        if found:
+            i, j = (int(k[0]) for k in np.nonzero(outside))
+            value, at = float(q[i, j]), float(where[i])
+    if not found:
         return
-    i, j = (int(index[0]) for index in np.nonzero(below | above))
-    limit = lower[j] if below[i, j] else upper[j]
+    limit = lower[j] if value < lower[j] else upper[j]
     raise RetimeInputError(
         f"path leaves the position limits of joint {j + 1} "
-        f"({_joint_name(plant, j)}) at s = {at[i, j]:.3f}: {value[i, j]:.4f} rad, "
+        f"({_joint_name(plant, j)}) at s = {at:.3f}: {value:.4f} rad, "
         f"limit {limit:.4f} rad",
-        s=float(at[i, j]),
+        s=float(at),
     )
 
 
@@ -437,6 +447,19 @@ def _solve_exact(
         check = family.check(samples, segments, solution.x, solution.u)
         if not check.added:
             return _Profile(solution.x, solution.u, check.ratio, check.screen)
+
+
+def _check_arguments(sd_start: float, sd_end: float, start_time: float) -> None:
+    """Refuse NaN, inf or negative path velocities and a NaN start time."""
+    for name, value in (("sd_start", sd_start), ("sd_end", sd_end)):
+        if not (isinstance(value, (int, float, np.number)) and np.isfinite(value)):
+            raise RetimeInputError(f"{name} must be a finite number, got {value!r}")
+        if value < 0.0:
+            raise RetimeInputError(f"{name} must be >= 0 (1/s), got {value!r}")
+    if not (
+        isinstance(start_time, (int, float, np.number)) and np.isfinite(start_time)
+    ):
+        raise RetimeInputError(f"start_time must be finite, got {start_time!r}")
 
 
 def _margins(

@@ -10,7 +10,7 @@ Within segment i, with ``tau = t - t_i``::
     q''' = 3 p''(s) s' s'' + p'''(s) s'^3
 
 This is exactly the motion whose (u, x) the retimer constrained, not a
-re-fit. ``p`` is the path's clamped cubic spline (scipy ``CubicSpline``).
+re-fit. ``p`` is the path, a :class:`~.joint_path.JointPath`.
 Before ``start_time()`` and after ``end_time()`` the trajectory holds its end
 points with zero derivatives. Units: s, rad, rad/s, rad/s^2.
 """
@@ -19,9 +19,9 @@ from __future__ import annotations
 
 import numpy as np
 from pydrake.trajectories import Trajectory
-from scipy.interpolate import CubicSpline
 
 from rt_drake.retiming.errors import RetimeInputError
+from rt_drake.retiming.joint_path import JointPath
 
 #: Highest derivative order the trajectory evaluates.
 MAX_ORDER = 3
@@ -40,7 +40,7 @@ class TimedPath(Trajectory):
 
     def __init__(
         self,
-        spline: CubicSpline,
+        spline: JointPath,
         gridpoints: np.ndarray,
         x: np.ndarray,
         start_time: float = 0.0,

@@ -21,19 +21,20 @@ reads it back with every key checked.
 from __future__ import annotations
 
 import dataclasses
-import os
-import tempfile
+import math
 import zipfile
 from pathlib import Path
+from typing import BinaryIO
 
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import Frame
 
+from rt_drake.atomic_file import output_problem, write_atomically
 from rt_drake.contact import CupParameters
+from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import HeldObject
-from rt_drake.errors import InputError
-from rt_drake.plant import CUP_FRAME
+from rt_drake.errors import InputError, TooLargeError
 from rt_drake.retiming.limits import GraspConstraint
 from rt_drake.retiming.solve import RetimeResult
 
@@ -41,6 +42,9 @@ from rt_drake.retiming.solve import RetimeResult
 FORMAT_VERSION = 1
 #: s, default sampling period.
 SAMPLE_PERIOD = 1e-3
+#: Most samples a file holds (1000 s at 1 kHz; 892 s of a 6-joint arm took
+#: 7 s and 0.64 GB); a longer trajectory is refused before sampling.
+MAX_SAMPLES = 1_000_000
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -92,11 +96,28 @@ def sample_trajectory(
         knots: (K,) their path parameters s.
         period: Sampling period, s.
         cup_frame: The cup frame C (default: the plant's ``suction_cup``).
+
+    Raises:
+        InputError: ``period`` not finite and > 0.
+        TooLargeError: more than :data:`MAX_SAMPLES` samples (estimated from
+            the duration before anything is allocated).
     """
+    if not (isinstance(period, (int, float)) and math.isfinite(period) and period > 0):
+        raise InputError(f"period must be finite and > 0 s, got {period!r}")
+    count = math.ceil(result.duration / period) + 1
+    if count > MAX_SAMPLES:
+        n = result.trajectory.rows()
+        size = count * 8 * (1 + 3 * n + 16)
+        raise TooLargeError(
+            f"sampling a {result.duration:.4g} s trajectory every {period:g} s "
+            f"gives {count:.3g} samples (about {size / 2**30:.3g} GB); at most "
+            f"{MAX_SAMPLES} samples ({MAX_SAMPLES * period:g} s at this period) "
+            "are accepted"
+        )
     t = np.append(np.arange(0.0, result.duration, period), result.duration)
     q, qd, qdd = result.trajectory.sample(t, order=2)
     context = plant.CreateDefaultContext()
-    frame = cup_frame if cup_frame is not None else plant.GetFrameByName(CUP_FRAME)
+    frame = cup_frame if cup_frame is not None else CupFrame.of(plant).frame
     X_WC = np.empty((len(t), 4, 4))
     for i, qi in enumerate(q):
         plant.SetPositions(context, qi)
@@ -131,23 +152,23 @@ def save_trajectory(path: str | Path, saved: SavedTrajectory) -> Path:
     complete; on any failure the temporary file is removed.
 
     Raises:
-        InputError: the suffix is not ``.npz``.
+        InputError: the suffix is not ``.npz``, or ``path`` cannot be
+            written (a directory, under a file).
     """
     path = Path(path)
     if path.suffix != ".npz":
         raise InputError(f"trajectory file '{path}' must end in .npz")
+    problem = output_problem(path)
+    if problem is not None:
+        raise InputError(f"cannot write trajectory file '{path}': {problem}")
+    if not isinstance(saved, SavedTrajectory):
+        raise InputError(f"expected a SavedTrajectory, got {type(saved).__name__}")
     arrays = {f.name: getattr(saved, f.name) for f in dataclasses.fields(saved)}
-    handle, temporary = tempfile.mkstemp(
-        dir=path.parent, prefix=f".{path.name}.", suffix=".tmp"
-    )
-    try:
-        with os.fdopen(handle, "wb") as stream:
-            np.savez(stream, format_version=FORMAT_VERSION, **arrays)
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
-    return path
+
+    def write(stream: BinaryIO) -> None:
+        np.savez(stream, format_version=FORMAT_VERSION, **arrays)
+
+    return write_atomically(path, write)
 
 
 def load_trajectory(path: str | Path) -> SavedTrajectory:
@@ -184,6 +205,7 @@ def load_trajectory(path: str | Path) -> SavedTrajectory:
 
 __all__ = [
     "FORMAT_VERSION",
+    "MAX_SAMPLES",
     "SAMPLE_PERIOD",
     "SavedTrajectory",
     "load_trajectory",

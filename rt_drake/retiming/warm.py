@@ -14,9 +14,14 @@ import functools
 
 import numpy as np
 
-from rt_drake.retiming import rows
+from rt_drake.dynamics import PathCoefficients
+from rt_drake.retiming import between, rows
+from rt_drake.retiming.between_kernels import position_excess
+from rt_drake.retiming.joint_path import as_joint_path
+from rt_drake.retiming.limits import JointLimits
 from rt_drake.retiming.passes import AffineConstraint, XBound, reachability
 from rt_drake.retiming.robust_rows import Layout, worst_rows
+from rt_drake.retiming.samples import PathSamples
 
 
 @functools.cache
@@ -37,8 +42,27 @@ def warm_up() -> None:
     # torques (another row dimension).
     layout = Layout(np.array([[0, 1, 2, 2, 3, 4]]), np.array([[1.0, 2.0]]))
     for dims in (6, 5):
-        table = tuple(np.full((3, 4, dims), 0.1) for _ in range(3))
-        worst_rows(table, np.arange(3), grid, grid, np.ones((dims, 2)), layout)
+        part = np.full((3, 4, dims), 0.1)
+        worst_rows(
+            (part, part, part), np.arange(3), grid, grid, np.ones((dims, 2)), layout
+        )
+    # Between grid points: one joint, torques and a wrench.
+    path = np.column_stack([grid**2])
+    coefficients = PathCoefficients(wrench, wrench, 0.0 * wrench)
+    torque = PathCoefficients(path, path, path)
+    samples = PathSamples(
+        grid, path, 2 * grid[:, None], 2 + 0 * path, grid, torque, coefficients
+    )
+    limits = JointLimits(np.ones(1), np.ones(1), np.ones(1))
+    segments = between.Segments(samples, grid[[0, -1]], as_joint_path(path))
+    between.interior_rows(segments, limits)
+    x, u = np.full(3, 0.5), np.zeros(2)
+    between.joint_cuts(segments, x, u, limits, 1e-3)
+    between.refinement_points(
+        segments, samples, x, u, limits, normals, np.ones(12), 1e-3
+    )
+    segments.enforced_wrenches(coefficients, x, u)
+    position_excess(grid, path, path, path, -np.ones(1), np.ones(1), 1e-9)
 
 
 __all__ = ["warm_up"]

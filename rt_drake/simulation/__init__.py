@@ -1,9 +1,12 @@
 """The simulated cell: a Drake Diagram that runs the pick-and-place cycle.
 
 - :mod:`.station`: ``MakeStation(scenario) -> Station``, the cell's Diagram.
-- :mod:`.suction`: the vacuum force (``SuctionCup`` LeafSystem).
-- :mod:`.sequencer`: APPROACH .. DETACH per object (``Sequencer`` LeafSystem).
-- :mod:`.motion`: what the sequencer asks for (``Motion``, ``MotionSource``).
+- :mod:`.suction`: the vacuum force (``SuctionCup`` LeafSystem);
+  :mod:`.vacuum`: its build-up, "part present" and release.
+- :mod:`.sequencer`: APPROACH .. DETACH per object (``Sequencer`` LeafSystem);
+  :mod:`.records`: what it measures (``ObjectRecord``).
+- :mod:`.motion`: what the sequencer asks for (``Motion``, ``MotionSource``)
+  and the planning-ahead clock (``PendingMotion``).
 - :mod:`.online_motions`: the planner plus retimer as the online motion
   source (``OnlineMotions``).
 - :mod:`.retimer_system`: the retimer as a LeafSystem (``Retimer``).
@@ -17,17 +20,20 @@ from rt_drake.simulation.cycle_runner import (
     build_cycle,
     run_cycle,
 )
-from rt_drake.simulation.motion import Motion, MotionSource, PlanTimes
-from rt_drake.simulation.online_motions import OnlineMotions, held_object
-from rt_drake.simulation.retimer_system import Retimer, RetimeRequest
-from rt_drake.simulation.sequencer import (
-    UPDATE_PERIOD,
-    ObjectRecord,
-    Sequencer,
-    pose_difference,
+from rt_drake.simulation.motion import (
+    Motion,
+    MotionSource,
+    PendingMotion,
+    PhasePart,
+    PlanTimes,
 )
+from rt_drake.simulation.online_motions import OnlineMotions, held_object
+from rt_drake.simulation.records import ObjectRecord, pose_difference
+from rt_drake.simulation.retimer_system import Retimer, RetimeRequest
+from rt_drake.simulation.sequencer import UPDATE_PERIOD, Sequencer
 from rt_drake.simulation.station import MakeStation, Station, StationOptions
 from rt_drake.simulation.suction import SuctionCup
+from rt_drake.simulation.vacuum import VacuumTimeout
 
 __all__ = [
     "UPDATE_PERIOD",
@@ -38,6 +44,8 @@ __all__ = [
     "MotionSource",
     "ObjectRecord",
     "OnlineMotions",
+    "PendingMotion",
+    "PhasePart",
     "PlanTimes",
     "RetimeRequest",
     "Retimer",
@@ -45,6 +53,7 @@ __all__ = [
     "Station",
     "StationOptions",
     "SuctionCup",
+    "VacuumTimeout",
     "build_cycle",
     "held_object",
     "pose_difference",

@@ -11,6 +11,7 @@ context): the object the robot holds may differ from the one it planned for.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 
 import numpy as np
 from pydrake.geometry import Meshcat
@@ -19,10 +20,12 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, EventStatus
 
 from rt_drake.errors import RtDrakeError
-from rt_drake.plant import CUP_FRAME, OBJECT_BODY, home_configuration
+from rt_drake.phase import Phase
+from rt_drake.plant import OBJECT_BODY, home_configuration, scenario_cup_frame
 from rt_drake.scenario import Scenario
 from rt_drake.simulation.motion import MotionSource
-from rt_drake.simulation.sequencer import ObjectRecord, Sequencer
+from rt_drake.simulation.records import ObjectRecord
+from rt_drake.simulation.sequencer import Sequencer
 from rt_drake.simulation.station import MakeStation, Station, StationOptions
 
 
@@ -35,8 +38,8 @@ class CycleResult:
     """The outcome of one simulated cycle.
 
     Attributes:
-        records: per object, planning wall times, phase durations, slip and
-            placement error.
+        records: per object, planning wall times, plan waits, phase
+            durations, slip and placement error.
         sim_time: s of simulated time the cycle took.
         max_tracking_error: rad, worst |q - q_desired| of the arm, sampled
             at the sequencer's rate.
@@ -52,11 +55,20 @@ def build_cycle(
     motions: MotionSource,
     meshcat: Meshcat | None = None,
     options: StationOptions | None = None,
+    pipelined: bool = True,
 ):
-    """Return (diagram, station, sequencer) of the cycle of ``scenario``."""
+    """Return (diagram, station, sequencer) of the cycle of ``scenario``.
+
+    ``pipelined``: the sequencer plans each motion ahead (:mod:`.sequencer`).
+    """
     station: Station = MakeStation(scenario, meshcat=meshcat, options=options)
     plant = station.plant
-    cup = plant.GetFrameByName(CUP_FRAME)
+    cup = scenario_cup_frame(plant, scenario)
+    bodies = [
+        plant.GetBodyByName(OBJECT_BODY, station.models.objects[o.name])
+        for o in scenario.objects
+    ]
+    gravity = float(np.linalg.norm(plant.gravity_field().gravity_vector()))
     builder = DiagramBuilder()
     cell = builder.AddNamedSystem("station", station.diagram)
     sequencer = builder.AddNamedSystem(
@@ -64,20 +76,21 @@ def build_cycle(
         Sequencer(
             motions=motions,
             objects=list(scenario.objects),
-            object_bodies=[
-                plant.GetBodyByName(OBJECT_BODY, station.models.objects[o.name]).index()
-                for o in scenario.objects
-            ],
+            object_bodies=[body.index() for body in bodies],
+            object_weights=[body.default_mass() * gravity for body in bodies],
             tool_body=cup.body().index(),
             X_TC=cup.GetFixedPoseInBodyFrame(),
             q_home=home_configuration(plant, scenario),
-            attach_s=scenario.timing.attach_s,
-            detach_s=scenario.timing.detach_s,
+            vacuum=scenario.vacuum,
+            pipelined=pipelined,
         ),
     )
-    builder.Connect(
-        cell.GetOutputPort("body_poses"), sequencer.GetInputPort("body_poses")
-    )
+    for name in ("body_poses", "body_spatial_velocities"):
+        builder.Connect(cell.GetOutputPort(name), sequencer.GetInputPort(name))
+    for name in ("suction_force", "part_present"):
+        builder.Connect(
+            cell.GetOutputPort(f"suction.{name}"), sequencer.GetInputPort(name)
+        )
     for name in ("desired_state", "desired_acceleration"):
         builder.Connect(
             sequencer.GetOutputPort(name), cell.GetInputPort(f"robot.{name}")
@@ -94,6 +107,8 @@ def run_cycle(
     meshcat: Meshcat | None = None,
     options: StationOptions | None = None,
     max_sim_time: float = 120.0,
+    pipelined: bool = True,
+    progress: Callable[[int, Phase], None] | None = None,
     object_inertias: dict[str, SpatialInertia] | None = None,
 ) -> CycleResult:
     """Simulate the whole cycle; raise CycleTimeout past ``max_sim_time`` s.
@@ -104,11 +119,16 @@ def run_cycle(
         meshcat: Records the run for replay, if given.
         options: Simulation settings.
         max_sim_time: s of simulated time at most.
+        pipelined: Plan each motion ahead (:mod:`.sequencer`).
+        progress: Called with (object index, phase) whenever the phase
+            changes.
         object_inertias: Per object name, its true spatial inertia ``M_OOo_O``
             (about its body origin, in its body frame), in place of its
             model's.
     """
-    diagram, station, sequencer = build_cycle(scenario, motions, meshcat, options)
+    diagram, station, sequencer = build_cycle(
+        scenario, motions, meshcat, options, pipelined
+    )
     simulator = Simulator(diagram)
     context = simulator.get_mutable_context()
     plant = station.plant
@@ -121,8 +141,15 @@ def run_cycle(
         body.SetSpatialInertiaInBodyFrame(plant_context, M_OOo_O)
     sequencer_context = sequencer.GetMyContextFromRoot(context)
     worst = [0.0]
+    seen: list[tuple[int, Phase]] = []
 
     def monitor(root_context):
+        state = sequencer.sequencer_state(sequencer_context)
+        if progress is not None and (
+            not seen or seen[-1] != (state.object_index, state.phase)
+        ):
+            seen.append((state.object_index, state.phase))
+            progress(state.object_index, state.phase)
         q = plant.GetPositions(plant_context, station.models.robot)
         q_desired = sequencer.GetOutputPort("desired_state").Eval(sequencer_context)[
             : len(q)

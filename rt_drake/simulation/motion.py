@@ -1,10 +1,24 @@
-"""What the sequencer asks for and gets: a timed motion for one phase.
+"""What the sequencer asks for and gets: timed motions, planned ahead.
 
 A :class:`MotionSource` (e.g. :class:`~.online_motions.OnlineMotions`, which
-plans and retimes online) hands the :class:`~.sequencer.Sequencer` one
-:class:`Motion` per moving phase. The motion carries everything a caller
-needs afterwards (its path, its retiming, the grasp it was retimed under),
-so nobody has to read it back from the source.
+plans and retimes online) hands the :class:`~.sequencer.Sequencer` two
+:class:`Motion` per object: the pick (APPROACH and REACH in one motion,
+split by :class:`PhasePart`) and the MOVE. A motion carries everything a
+caller needs afterwards (its path, its retiming, the grasp it was retimed
+under, the wall time it took), so nobody has to read it back from the
+source.
+
+The two clocks. Planning runs for real, on the wall clock, inside the
+sequencer's update at simulated time ``t_r`` (when the motion is requested);
+the simulation does not advance meanwhile. The planner is modelled as a
+processor of its own that runs in real time beside the robot: a motion whose
+planning and retiming took ``w`` wall seconds is ready at simulated time
+``t_r + w`` (:class:`PendingMotion`). A phase that needs it at simulated time
+``t_n`` starts its motion at ``max(t_n, t_r + w)``: it waits
+``max(0, w - (t_n - t_r))``, the part of the planning that did not fit in
+the ``t_n - t_r`` seconds available before it (the plan on the critical
+path). One wall second counts as one simulated second; at most one motion is
+pending at a time, so plans never queue.
 """
 
 from __future__ import annotations
@@ -15,6 +29,7 @@ from typing import Protocol
 import numpy as np
 from pydrake.trajectories import Trajectory
 
+from rt_drake.phase import Phase
 from rt_drake.planning import PlannedPath
 from rt_drake.retiming import GraspConstraint, RetimeResult
 from rt_drake.scenario import ObjectConfig
@@ -38,19 +53,37 @@ class PlanTimes:
         return self.plan_s + self.retime_s
 
 
+@dataclasses.dataclass(frozen=True)
+class PhasePart:
+    """The share of one phase in a motion that spans several.
+
+    Attributes:
+        phase: the phase.
+        end_s: s after the motion's start at which the phase ends.
+        times: wall seconds spent planning (and retiming) its part.
+    """
+
+    phase: Phase
+    end_s: float
+    times: PlanTimes
+
+
 @dataclasses.dataclass(frozen=True, eq=False)
 class Motion:
-    """A timed joint motion for one phase.
+    """A timed joint motion for one phase, or for consecutive phases.
 
     Attributes:
         trajectory: q(t) for t in [0, duration] (rad); derivatives q', q''.
-        times: wall seconds spent producing it.
+        times: wall seconds spent producing it (all of it).
         planned: the planned path it follows, if it came from the planner.
         retimed: the retiming of that path (its trajectory is ``trajectory``
             unless the source plays it faster).
         grasp: the grasp constraint it was retimed under, if any.
         guarantee: for a MOVE, what holds the object, in words (the nominal
             object, every object of its uncertainty set, or none); "" else.
+        parts: for a motion over several phases (the pick: APPROACH then
+            REACH), each phase's end and plan times, in order; empty for a
+            motion of one phase.
     """
 
     trajectory: Trajectory
@@ -59,6 +92,21 @@ class Motion:
     retimed: RetimeResult | None = None
     grasp: GraspConstraint | None = None
     guarantee: str = ""
+    parts: tuple[PhasePart, ...] = ()
+
+    def phase_end(self, phase: Phase) -> float:
+        """Seconds after the start at which ``phase`` ends (duration if no parts)."""
+        for part in self.parts:
+            if part.phase is phase:
+                return part.end_s
+        return self.duration
+
+    def plan_times(self, phase: Phase) -> PlanTimes:
+        """Wall seconds spent on ``phase``'s part (all of ``times`` if no parts)."""
+        for part in self.parts:
+            if part.phase is phase:
+                return part.times
+        return self.times
 
     @property
     def duration(self) -> float:
@@ -71,26 +119,52 @@ class Motion:
         return self.trajectory.value(self.trajectory.end_time()).ravel()
 
 
+@dataclasses.dataclass(frozen=True, eq=False)
+class PendingMotion:
+    """A motion planned ahead: a future, ready on the simulated clock.
+
+    Attributes:
+        motion: the planned motion (its ``times`` measured on the wall clock).
+        requested_at: simulated s at which it was requested (and planned).
+    """
+
+    motion: Motion
+    requested_at: float
+
+    @property
+    def wall_s(self) -> float:
+        """Wall seconds its planning and retiming took."""
+        return self.motion.times.total_s
+
+    @property
+    def ready_at(self) -> float:
+        """Simulated s at which it is ready: ``requested_at + wall_s``."""
+        return self.requested_at + self.wall_s
+
+    def wait_s(self, needed_at: float) -> float:
+        """``max(0, ready_at - needed_at)``: the wait of a phase starting then."""
+        return max(0.0, self.ready_at - needed_at)
+
+
 class MotionSource(Protocol):
-    """Plans and retimes the motion of each moving phase, online."""
+    """Plans and retimes the motions of each object, online."""
 
-    def approach(self, q_start: np.ndarray, obj: ObjectConfig) -> Motion:
-        """From q_start to above ``obj`` at its start pose."""
-        ...
+    def pick(self, q_start: np.ndarray, obj: ObjectConfig, retreat: bool) -> Motion:
+        """From q_start to the grasp of ``obj``: APPROACH then REACH (parts).
 
-    def reach(self, q_start: np.ndarray, obj: ObjectConfig) -> Motion:
-        """From above ``obj`` down to its grasp."""
+        ``retreat``: the cup rests on an object just placed at q_start.
+        """
         ...
 
     def move(
-        self, q_start: np.ndarray, obj: ObjectConfig, reach: Motion | None
+        self, q_start: np.ndarray, obj: ObjectConfig, pick: Motion | None
     ) -> Motion:
         """Carrying ``obj`` from its grasp to its goal pose.
 
-        ``reach`` is the REACH motion that ended at ``q_start`` (None if
-        the arm got there otherwise).
+        ``pick`` is the motion that ended at ``q_start`` (None if the arm got
+        there otherwise).
         """
         ...
 
 
-__all__ = ["Motion", "MotionSource", "PlanTimes"]
+__all__ = ["Motion", "MotionSource", "PendingMotion", "PhasePart", "PlanTimes"]

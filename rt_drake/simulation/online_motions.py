@@ -4,13 +4,22 @@
 :class:`~rt_drake.simulation.motion.MotionSource`: each phase's path comes
 from the :class:`~rt_drake.planning.CyclePlanner` and is retimed by
 :func:`~rt_drake.retiming.retime` under the joint limits, MOVE also under the
-grasp constraint ``F w <= g`` of the held object (unless disabled). An object
-with an uncertainty set (scenario key ``uncertainty``), or a cup with a
-friction or suction range, is held robustly: every object of the set, with
-every cup of the range (:meth:`~rt_drake.retiming.GraspConstraint.robust`).
-Both are timed on the wall clock, as in the paper's Table II. The grasp
-polytopes are computed once, offline, per cup (as the paper did), not in the
-cycle.
+grasp constraint ``F w <= g`` of the held object (unless disabled). Both are
+timed on the wall clock, as in the paper's Table II. The grasp polytope is
+computed once, offline, per cup (as the paper did), not in the cycle; with
+a ``first_order`` vacuum the MOVE is retimed for the force guaranteed when
+"part present" fires, ``part_present_fraction P A``: the same polytope
+translated (:func:`~rt_drake.contact.with_suction_force`).
+
+An object with an uncertainty set (scenario key ``uncertainty``), or a cup
+with a friction or suction range, is held robustly: every object of the set,
+with every cup of the range (:meth:`~rt_drake.retiming.GraspConstraint.robust`);
+with a ``first_order`` vacuum the suction range then reaches down to
+``part_present_fraction`` of its lowest P A.
+
+The pick (:meth:`OnlineMotions.pick`) is one motion through the approach
+pose (:mod:`rt_drake.planning.pick`), retimed rest to rest; APPROACH ends
+when it passes the approach pose.
 """
 
 from __future__ import annotations
@@ -24,11 +33,18 @@ from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
 from pydrake.trajectories import Trajectory
 
-from rt_drake.contact import cached_wrench_polytope, worst_cup_polytope
+from rt_drake.contact import (
+    CupParameters,
+    WrenchPolytope,
+    cached_wrench_polytope,
+    with_suction_force,
+    worst_cup_polytope,
+)
 from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import HeldObject, path_wrench_coefficients
 from rt_drake.errors import InputError
 from rt_drake.inertial_set import uncertain_object
+from rt_drake.phase import Phase
 from rt_drake.planning import CyclePlanner, GeometricPath, PlannedPath
 from rt_drake.plant import make_arm_plant
 from rt_drake.retiming import (
@@ -40,7 +56,7 @@ from rt_drake.retiming import (
     warm_up,
 )
 from rt_drake.scenario import ObjectConfig, Scenario
-from rt_drake.simulation.motion import Motion, PlanTimes
+from rt_drake.simulation.motion import Motion, PhasePart, PlanTimes
 from rt_drake.uncertainty import ObjectUncertainty
 
 #: The guarantee of a MOVE retimed without the grasp constraint.
@@ -83,18 +99,17 @@ class OnlineMotions:
         self._scenario = scenario
         self._planner = CyclePlanner(scenario, seed=seed)
         self._plant = make_arm_plant(scenario)
-        self._cup = CupFrame.of(self._plant)
+        self._cup = CupFrame.of(self._plant, scenario.robot.cup_frame)
         self._context = self._plant.CreateDefaultContext()
         self._limits = JointLimits.from_plant(self._plant, scenario.robot)
         self._speed = move_speed
         self._gridpoints = gridpoints
-        self._polytope = (
-            cached_wrench_polytope(scenario.cup) if grasp_constraint else None
-        )
+        self._polytope = self._nominal_polytope() if grasp_constraint else None
         self._robust = robust
+        self._move_cup = move_cup(scenario)
         self._worst_cup = (
-            worst_cup_polytope(scenario.cup)
-            if grasp_constraint and robust and scenario.cup.is_uncertain()
+            worst_cup_polytope(self._move_cup)
+            if grasp_constraint and robust and self._move_cup.is_uncertain()
             else None
         )
         warm_up()  # compile the retimer here, not in the first timed MOVE
@@ -107,7 +122,11 @@ class OnlineMotions:
     def retime_path(
         self, path: GeometricPath, grasp: GraspConstraint | None
     ) -> RetimeResult:
-        """Retime ``path`` under the joint limits (and ``grasp`` if given)."""
+        """Retime ``path`` under the joint limits (and ``grasp`` if given).
+
+        The retimer adds the path's knots to the ``gridpoints`` uniform points
+        and holds every limit between grid points too.
+        """
         return retime(
             self._plant,
             path,
@@ -128,12 +147,14 @@ class OnlineMotions:
         gives a set or a range; else the nominal object and cup.
         """
         robust = self._robust if robust is None else robust
-        cup = self._scenario.cup
+        cup = self._move_cup
         held = held_object(obj, X_OC)
         uncertainty = obj.uncertainty or ObjectUncertainty()
         if not robust or (uncertainty.is_zero() and not cup.is_uncertain()):
-            polytope = self._polytope or cached_wrench_polytope(cup)
-            return GraspConstraint(held=held, F=polytope.F, g=polytope.g, cup=cup)
+            polytope = self._polytope or self._nominal_polytope()
+            return GraspConstraint(
+                held=held, F=polytope.F, g=polytope.g, cup=polytope.cup
+            )
         F, g = self._worst_cup or worst_cup_polytope(cup)
         R_CO = X_OC.inverse().rotation().matrix()
         return GraspConstraint(
@@ -144,6 +165,14 @@ class OnlineMotions:
             objects=uncertain_object(held, uncertainty, R_CO),
             worst_cup=cup.is_uncertain(),
         )
+
+    def _nominal_polytope(self) -> WrenchPolytope:
+        """The nominal cup's W_c at the suction a MOVE may rely on."""
+        full = cached_wrench_polytope(self._scenario.cup)
+        fraction = self._scenario.vacuum.move_force_fraction
+        if fraction == 1.0:
+            return full
+        return with_suction_force(full, fraction * self._scenario.cup.suction_force)
 
     def velocity_bound(self, path: GeometricPath, s: np.ndarray) -> np.ndarray:
         """Largest s' (1/s) the joint velocity limits allow at each s."""
@@ -184,11 +213,47 @@ class OnlineMotions:
         """Straight down onto ``obj``."""
         return self._timed(self._planner.plan_reach, q_start, obj, carrying=False)
 
-    def move(
-        self, q_start: np.ndarray, obj: ObjectConfig, reach: Motion | None = None
+    def pick(
+        self, q_start: np.ndarray, obj: ObjectConfig, retreat: bool = False
     ) -> Motion:
-        """Carry ``obj`` from its grasp to its goal (lifting along ``reach``)."""
-        planned_reach = None if reach is None else reach.planned
+        """Retreat (if ``retreat``), approach and reach ``obj`` without a stop.
+
+        Parts: APPROACH until the cup passes the approach pose (its plan
+        times: the retreat, transit and blend, and the retime), then REACH
+        (its plan times: the descent's IK line).
+        """
+        self._place_objects_for(obj)
+        start = time.perf_counter()
+        planned = self._planner.plan_pick(q_start, obj.name, retreat)
+        plan_s = time.perf_counter() - start
+        start = time.perf_counter()
+        result = self.retime_path(planned.path.path, None)
+        retime_s = time.perf_counter() - start
+        reach_s = min(planned.reach_timing.total_s, plan_s)
+        parts = (
+            PhasePart(
+                Phase.APPROACH,
+                time_at(result, planned.s_approach),
+                PlanTimes(plan_s=plan_s - reach_s, retime_s=retime_s),
+            ),
+            PhasePart(Phase.REACH, result.duration, PlanTimes(plan_s=reach_s)),
+        )
+        return Motion(
+            result.trajectory,
+            PlanTimes(plan_s=plan_s, retime_s=retime_s),
+            planned=planned.path,
+            retimed=result,
+            parts=parts,
+        )
+
+    def move(
+        self, q_start: np.ndarray, obj: ObjectConfig, pick: Motion | None = None
+    ) -> Motion:
+        """Carry ``obj`` from its grasp to its goal (lifting along ``pick``'s line).
+
+        ``pick`` is the pick or REACH motion that ended at ``q_start``.
+        """
+        planned_reach = None if pick is None else pick.planned
 
         def plan(q: np.ndarray, name: str) -> PlannedPath:
             return self._planner.plan_move(q, name, reach=planned_reach)
@@ -241,4 +306,37 @@ class OnlineMotions:
         )
 
 
-__all__ = ["NO_GUARANTEE", "OnlineMotions", "held_object"]
+def move_cup(scenario: Scenario) -> CupParameters:
+    """The scenario's cup with the suction range a MOVE may rely on.
+
+    With a ``first_order`` vacuum the MOVE starts when "part present" fires,
+    at ``part_present_fraction`` of the suction, and the force then builds
+    up: the range reaches down to that fraction of its lowest P A.
+    """
+    cup = scenario.cup
+    fraction = scenario.vacuum.move_force_fraction
+    if fraction == 1.0:
+        return cup
+    lowest = (
+        cup.suction_force if cup.suction_force_min is None else cup.suction_force_min
+    )
+    return dataclasses.replace(cup, suction_force_min=fraction * lowest)
+
+
+def time_at(result: RetimeResult, s: float) -> float:
+    """Time (s) at which the retimed motion reaches path parameter ``s``.
+
+    On grid segment i (``s_i <= s <= s_{i+1}``) the path acceleration u_i is
+    constant, so with ``d = s - s_i``: ``tau = 2 d / (s'_i + sqrt(s'_i^2 +
+    2 u_i d))``, after ``t_i = sum_{k<i} 2 ds_k / (s'_k + s'_{k+1})``.
+    """
+    grid, sd, sdd = result.gridpoints, result.sd, result.sdd
+    i = int(np.clip(np.searchsorted(grid, s, side="right") - 1, 0, len(grid) - 2))
+    dt = 2.0 * np.diff(grid) / (sd[:-1] + sd[1:])
+    d = s - grid[i]
+    root = np.sqrt(max(sd[i] ** 2 + 2.0 * sdd[i] * d, 0.0))
+    tau = 2.0 * d / (sd[i] + root) if sd[i] + root > 0.0 else 0.0
+    return float(result.trajectory.start_time() + dt[:i].sum() + tau)
+
+
+__all__ = ["NO_GUARANTEE", "OnlineMotions", "held_object", "move_cup", "time_at"]

@@ -83,6 +83,7 @@ class Retimer(LeafSystem):
         limits: Joint limits.
         q_initial: (n,) configuration held before the first request (rad).
         gridpoints: TOPP-RA grid size.
+        cup: The cup frame C (default: the plant's ``suction_cup``).
     """
 
     def __init__(
@@ -91,10 +92,11 @@ class Retimer(LeafSystem):
         limits: JointLimits,
         q_initial: np.ndarray,
         gridpoints: int = 100,
+        cup: CupFrame | None = None,
     ) -> None:
         super().__init__()
         self._plant = plant
-        self._cup = CupFrame.of(plant)
+        self._cup = cup or CupFrame.of(plant)
         self._limits = limits
         self._gridpoints = gridpoints
         self._q_initial = np.array(q_initial, dtype=float)

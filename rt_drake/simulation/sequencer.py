@@ -1,10 +1,26 @@
 """The pick-and-place sequencer: APPROACH, REACH, ATTACH, MOVE, DETACH per object.
 
-The sequencer commands the arm and the suction valve. When a phase ends it
-asks its :class:`MotionSource` for the next motion (planned and retimed
-online; the wall time that took is recorded), and it measures, from the
-plant's body poses, how far the held object slips on the cup and where it
-lands. All that changes lives in the Context's abstract state.
+The sequencer commands the arm and the suction valve. Per object it plays
+two motions from its :class:`~.motion.MotionSource`: the pick (APPROACH then
+REACH, one motion without a stop at the approach pose) and the MOVE.
+
+Planning ahead (``pipelined``, the default): the MOVE is requested when the
+pick starts moving (its grasp configuration is known), so it is planned
+during the pick and the ATTACH wait; the next object's pick is requested
+when the MOVE starts, so it is planned during the MOVE and the DETACH wait.
+Sequential (``pipelined=False``): each motion is requested when its phase
+starts. Either way a phase waits only for the part of its planning that did
+not fit in the time before it (:class:`~.motion.PendingMotion` defines how
+wall time is charged against simulated time), and the calls to the motion
+source, with their arguments, are the same.
+
+ATTACH and DETACH follow the scenario's vacuum (:mod:`.vacuum`): fixed
+waits, or "part present" and "released" (force below the object's weight,
+object at rest) with the waits as time-outs.
+
+It measures, from the plant's body poses, how far the held object slips on
+the cup and where it lands. All that changes lives in the Context's abstract
+state.
 """
 
 from __future__ import annotations
@@ -14,53 +30,42 @@ import dataclasses
 import numpy as np
 from pydrake.common.value import AbstractValue
 from pydrake.math import RigidTransform
+from pydrake.multibody.math import SpatialVelocity
 from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.framework import BasicVector, Context, LeafSystem, State
-from pydrake.trajectories import Trajectory
 
 from rt_drake.phase import Phase
-from rt_drake.scenario import ObjectConfig
-from rt_drake.simulation.motion import Motion, MotionSource, PlanTimes
+from rt_drake.scenario import ObjectConfig, Vacuum, VacuumModel
+from rt_drake.simulation.motion import Motion, MotionSource, PendingMotion
+from rt_drake.simulation.records import (
+    ObjectRecord,
+    pose_difference,
+    with_placement,
+    with_slip,
+)
+from rt_drake.simulation.vacuum import is_released, wait_over
 
 #: s, period of the sequencer's update (the paper's robot runs at 125 Hz).
 UPDATE_PERIOD = 1.0 / 125.0
 
 
-@dataclasses.dataclass(frozen=True)
-class ObjectRecord:
-    """What the sequencer measured for one object.
-
-    Attributes:
-        name: The object.
-        plan_times: Wall seconds spent producing each moving phase's motion.
-        exec_s: Simulated seconds each phase lasted.
-        max_slip_translation, max_slip_rotation: m and rad, the object's
-            largest displacement relative to the cup during MOVE.
-        placement_translation, placement_rotation: m and rad, the object's
-            distance from its goal pose during DETACH.
-        guarantee: What the MOVE's retiming held (``Motion.guarantee``).
-    """
-
-    name: str
-    plan_times: dict[Phase, PlanTimes] = dataclasses.field(default_factory=dict)
-    exec_s: dict[Phase, float] = dataclasses.field(default_factory=dict)
-    max_slip_translation: float = 0.0
-    max_slip_rotation: float = 0.0
-    placement_translation: float = float("nan")
-    placement_rotation: float = float("nan")
-    guarantee: str = ""
-
-
 @dataclasses.dataclass
 class SequencerState:
-    """The sequencer's abstract state (replaced, never mutated, by updates)."""
+    """The sequencer's abstract state (replaced, never mutated, by updates).
+
+    ``motion`` is played with its t = 0 at simulated ``t_motion_start``;
+    ``pending`` is the next motion, planned ahead; ``pick`` the current
+    object's pick (its MOVE lifts along it).
+    """
 
     phase: Phase
     object_index: int
     t_phase_start: float
     q_hold: np.ndarray
-    trajectory: Trajectory | None = None
-    reach: Motion | None = None  # the current object's REACH, for its MOVE
+    motion: Motion | None = None
+    t_motion_start: float = 0.0
+    pending: PendingMotion | None = None
+    pick: Motion | None = None
     X_CO_attached: RigidTransform | None = None
     records: tuple[ObjectRecord, ...] = ()
 
@@ -73,15 +78,19 @@ class Sequencer(LeafSystem):
         name: Sequencer
         input_ports:
         - body_poses
+        - body_spatial_velocities
+        - suction_force
+        - part_present
         output_ports:
         - desired_state
         - desired_acceleration
         - valve
 
-    ``body_poses`` is the plant's output; ``desired_state`` ([q; v], rad and
-    rad/s), ``desired_acceleration`` (rad/s^2) and ``valve`` (1: on) go to
-    the station. Phase switches happen in a periodic unrestricted update
-    every :data:`UPDATE_PERIOD`.
+    The inputs are the station's outputs of those names; ``desired_state``
+    ([q; v], rad and rad/s), ``desired_acceleration`` (rad/s^2) and ``valve``
+    (1: on) go to the station and depend on the state and time only. Phase
+    switches happen in a periodic unrestricted update every
+    :data:`UPDATE_PERIOD`.
     """
 
     def __init__(
@@ -89,49 +98,54 @@ class Sequencer(LeafSystem):
         motions: MotionSource,
         objects: list[ObjectConfig],
         object_bodies: list[BodyIndex],
+        object_weights: list[float],
         tool_body: BodyIndex,
         X_TC: RigidTransform,
         q_home: np.ndarray,
-        attach_s: float,
-        detach_s: float,
+        vacuum: Vacuum,
+        pipelined: bool = True,
     ) -> None:
         """Make the sequencer.
 
         Args:
-            motions: plans and retimes APPROACH, REACH and MOVE.
+            motions: plans and retimes the pick and the MOVE of each object.
             objects: the objects, in picking order.
             object_bodies: each object's body in the plant.
+            object_weights: N, each object's weight.
             tool_body: body T carrying the cup.
             X_TC: pose of the cup frame C in T.
             q_home: rad, the arm's configuration at t = 0.
-            attach_s: s, wait with the valve on before MOVE.
-            detach_s: s, wait with the valve off after MOVE.
+            vacuum: the waits (fixed) or the signals and time-outs.
+            pipelined: plan each motion ahead (else when its phase starts).
         """
         super().__init__()
         self._motions = motions
         self._objects = list(objects)
         self._bodies = list(object_bodies)
+        self._weights = list(object_weights)
         self._tool = tool_body
         self._X_TC = X_TC
-        self._waits = {Phase.ATTACH: attach_s, Phase.DETACH: detach_s}
+        self._vacuum = vacuum
+        self._pipelined = pipelined
         self._n = len(q_home)
-        initial = SequencerState(
-            phase=Phase.APPROACH,
-            object_index=0,
-            t_phase_start=0.0,
-            q_hold=np.array(q_home),
-        )
+        initial = SequencerState(Phase.APPROACH, 0, 0.0, np.array(q_home))
         self._state_index = self.DeclareAbstractState(AbstractValue.Make(initial))
         self._poses_port = self.DeclareAbstractInputPort(
             "body_poses", AbstractValue.Make([RigidTransform()])
         )
+        self._velocities_port = self.DeclareAbstractInputPort(
+            "body_spatial_velocities", AbstractValue.Make([SpatialVelocity()])
+        )
+        self._force_port = self.DeclareVectorInputPort("suction_force", 1)
+        self._present_port = self.DeclareVectorInputPort("part_present", 1)
+        state_only = {self.time_ticket(), self.abstract_state_ticket(self._state_index)}
         self.DeclareVectorOutputPort(
-            "desired_state", 2 * self._n, self._CalcDesiredState
+            "desired_state", 2 * self._n, self._CalcDesiredState, state_only
         )
         self.DeclareVectorOutputPort(
-            "desired_acceleration", self._n, self._CalcDesiredAcceleration
+            "desired_acceleration", self._n, self._CalcDesiredAcceleration, state_only
         )
-        self.DeclareVectorOutputPort("valve", 1, self._CalcValve)
+        self.DeclareVectorOutputPort("valve", 1, self._CalcValve, state_only)
         self.DeclareInitializationUnrestrictedUpdateEvent(self._Initialize)
         self.DeclarePeriodicUnrestrictedUpdateEvent(UPDATE_PERIOD, 0.0, self._Update)
 
@@ -146,12 +160,13 @@ class Sequencer(LeafSystem):
 
     def _reference(self, context: Context, order: int) -> np.ndarray:
         state = self.sequencer_state(context)
-        if state.trajectory is None:
+        if state.motion is None:
             return state.q_hold if order == 0 else np.zeros(self._n)
-        traj = state.trajectory
-        t = min(max(context.get_time() - state.t_phase_start, 0.0), traj.end_time())
-        if order > 0 and context.get_time() - state.t_phase_start > traj.end_time():
+        traj = state.motion.trajectory
+        t = context.get_time() - state.t_motion_start
+        if order > 0 and not 0.0 <= t <= traj.end_time():
             return np.zeros(self._n)
+        t = min(max(t, 0.0), traj.end_time())
         return (traj.value(t) if order == 0 else traj.EvalDerivative(t, order)).ravel()
 
     def _CalcDesiredState(self, context: Context, output: BasicVector) -> None:
@@ -168,82 +183,135 @@ class Sequencer(LeafSystem):
 
     # -- updates ------------------------------------------------------------
     def _Initialize(self, context: Context, state: State) -> None:
-        current = self.sequencer_state(context)
-        records = tuple(ObjectRecord(name=o.name) for o in self._objects)
-        start = dataclasses.replace(
-            current, records=records, t_phase_start=context.get_time()
+        now = context.get_time()
+        current = dataclasses.replace(
+            self.sequencer_state(context),
+            records=tuple(ObjectRecord(name=o.name) for o in self._objects),
+            t_phase_start=now,
         )
         if not self._objects:
-            start = dataclasses.replace(start, phase=Phase.DONE)
+            current = dataclasses.replace(current, phase=Phase.DONE)
         else:
-            start = self._begin(start, Phase.APPROACH, context.get_time())
-        state.get_mutable_abstract_state(self._state_index).set_value(start)
+            current = self._enter(current, Phase.APPROACH, context)
+        state.get_mutable_abstract_state(self._state_index).set_value(current)
 
     def _Update(self, context: Context, state: State) -> None:
         current = self.sequencer_state(context)
         if current.phase is Phase.DONE:
             return
-        now = context.get_time()
         current = self._measure(context, current)
-        if now - current.t_phase_start < self._phase_duration(current) - 1e-9:
-            state.get_mutable_abstract_state(self._state_index).set_value(current)
-            return
-        record = current.records[current.object_index]
-        exec_s = {**record.exec_s, current.phase: now - current.t_phase_start}
-        current = _with_record(current, dataclasses.replace(record, exec_s=exec_s))
-        if current.phase is Phase.DETACH:
-            nxt = current.object_index + 1
-            current = dataclasses.replace(
-                current, object_index=nxt, X_CO_attached=None, reach=None
-            )
-            phase = Phase.APPROACH if nxt < len(self._objects) else Phase.DONE
-        else:
+        if self._phase_over(context, current):
+            now = context.get_time()
+            start = current.t_phase_start
+            if current.phase in (Phase.APPROACH, Phase.MOVE):
+                start = current.t_motion_start  # its plan wait is apart
+            current = self._record(current, exec_s={current.phase: now - start})
             order = list(Phase)
             phase = order[order.index(current.phase) + 1]
-        if phase is Phase.MOVE:
-            current = dataclasses.replace(
-                current, X_CO_attached=self._X_CO(context, current.object_index)
+            if phase is Phase.DONE:  # after DETACH: the next object, if any
+                nxt = current.object_index + 1
+                current = dataclasses.replace(current, object_index=nxt, pick=None)
+                phase = Phase.APPROACH if nxt < len(self._objects) else Phase.DONE
+            current = self._enter(current, phase, context)
+        state.get_mutable_abstract_state(self._state_index).set_value(current)
+
+    def _phase_over(self, context: Context, state: SequencerState) -> bool:
+        now = context.get_time()
+        waited = now - state.t_phase_start
+        if state.phase in (Phase.ATTACH, Phase.DETACH):
+            signal = self._vacuum.kind is VacuumModel.FIRST_ORDER and (
+                self._part_present(context)
+                if state.phase is Phase.ATTACH
+                else self._released(context, state.object_index)
             )
-        state.get_mutable_abstract_state(self._state_index).set_value(
-            self._begin(current, phase, now)
+            name = self._objects[state.object_index].name
+            return wait_over(self._vacuum, state.phase, waited, signal, name)
+        assert state.motion is not None
+        end = state.motion.phase_end(state.phase)
+        return now - state.t_motion_start >= end - 1e-9
+
+    def _part_present(self, context: Context) -> bool:
+        return bool(self._present_port.Eval(context)[0] > 0.5)
+
+    def _released(self, context: Context, index: int) -> bool:
+        velocity = self._velocities_port.Eval(context)[int(self._bodies[index])]
+        return is_released(
+            float(self._force_port.Eval(context)[0]),
+            self._weights[index],
+            float(np.linalg.norm(velocity.translational())),
+            float(np.linalg.norm(velocity.rotational())),
         )
 
-    def _phase_duration(self, state: SequencerState) -> float:
-        if state.phase in self._waits:
-            return self._waits[state.phase]
-        return state.trajectory.end_time() if state.trajectory is not None else 0.0
-
-    def _begin(self, state: SequencerState, phase: Phase, now: float) -> SequencerState:
-        """Enter ``phase`` at time ``now``, planning its motion if it moves."""
+    def _enter(
+        self, state: SequencerState, phase: Phase, context: Context
+    ) -> SequencerState:
+        """Enter ``phase`` now, starting its motion once it is planned."""
+        now = context.get_time()
         q_hold = state.q_hold
-        if state.trajectory is not None:
-            q_hold = state.trajectory.value(state.trajectory.end_time()).ravel()
-        if phase is Phase.DONE or phase in self._waits:
-            return dataclasses.replace(
-                state, phase=phase, t_phase_start=now, q_hold=q_hold, trajectory=None
-            )
-        obj = self._objects[state.object_index]
-        if phase is Phase.APPROACH:
-            motion = self._motions.approach(q_hold, obj)
-        elif phase is Phase.REACH:
-            motion = self._motions.reach(q_hold, obj)
-        else:
-            motion = self._motions.move(q_hold, obj, state.reach)
-        record = state.records[state.object_index]
-        plan_times = {**record.plan_times, phase: motion.times}
-        guarantee = motion.guarantee if phase is Phase.MOVE else record.guarantee
-        state = _with_record(
+        if state.motion is not None:
+            q_hold = state.motion.q_end
+        state = dataclasses.replace(state, phase=phase, t_phase_start=now)
+        if phase is Phase.REACH:  # the pick goes on
+            return state
+        if phase not in (Phase.APPROACH, Phase.MOVE):
+            return dataclasses.replace(state, q_hold=q_hold, motion=None)
+        index = state.object_index
+        pending = state.pending
+        if pending is None:  # sequential, or the first object: plan it now
+            pending = self._request(state, phase, q_hold, now)
+        motion = pending.motion
+        wait = pending.wait_s(now)
+        parts = (Phase.APPROACH, Phase.REACH) if phase is Phase.APPROACH else (phase,)
+        state = self._record(
             state,
-            dataclasses.replace(record, plan_times=plan_times, guarantee=guarantee),
+            plan_times={p: motion.plan_times(p) for p in parts},
+            plan_wait_s={phase: wait},
         )
-        return dataclasses.replace(
+        state = dataclasses.replace(
             state,
-            phase=phase,
-            t_phase_start=now,
             q_hold=q_hold,
-            trajectory=motion.trajectory,
-            reach=motion if phase is Phase.REACH else state.reach,
+            motion=motion,
+            t_motion_start=now + wait,
+            pending=None,
+            pick=motion if phase is Phase.APPROACH else state.pick,
         )
+        if phase is Phase.MOVE:
+            record = state.records[index]
+            force = float(self._force_port.Eval(context)[0])
+            state = _with_record(
+                dataclasses.replace(state, X_CO_attached=self._X_CO(context, index)),
+                dataclasses.replace(
+                    record, move_suction_force=force, guarantee=motion.guarantee
+                ),
+            )
+        if self._pipelined:  # plan the next motion while this one runs
+            nxt = Phase.MOVE if phase is Phase.APPROACH else Phase.APPROACH
+            if nxt is Phase.MOVE or index + 1 < len(self._objects):
+                request = self._request(state, nxt, motion.q_end, now + wait)
+                state = dataclasses.replace(state, pending=request)
+        return state
+
+    def _request(
+        self, state: SequencerState, phase: Phase, q_start: np.ndarray, now: float
+    ) -> PendingMotion:
+        """Plan ``phase`` (APPROACH: the pick of the object it is for) from q_start.
+
+        A pick requested during a MOVE is for the next object.
+        """
+        index = state.object_index
+        if phase is Phase.MOVE:
+            obj = self._objects[index]
+            return PendingMotion(self._motions.move(q_start, obj, state.pick), now)
+        if state.phase is Phase.MOVE:  # planning ahead, during this MOVE
+            index += 1
+        motion = self._motions.pick(q_start, self._objects[index], retreat=index > 0)
+        return PendingMotion(motion, now)
+
+    def _record(self, state: SequencerState, **fields: dict) -> SequencerState:
+        """Merge ``fields`` (dicts keyed by phase) into the current record."""
+        record = state.records[state.object_index]
+        merged: dict = {k: {**getattr(record, k), **v} for k, v in fields.items()}
+        return _with_record(state, dataclasses.replace(record, **merged))
 
     # -- measurements -------------------------------------------------------
     def _X_CO(self, context: Context, index: int) -> RigidTransform:
@@ -253,32 +321,15 @@ class Sequencer(LeafSystem):
 
     def _measure(self, context: Context, state: SequencerState) -> SequencerState:
         """Track slip during MOVE and the placement error during DETACH."""
+        index = state.object_index
+        record = state.records[index]
         if state.phase is Phase.MOVE and state.X_CO_attached is not None:
-            record = state.records[state.object_index]
-            X_CO = self._X_CO(context, state.object_index)
-            translation, rotation = pose_difference(state.X_CO_attached, X_CO)
-            if (
-                translation > record.max_slip_translation
-                or rotation > record.max_slip_rotation
-            ):
-                record = dataclasses.replace(
-                    record,
-                    max_slip_translation=max(record.max_slip_translation, translation),
-                    max_slip_rotation=max(record.max_slip_rotation, rotation),
-                )
-                state = _with_record(state, record)
-        if state.phase is Phase.DETACH:
-            poses = self._poses_port.Eval(context)
-            X_WO = poses[int(self._bodies[state.object_index])]
-            goal = self._objects[state.object_index].goal.GetDeterministicValue()
-            translation, rotation = pose_difference(goal, X_WO)
-            record = dataclasses.replace(
-                state.records[state.object_index],
-                placement_translation=translation,
-                placement_rotation=rotation,
-            )
-            state = _with_record(state, record)
-        return state
+            record = with_slip(record, state.X_CO_attached, self._X_CO(context, index))
+        elif state.phase is Phase.DETACH:
+            X_WO = self._poses_port.Eval(context)[int(self._bodies[index])]
+            goal = self._objects[index].goal.GetDeterministicValue()
+            record = with_placement(record, goal, X_WO)
+        return _with_record(state, record)
 
 
 def _with_record(state: SequencerState, record: ObjectRecord) -> SequencerState:
@@ -286,14 +337,6 @@ def _with_record(state: SequencerState, record: ObjectRecord) -> SequencerState:
     records = list(state.records)
     records[state.object_index] = record
     return dataclasses.replace(state, records=tuple(records))
-
-
-def pose_difference(X_A: RigidTransform, X_B: RigidTransform) -> tuple[float, float]:
-    """Return (m, rad): distance between the origins and the angle of R_A^T R_B."""
-    translation = float(np.linalg.norm(X_B.translation() - X_A.translation()))
-    R = X_A.rotation().inverse() @ X_B.rotation()
-    rotation = float(abs(R.ToAngleAxis().angle()))
-    return translation, rotation
 
 
 __all__ = [

@@ -8,14 +8,17 @@ rim spheres touch them through point contact. The arm tracks a commanded
 state through the plant's implicit PD actuators, with an inverse-dynamics
 feedforward (gravity, Coriolis and the commanded acceleration, for the arm
 and tool without payload) computed on a separate controller plant. The
-vacuum is a :class:`~rt_drake.simulation.suction.SuctionCup`.
+vacuum is a :class:`~rt_drake.simulation.suction.SuctionCup` with the
+scenario's :class:`~rt_drake.scenario.Vacuum` model.
 
 Exported ports of the Diagram:
 
 - inputs ``robot.desired_state`` ([q; v], 12), ``robot.desired_acceleration``
   (6), ``suction.valve`` (1; on when > 0.5);
 - outputs ``robot.state`` ([q; v] measured), ``body_poses``,
-  ``suction.sealed`` (per object, 1 while the vacuum holds it),
+  ``body_spatial_velocities``, ``suction.sealed`` (per object, 1 while the
+  vacuum holds it), ``suction.suction_force`` (N, the vacuum's current
+  force), ``suction.part_present`` (the vacuum switch, 1 or 0),
   ``contact_results``, ``query_object``.
 """
 
@@ -42,12 +45,12 @@ from pydrake.systems.framework import Diagram, DiagramBuilder
 
 from rt_drake.errors import InputError
 from rt_drake.plant import (
-    CUP_FRAME,
     OBJECT_BODY,
     ObjectMode,
     ScenarioModels,
     add_scenario_models,
     make_arm_plant,
+    scenario_cup_frame,
 )
 from rt_drake.scenario import Scenario
 from rt_drake.simulation.suction import SuctionCup, SuctionTarget
@@ -123,7 +126,7 @@ def MakeStation(
         plant.get_desired_state_input_port(models.robot), "robot.desired_state"
     )
 
-    cup_frame = plant.GetFrameByName(CUP_FRAME)
+    cup_frame = scenario_cup_frame(plant, scenario)
     suction = builder.AddNamedSystem(
         "suction",
         SuctionCup(
@@ -135,6 +138,8 @@ def MakeStation(
             ],
             suction_force=scenario.cup.suction_force,
             seal_distance=options.seal_distance,
+            vacuum=scenario.vacuum,
+            time_step=options.time_step,
         ),
     )
     builder.Connect(plant.get_body_poses_output_port(), suction.body_poses_input_port())
@@ -146,7 +151,11 @@ def MakeStation(
 
     builder.ExportOutput(plant.get_state_output_port(models.robot), "robot.state")
     builder.ExportOutput(plant.get_body_poses_output_port(), "body_poses")
-    builder.ExportOutput(suction.GetOutputPort("sealed"), "suction.sealed")
+    builder.ExportOutput(
+        plant.get_body_spatial_velocities_output_port(), "body_spatial_velocities"
+    )
+    for name in ("sealed", "suction_force", "part_present"):
+        builder.ExportOutput(suction.GetOutputPort(name), f"suction.{name}")
     builder.ExportOutput(plant.get_contact_results_output_port(), "contact_results")
     builder.ExportOutput(scene_graph.get_query_output_port(), "query_object")
     if meshcat is not None:

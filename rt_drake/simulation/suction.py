@@ -1,8 +1,9 @@
 """Suction physics: the vacuum force between the cup and a box-shaped object.
 
-While the valve is on and an object's face lies within the seal distance of
-the cup, the vacuum pulls that object onto the cup with the force ``P A``
-along ``-z_C`` (C: the cup frame, +z out of the cup into the object), applied
+While an object's face lies within the seal distance of the cup, the vacuum
+pulls that object onto the cup with the force ``lambda P A`` along ``-z_C``
+(lambda: the vacuum level of :mod:`.vacuum`, 1 while the valve is on in the
+``fixed`` model) (C: the cup frame, +z out of the cup into the object), applied
 at the point of the face under the cup's centre; the opposite force acts on
 the tool at the cup's centre. Everything else (friction, the rim pushing the
 object) comes from the plant's contact between the six rim spheres and the
@@ -19,7 +20,10 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.math import SpatialForce
 from pydrake.multibody.plant import ExternallyAppliedSpatialForce
 from pydrake.multibody.tree import BodyIndex
-from pydrake.systems.framework import BasicVector, Context, LeafSystem
+from pydrake.systems.framework import BasicVector, Context, DiscreteValues, LeafSystem
+
+from rt_drake.scenario import Vacuum, VacuumModel
+from rt_drake.simulation.vacuum import next_level, part_present
 
 #: Cosine of the largest angle between the cup axis and a face's inward
 #: normal at which the cup can still seal on that face (20 deg).
@@ -92,12 +96,19 @@ class SuctionCup(LeafSystem):
         output_ports:
         - spatial_forces
         - sealed
+        - suction_force
+        - part_present
 
     ``valve`` (1-vector, on when > 0.5); ``body_poses`` is the plant's
-    ``body_poses`` output. ``spatial_forces`` is a list of
-    ExternallyAppliedSpatialForce for the plant; ``sealed`` holds, per
-    target, 1 if the vacuum pulls it, else 0. The cup holds at most one
-    object: the sealed target with the smallest gap.
+    ``body_poses`` output. The cup seals on the target whose face is nearest
+    (gap at most ``seal_distance``); the vacuum level lambda follows the
+    scenario's :class:`~rt_drake.scenario.Vacuum` (:mod:`.vacuum`; state:
+    one discrete value, updated every ``time_step``, ``fixed`` needs none).
+    ``spatial_forces`` is a list of ExternallyAppliedSpatialForce for the
+    plant: ``lambda P A`` on the sealed target and its reaction on the tool;
+    ``sealed`` holds, per target, 1 if the vacuum pulls it, else 0;
+    ``suction_force`` is ``lambda P A`` (N, 1-vector); ``part_present`` is the
+    vacuum switch (1-vector, 1 or 0).
     """
 
     def __init__(
@@ -107,6 +118,8 @@ class SuctionCup(LeafSystem):
         targets: list[SuctionTarget],
         suction_force: float,
         seal_distance: float = 0.005,
+        vacuum: Vacuum | None = None,
+        time_step: float = 1e-3,
     ) -> None:
         """Make the system.
 
@@ -114,8 +127,10 @@ class SuctionCup(LeafSystem):
             tool_body_index: body T that carries the cup.
             X_TC: pose of the cup frame C in T.
             targets: the objects the cup may hold.
-            suction_force: N, the vacuum force P A.
+            suction_force: N, the full vacuum force P A.
             seal_distance: m, the largest gap at which the vacuum seals.
+            vacuum: how the force follows the valve (default: fixed).
+            time_step: s, period of the first_order level update.
         """
         super().__init__()
         self._tool = tool_body_index
@@ -123,16 +138,27 @@ class SuctionCup(LeafSystem):
         self._targets = list(targets)
         self._force = float(suction_force)
         self._seal_distance = float(seal_distance)
+        self._vacuum = vacuum or Vacuum()
         self._valve_port = self.DeclareVectorInputPort("valve", 1)
         self._poses_port = self.DeclareAbstractInputPort(
             "body_poses", AbstractValue.Make([RigidTransform()])
         )
+        self._level_index = None
+        if self._vacuum.kind is VacuumModel.FIRST_ORDER:
+            self._level_index = self.DeclareDiscreteState(1)
+            # The update at t_k + h stores lambda(t_k + h): hold, never lead.
+            self.DeclarePeriodicDiscreteUpdateEvent(
+                time_step, time_step, self._UpdateLevel
+            )
+            self._time_step = float(time_step)
         self.DeclareAbstractOutputPort(
             "spatial_forces",
             lambda: AbstractValue.Make([ExternallyAppliedSpatialForce()]),
             self._CalcSpatialForces,
         )
         self.DeclareVectorOutputPort("sealed", len(self._targets), self._CalcSealed)
+        self.DeclareVectorOutputPort("suction_force", 1, self._CalcSuctionForce)
+        self.DeclareVectorOutputPort("part_present", 1, self._CalcPartPresent)
 
     def valve_input_port(self):
         """The 1-vector valve command (on when > 0.5)."""
@@ -142,10 +168,11 @@ class SuctionCup(LeafSystem):
         """The plant's body poses."""
         return self._poses_port
 
-    def _held(self, context: Context) -> tuple[int, Seal] | None:
-        """Index and seal of the target the vacuum pulls, if any."""
-        if self._valve_port.Eval(context)[0] <= 0.5:
-            return None
+    def _valve_on(self, context: Context) -> bool:
+        return bool(self._valve_port.Eval(context)[0] > 0.5)
+
+    def _seal(self, context: Context) -> tuple[int, Seal] | None:
+        """Index and seal of the target the cup is sealed on, if any."""
         poses = self._poses_port.Eval(context)
         X_WC = poses[int(self._tool)] @ self._X_TC
         best: tuple[int, Seal] | None = None
@@ -157,6 +184,26 @@ class SuctionCup(LeafSystem):
                 best = (i, seal)
         return best
 
+    def _level(self, context: Context) -> float:
+        """The vacuum level lambda in [0, 1] (fixed: the valve and the seal)."""
+        if self._level_index is None:
+            on = self._valve_on(context) and self._seal(context) is not None
+            return next_level(self._vacuum, 0.0, on, 0.0)
+        return float(context.get_discrete_state(self._level_index).GetAtIndex(0))
+
+    def _held(self, context: Context) -> tuple[int, Seal, float] | None:
+        """Index, seal and force (N) of the target the vacuum pulls, if any."""
+        force = self._level(context) * self._force
+        if force <= 0.0:
+            return None
+        seal = self._seal(context)
+        return None if seal is None else (*seal, force)
+
+    def _UpdateLevel(self, context: Context, state: DiscreteValues) -> None:
+        on = self._valve_on(context) and self._seal(context) is not None
+        level = next_level(self._vacuum, self._level(context), on, self._time_step)
+        state.get_mutable_vector(self._level_index).SetAtIndex(0, level)
+
     def _CalcSealed(self, context: Context, output: BasicVector) -> None:
         sealed = np.zeros(len(self._targets))
         held = self._held(context)
@@ -164,16 +211,23 @@ class SuctionCup(LeafSystem):
             sealed[held[0]] = 1.0
         output.SetFromVector(sealed)
 
+    def _CalcSuctionForce(self, context: Context, output: BasicVector) -> None:
+        output.SetFromVector([self._level(context) * self._force])
+
+    def _CalcPartPresent(self, context: Context, output: BasicVector) -> None:
+        present = part_present(self._vacuum, self._level(context))
+        output.SetFromVector([1.0 if present else 0.0])
+
     def _CalcSpatialForces(self, context: Context, output: AbstractValue) -> None:
         held = self._held(context)
         if held is None:
             output.set_value([])
             return
-        index, seal = held
+        index, seal, force = held
         poses = self._poses_port.Eval(context)
         X_WC = poses[int(self._tool)] @ self._X_TC
         # Pull on the object toward the cup: -z_C, in W.
-        f_W = -self._force * X_WC.rotation().matrix()[:, 2]
+        f_W = -force * X_WC.rotation().matrix()[:, 2]
         on_object = ExternallyAppliedSpatialForce()
         on_object.body_index = self._targets[index].body_index
         on_object.p_BoBq_B = seal.p_OQ_O

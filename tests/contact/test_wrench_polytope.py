@@ -16,6 +16,7 @@ from rt_drake.contact import (
     is_realizable,
     is_realizable_lp,
     lp_residual,
+    with_suction_force,
 )
 from rt_drake.contact.cup import friction_pyramid, grasp_matrices, suction_wrench
 from rt_drake.contact.minkowski import minkowski_sum
@@ -241,3 +242,24 @@ def test_small_cups_have_the_facets_cdd_finds_from_all_force_combinations(
     if equalities == 0:
         mine = {tuple(r) for r in np.column_stack([polytope.F, polytope.g]).round(6)}
         assert mine == {tuple(r) for r in np.column_stack([F, g]).round(6)}
+
+
+@pytest.mark.parametrize("suction_force", [16.0, 8.0, 30.0])
+def test_another_suction_force_translates_the_set(paper, suction_force):
+    """The set of a weaker (or stronger) vacuum, derived by translation, equals
+    the one enumerated from scratch: same facets (rows matched by normal), same
+    offsets, same vertices."""
+    derived = with_suction_force(paper, suction_force)
+    direct = contact_wrench_polytope(
+        dataclasses.replace(CupParameters(), suction_force=suction_force)
+    )
+    assert derived.cup == direct.cup
+    assert derived.F.shape == direct.F.shape
+    match = np.argmax(derived.F @ direct.F.T, axis=1)  # unit rows: cosine
+    np.testing.assert_allclose(derived.F, direct.F[match], atol=1e-9)
+    np.testing.assert_allclose(derived.g, direct.g[match], atol=1e-9)
+    order = np.lexsort(np.round(derived.vertices, 9).T)
+    order_direct = np.lexsort(np.round(direct.vertices, 9).T)
+    np.testing.assert_allclose(
+        derived.vertices[order], direct.vertices[order_direct], atol=1e-9
+    )

@@ -57,7 +57,7 @@ def notebook(scenario):
 
 @pytest.fixture(scope="module")
 def samples(notebook):
-    """Objects of the set, in the cup frame: its 128 corners and 100 draws."""
+    """Objects of the set, in the cup frame: its corners and 100 draws (bodies)."""
     model = ObjectInertia.of_model(notebook)
     X_OC = notebook.grasp.GetDeterministicValue()
     drawn = random_objects(model, SET, 100, np.random.default_rng(4))

@@ -93,9 +93,22 @@ def test_wrench_ratios_equal_numpy(polytope, seed, scale):
 def test_warm_up_compiles_what_retime_uses(plant, scenario, polytope):
     """After warm_up a retime with a grasp adds no compiled specialisation."""
     from rt_drake.dynamics import HeldObject
-    from rt_drake.retiming import GraspConstraint, JointLimits, retime
+    from rt_drake.retiming import (
+        GraspConstraint,
+        JointLimits,
+        between,
+        between_kernels,
+        retime,
+    )
 
-    kernels = [seidel.passes, seidel.project, rows._ratios, rows._rest_and_rays]
+    kernels = [
+        seidel.passes,
+        seidel.project,
+        rows._ratios,
+        rows._rest_and_rays,
+        between._lagrange_kernel,
+        *(getattr(between_kernels, name) for name in between_kernels.__all__),
+    ]
     warm_up()
     before = [len(kernel.signatures) for kernel in kernels]
     held = HeldObject.from_scenario_object(scenario.object("notebook"))

@@ -29,6 +29,7 @@ from rt_drake.retiming import (
     rows,
 )
 from rt_drake.retiming.between import Segments, grasp_midpoint_rows, interior_rows
+from rt_drake.retiming.joint_path import as_joint_path
 from rt_drake.retiming.passes import AffineConstraint
 from rt_drake.retiming.path import drake_path
 from rt_drake.retiming.samples import PathSamples
@@ -145,7 +146,7 @@ def _full_row_toppra(plant, path, limits, grasp, grid):
     q, dq, ddq = spline(grid), spline(grid, 1), spline(grid, 2)
     w = path_wrench_coefficients(plant, grasp.held, q, dq, ddq)
     samples = PathSamples(grid, q, dq, ddq, None, None, w)
-    segments = Segments(samples, knots)
+    segments = Segments(samples, knots, as_joint_path(path))
     constraints = [
         JointVelocityConstraint(limits.velocity),
         JointAccelerationConstraint(limits.acceleration),

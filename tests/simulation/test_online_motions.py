@@ -5,7 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rt_drake.retiming import TimeScaled
+from rt_drake.phase import Phase
+from rt_drake.plant import make_arm_plant
+from rt_drake.retiming import JointLimits, TimeScaled, check_trajectory
 from rt_drake.simulation import OnlineMotions
 
 
@@ -42,4 +44,26 @@ def test_time_scaling_scales_every_derivative(motions, scenario):
             fast.EvalDerivative(t, order),
             factor**order * motion.trajectory.EvalDerivative(factor * t, order),
             atol=1e-12,
+        )
+
+
+def test_picks_and_moves_keep_their_limits_between_grid_points(motions, scenario):
+    """At 1 kHz, every joint velocity and acceleration (and the MOVE's grasp
+    constraint) within 2 % of its limit, for the pick from home, the MOVE and
+    the pick after a place (retreat, transit, descent); the APPROACH part ends
+    where the cup passes the approach pose."""
+    plant = make_arm_plant(scenario)
+    limits = JointLimits.from_plant(plant, scenario.robot)
+    first, second = scenario.objects[:2]
+    pick = motions.pick(motions.q_home, first)
+    move = motions.move(pick.q_end, first, pick)
+    after = motions.pick(move.q_end, second, retreat=True)
+    for motion in (pick, move, after):
+        check = check_trajectory(plant, motion.trajectory, limits, motion.grasp)
+        assert check.passed(0.02), check.summary()
+    for motion in (pick, after):
+        t = motion.phase_end(Phase.APPROACH)
+        assert 0.0 < t < motion.duration
+        np.testing.assert_allclose(
+            motion.trajectory.value(t).ravel(), motion.planned.descent[0], atol=1e-9
         )

@@ -27,9 +27,9 @@ def test_every_phase_lasts_as_planned(one_object_cycle):
     assert list(exec_s) == [p for p in Phase if p is not Phase.DONE]
     assert exec_s[Phase.APPROACH] == pytest.approx(1.0, abs=0.01)
     assert exec_s[Phase.REACH] == pytest.approx(0.6, abs=0.01)
-    assert exec_s[Phase.ATTACH] == pytest.approx(scenario.timing.attach_s, abs=0.01)
+    assert exec_s[Phase.ATTACH] == pytest.approx(scenario.vacuum.attach_s, abs=0.01)
     assert exec_s[Phase.MOVE] == pytest.approx(2.2, abs=0.01)
-    assert exec_s[Phase.DETACH] == pytest.approx(scenario.timing.detach_s, abs=0.01)
+    assert exec_s[Phase.DETACH] == pytest.approx(scenario.vacuum.detach_s, abs=0.01)
     assert result.sim_time == pytest.approx(sum(exec_s.values()), abs=0.02)
 
 

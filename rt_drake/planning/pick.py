@@ -1,0 +1,270 @@
+"""The blended pick: retreat, APPROACH and REACH as one path without stops.
+
+From q_start (home, or the place configuration of the object just released)
+the cup
+
+1. retreats vertically by ``RETREAT_HEIGHT`` when it rests on an object at
+   q_start (the cup leaves the face along its normal: no scraping);
+2. travels to the approach pose (the grasp raised by ``approach_offset``),
+   along the polyline :meth:`~.cycle_planner.CyclePlanner.plan_approach`
+   finds from the retreat's top;
+3. descends vertically along the IK line of
+   :meth:`~.cycle_planner.CyclePlanner.plan_reach` to the grasp.
+
+One clamped chord-length spline (:class:`~.path.GeometricPath`) runs
+through all of it, so the motion retimed on it starts and ends at rest but
+keeps moving through the approach pose. A cubic through the IK line's points
+can bulge off the line, most where the transit turns into the descent, so
+the spline is refined until, sampled densely (``LINE_SAMPLES`` per line),
+the cup stays within ``LINE_TOLERANCE_M`` (horizontal distance from the
+vertical line, m) and ``LINE_TOLERANCE_RAD`` (angle of R_WC from the line's
+orientation) over the whole descent and retreat: a line segment that
+violates it gets the IK solution of its Cartesian midpoint; a transit
+segment where the dense collision check
+(:func:`~.dense_check.check_path`) fails gets its joint-space midpoint. The
+whole path is checked in the REACH scene from q_start (the grasped face and
+the face under the cup at q_start moved in by the touch allowance).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from typing import TYPE_CHECKING
+
+import numpy as np
+from pydrake.math import RigidTransform
+
+from rt_drake.phase import Phase
+from rt_drake.planning.connect import ik_line
+from rt_drake.planning.dense_check import check_path
+from rt_drake.planning.errors import NoPathError, UnreachablePoseError
+from rt_drake.planning.path import GeometricPath
+from rt_drake.planning.result import PlannedPath, PlanTiming
+from rt_drake.planning.scene import PlanningScene
+
+if TYPE_CHECKING:
+    from rt_drake.planning.cycle_planner import CyclePlanner
+
+#: m, how far the cup rises vertically from an object it rests on.
+RETREAT_HEIGHT = 0.02
+#: m, an extra IK point this far below the approach pose (and this far below
+#: the retreat's top): where the spline turns, it keeps the cup on the line.
+TURN_STEP = 0.01
+#: m and rad, largest horizontal offset and tilt of the cup off a line.
+LINE_TOLERANCE_M = 1e-3
+LINE_TOLERANCE_RAD = np.radians(0.5)
+#: samples of the spline per vertical line when its deviation is measured.
+LINE_SAMPLES = 200
+#: refinement rounds (a point inserted per round) before giving up.
+MAX_ROUNDS = 12
+
+
+@dataclasses.dataclass(frozen=True)
+class PlannedPick:
+    """A blended pick, ready for the retimer.
+
+    Attributes:
+        path: the whole path (phase APPROACH; ``descent`` holds the IK line
+            from the approach pose to the grasp, which the MOVE lifts along).
+        s_retreat: path parameter at the top of the retreat (0: none).
+        s_approach: path parameter at the approach pose (APPROACH ends,
+            REACH begins).
+        reach_timing: wall time of the descent's IK line (the REACH's plan);
+            ``path.timing`` holds the rest (retreat, transit, blend).
+    """
+
+    path: PlannedPath
+    s_retreat: float
+    s_approach: float
+    reach_timing: PlanTiming
+
+
+@dataclasses.dataclass(frozen=True)
+class LineDeviation:
+    """How far the cup strays from a vertical line over part of a path.
+
+    Attributes:
+        offset_m: largest horizontal distance of the cup origin from the line.
+        tilt_rad: largest angle between R_WC and the line's orientation.
+        s: path parameter of the worst sample.
+    """
+
+    offset_m: float
+    tilt_rad: float
+    s: float
+
+    @property
+    def ok(self) -> bool:
+        """Within ``LINE_TOLERANCE_M`` and ``LINE_TOLERANCE_RAD``."""
+        return self.offset_m <= LINE_TOLERANCE_M and self.tilt_rad <= LINE_TOLERANCE_RAD
+
+
+def line_deviation(
+    scene: PlanningScene,
+    path: GeometricPath,
+    s0: float,
+    s1: float,
+    X_line: RigidTransform,
+    samples: int = LINE_SAMPLES,
+) -> LineDeviation:
+    """Deviation of the cup from the vertical line through X_line, s in [s0, s1]."""
+    s = np.linspace(s0, s1, samples)
+    poses = scene.cup_poses(path.value(s))
+    p = np.array([X.translation() for X in poses])
+    R = np.array([X.rotation().matrix() for X in poses])
+    offset = np.linalg.norm((p - X_line.translation())[:, :2], axis=1)
+    # angle of R_line^T R: arccos((trace - 1) / 2)
+    trace = np.einsum("ij,nij->n", X_line.rotation().matrix(), R)
+    tilt = np.arccos(np.clip(0.5 * (trace - 1.0), -1.0, 1.0))
+    worst = int(
+        np.argmax(np.maximum(offset / LINE_TOLERANCE_M, tilt / LINE_TOLERANCE_RAD))
+    )
+    return LineDeviation(float(offset.max()), float(tilt.max()), float(s[worst]))
+
+
+def plan_pick(
+    planner: CyclePlanner, q_start: np.ndarray, name: str, retreat: bool
+) -> PlannedPick:
+    """Retreat (if ``retreat``), approach and reach object ``name`` in one path.
+
+    Raises:
+        UnreachablePoseError: the retreat's line leaves the arm's reach.
+        PlanningError: from the approach or reach planning.
+        NoPathError: the blended spline could not be made clean.
+    """
+    start = time.perf_counter()
+    q_start = np.asarray(q_start, dtype=float)
+    retreat_chain = np.array([q_start])
+    if retreat:
+        X_start = planner.scene.cup_pose(q_start)
+        X_top = RigidTransform([0.0, 0.0, RETREAT_HEIGHT]) @ X_start
+        X_turn = RigidTransform([0.0, 0.0, RETREAT_HEIGHT - TURN_STEP]) @ X_start
+        chain = ik_line(planner.ik, q_start, X_start, X_turn).chain
+        q_top = None if chain is None else planner.ik.solve(X_top, chain[-1], chain[-1])
+        if chain is None or q_top is None:
+            raise UnreachablePoseError(
+                Phase.APPROACH, name, "retreat pose above the placed object unreachable"
+            )
+        retreat_chain = np.vstack([chain, q_top])
+    retreat_s = time.perf_counter() - start
+    approach = planner.plan_approach(retreat_chain[-1], name)
+    reach = planner.plan_reach(approach.q_goal, name)
+    assert reach.descent is not None  # plan_reach always returns its line
+    start = time.perf_counter()
+    X_approach = planner.scene.cup_pose(approach.q_goal)
+    q_turn = planner.ik.solve(
+        RigidTransform([0.0, 0.0, -TURN_STEP]) @ X_approach,
+        reach.descent[0],
+        reach.descent[0],
+    )
+    descent = reach.descent
+    if q_turn is not None and TURN_STEP < planner.scenario.object(name).approach_offset:
+        descent = np.vstack([descent[:1], [q_turn], descent[1:]])
+    planner.prepare(Phase.REACH, name, q_start, reach.X_OC)
+    blend = _Blend(planner, retreat_chain, approach.polyline[1:-1], descent)
+    path, s_retreat, s_approach = blend.refine(name)
+    blend_s = time.perf_counter() - start
+    timing = dataclasses.replace(
+        approach.timing,
+        ik_s=approach.timing.ik_s + retreat_s,
+        check_s=approach.timing.check_s + blend_s,
+    )
+    planned = PlannedPath(
+        Phase.APPROACH,
+        name,
+        path,
+        path.waypoints,
+        reach.X_OC,
+        timing,
+        descent=blend.descent(),
+    )
+    return PlannedPick(planned, s_retreat, s_approach, reach.timing)
+
+
+class _Blend:
+    """The waypoints of a blended pick and which segments lie on a line."""
+
+    def __init__(
+        self,
+        planner: CyclePlanner,
+        retreat: np.ndarray,
+        transit: np.ndarray,
+        descent: np.ndarray,
+    ) -> None:
+        self._planner = planner
+        self._points = [*retreat, *transit, *descent]
+        # Per point: 0 on the retreat line, 2 on the descent line, 1 between.
+        self._line = [0] * len(retreat) + [1] * len(transit) + [2] * len(descent)
+        self._has_retreat = len(retreat) > 1
+        scene = planner.scene
+        self._X_retreat = scene.cup_pose(retreat[0])
+        self._X_grasp = scene.cup_pose(descent[-1])
+
+    def descent(self) -> np.ndarray:
+        """The descent line's configurations (approach pose to grasp)."""
+        return np.array(
+            [q for q, k in zip(self._points, self._line, strict=True) if k == 2]
+        )
+
+    def _index(self, line: int, last: bool) -> int:
+        indices = [i for i, k in enumerate(self._line) if k == line]
+        return indices[-1] if last else indices[0]
+
+    def refine(self, name: str) -> tuple[GeometricPath, float, float]:
+        """The clean spline, s at the retreat's top and s at the approach pose."""
+        scene = self._planner.scene
+        for _ in range(MAX_ROUNDS + 1):
+            path = GeometricPath.from_waypoints(np.array(self._points))
+            s_top = float(path.knots[self._index(0, last=True)])
+            s_approach = float(path.knots[self._index(2, last=False)])
+            lines = [(s_approach, 1.0, self._X_grasp)]
+            if self._has_retreat:
+                lines.append((0.0, s_top, self._X_retreat))
+            bad = [line_deviation(scene, path, *line) for line in lines]
+            bad = [d for d in bad if not d.ok]
+            if bad:
+                self._insert(path, bad[0].s)
+                continue
+            check = check_path(scene, path)
+            if check.ok:
+                return path, s_top if self._has_retreat else 0.0, s_approach
+            assert check.s is not None
+            self._insert(path, check.s)
+        raise NoPathError(
+            Phase.APPROACH,
+            name,
+            f"the blended approach and reach could not be made clean in {MAX_ROUNDS} "
+            "refinements",
+        )
+
+    def _insert(self, path: GeometricPath, s: float) -> None:
+        """Add a point in the segment holding s: on the line, or its joint midpoint."""
+        k = int(np.clip(np.searchsorted(path.knots, s, side="right") - 1, 0, None))
+        k = min(k, len(self._points) - 2)
+        q_a, q_b = self._points[k], self._points[k + 1]
+        line = self._line[k] if self._line[k] == self._line[k + 1] else 1
+        q_mid = 0.5 * (q_a + q_b)
+        if line != 1:
+            scene = self._planner.scene
+            X_a, X_b = scene.cup_pose(q_a), scene.cup_pose(q_b)
+            X_mid = RigidTransform(
+                X_a.rotation(), 0.5 * (X_a.translation() + X_b.translation())
+            )
+            solved = self._planner.ik.solve(X_mid, q_a, q_mid)
+            q_mid = q_mid if solved is None else solved
+        self._points.insert(k + 1, q_mid)
+        self._line.insert(k + 1, line)
+
+
+__all__ = [
+    "LINE_SAMPLES",
+    "LINE_TOLERANCE_M",
+    "LINE_TOLERANCE_RAD",
+    "LineDeviation",
+    "PlannedPick",
+    "RETREAT_HEIGHT",
+    "TURN_STEP",
+    "line_deviation",
+    "plan_pick",
+]

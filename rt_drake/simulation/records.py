@@ -1,0 +1,85 @@
+"""What the sequencer measures per object, and the pose arithmetic it uses."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+from pydrake.math import RigidTransform
+
+from rt_drake.phase import Phase
+from rt_drake.simulation.motion import PlanTimes
+
+
+@dataclasses.dataclass(frozen=True)
+class ObjectRecord:
+    """What the sequencer measured for one object.
+
+    Attributes:
+        name: The object.
+        plan_times: Wall seconds spent producing each moving phase's motion.
+        plan_wait_s: Simulated seconds a phase waited for its motion's plan
+            (the plan on the critical path; :mod:`.motion` defines the clock).
+        exec_s: Simulated seconds each phase lasted (APPROACH and MOVE from
+            the start of their motion, after any wait).
+        max_slip_translation, max_slip_rotation: m and rad, the object's
+            largest displacement relative to the cup during MOVE.
+        placement_translation, placement_rotation: m and rad, the object's
+            distance from its goal pose during DETACH.
+        move_suction_force: N, the vacuum's force when the MOVE started.
+        guarantee: What the MOVE's retiming held (``Motion.guarantee``).
+    """
+
+    name: str
+    plan_times: dict[Phase, PlanTimes] = dataclasses.field(default_factory=dict)
+    plan_wait_s: dict[Phase, float] = dataclasses.field(default_factory=dict)
+    exec_s: dict[Phase, float] = dataclasses.field(default_factory=dict)
+    max_slip_translation: float = 0.0
+    max_slip_rotation: float = 0.0
+    placement_translation: float = float("nan")
+    placement_rotation: float = float("nan")
+    move_suction_force: float = float("nan")
+    guarantee: str = ""
+
+    @property
+    def plan_on_critical_path_s(self) -> float:
+        """Simulated seconds the object's phases waited for planning."""
+        return math.fsum(self.plan_wait_s.values())
+
+
+def pose_difference(X_A: RigidTransform, X_B: RigidTransform) -> tuple[float, float]:
+    """Return (m, rad): distance between the origins and the angle of R_A^T R_B."""
+    translation = float(np.linalg.norm(X_B.translation() - X_A.translation()))
+    R = X_A.rotation().inverse() @ X_B.rotation()
+    rotation = float(abs(R.ToAngleAxis().angle()))
+    return translation, rotation
+
+
+def with_slip(
+    record: ObjectRecord, X_CO_attached: RigidTransform, X_CO: RigidTransform
+) -> ObjectRecord:
+    """``record`` with its largest slip (m, rad) updated.
+
+    The slip is the object's pose X_CO on the cup against X_CO when the MOVE
+    started.
+    """
+    translation, rotation = pose_difference(X_CO_attached, X_CO)
+    return dataclasses.replace(
+        record,
+        max_slip_translation=max(record.max_slip_translation, translation),
+        max_slip_rotation=max(record.max_slip_rotation, rotation),
+    )
+
+
+def with_placement(
+    record: ObjectRecord, X_WO_goal: RigidTransform, X_WO: RigidTransform
+) -> ObjectRecord:
+    """``record`` with its placement error: X_WO against the goal (m, rad)."""
+    translation, rotation = pose_difference(X_WO_goal, X_WO)
+    return dataclasses.replace(
+        record, placement_translation=translation, placement_rotation=rotation
+    )
+
+
+__all__ = ["ObjectRecord", "pose_difference", "with_placement", "with_slip"]
