@@ -32,9 +32,13 @@ def path_samples():
 def _objects():
     rng = np.random.default_rng(5)
     for _ in range(4):
+        # A body: I = tr(C) 1 - C for a second moment C of its mass (>= 0).
         A = rng.normal(size=(3, 3)) * 1e-2
+        C = A @ A.T + 1e-4 * np.eye(3)
         yield HeldObject(
-            rng.uniform(0.1, 2.0), rng.normal(size=3) * 0.03, A @ A.T + 1e-4 * np.eye(3)
+            rng.uniform(0.1, 2.0),
+            rng.normal(size=3) * 0.03,
+            np.trace(C) * np.eye(3) - C,
         )
 
 
