@@ -5,7 +5,10 @@ grasp of a single object (see :mod:`.solve` for the argument): the rows that
 ray shooting selects at the grid points (:func:`.rows.rest_and_candidates`),
 enforced at the grid points and the segments' midpoints; after each solve
 every row is evaluated at every wrench the stage LPs enforced
-(:func:`.rows.wrench_ratios`) and the rows it missed are added.
+(:func:`.rows.wrench_ratios`, at :meth:`.between.Segments.enforced_wrenches`)
+and the rows it missed are added. Between grid points the rows near their
+bound (the check's ``screen``) go to :func:`.between.refinement_points`,
+which adds grid points where one is exceeded.
 :class:`~.robust_grasp.SetRows` does the same for a set of objects.
 """
 
