@@ -9,7 +9,11 @@ scenario -> plant -> (IK, planner) -> path -> (dynamics + grasp constraint)
 
 - grasp stability (numpy, scipy, cdd; no Drake): ``CupParameters``,
   ``WrenchPolytope``, ``contact_wrench_polytope``, ``cached_wrench_polytope``,
-  ``is_realizable``, ``is_realizable_lp``;
+  ``is_realizable``, ``is_realizable_lp``; multi-cup tools:
+  ``ToolParameters`` of ``CupMount`` (cup and pose in the tool frame),
+  ``tool_wrench_polytope`` (exact W_T), ``ToolWrenchSet`` (support function
+  and LP, for inner approximations); retime under them with
+  ``GraspConstraint.for_tool`` or ``GraspConstraint.inner_for_tool``;
 - dynamics: ``HeldObject``, ``CupFrame`` (the cup frame of a plant),
   ``object_wrench``, ``make_arm_plant``;
 - what the robot does not know: ``ObjectUncertainty`` (an object's set),
@@ -19,7 +23,9 @@ scenario -> plant -> (IK, planner) -> path -> (dynamics + grasp constraint)
 - retiming: ``retime``, ``RetimeResult``, ``JointLimits``,
   ``GraspConstraint``, ``check_trajectory``, ``TrajectoryCheck``,
   ``save_trajectory``, ``load_trajectory``, ``sample_trajectory``;
-- planning: ``CyclePlanner``, ``PlannedPath``, ``GeometricPath``;
+- planning: ``CyclePlanner``, ``PlannedPath``, ``GeometricPath``; MOVE
+  path optimisation: ``MoveOptimizer``, ``MoveOptimizerOptions``,
+  ``OptimizedMove``;
 - simulation: ``MakeStation``, ``run_cycle``, ``OnlineMotions``;
 - scenarios: ``load_scenario``, ``Scenario``; phases: ``Phase``;
 - errors: ``RtDrakeError`` (the base of every error rt_drake raises on
@@ -36,12 +42,16 @@ from rt_drake._version import __version__
 
 if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
     from rt_drake.contact import (
+        CupMount,
         CupParameters,
+        ToolParameters,
+        ToolWrenchSet,
         WrenchPolytope,
         cached_wrench_polytope,
         contact_wrench_polytope,
         is_realizable,
         is_realizable_lp,
+        tool_wrench_polytope,
     )
     from rt_drake.contact.worst_cup import worst_cup_polytope
     from rt_drake.cup_frame import CupFrame
@@ -54,6 +64,11 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
         GeometricPath,
         PlannedPath,
         PlanningError,
+    )
+    from rt_drake.planning.shape import (
+        MoveOptimizer,
+        MoveOptimizerOptions,
+        OptimizedMove,
     )
     from rt_drake.plant import make_arm_plant
     from rt_drake.retiming import (
@@ -76,7 +91,11 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
 
 #: Public name -> module defining it, imported on first access.
 _LAZY: dict[str, str] = {
+    "CupMount": "rt_drake.contact",
     "CupParameters": "rt_drake.contact",
+    "ToolParameters": "rt_drake.contact",
+    "ToolWrenchSet": "rt_drake.contact",
+    "tool_wrench_polytope": "rt_drake.contact",
     "WrenchPolytope": "rt_drake.contact",
     "cached_wrench_polytope": "rt_drake.contact",
     "contact_wrench_polytope": "rt_drake.contact",
@@ -97,6 +116,9 @@ _LAZY: dict[str, str] = {
     "GeometricPath": "rt_drake.planning",
     "PlannedPath": "rt_drake.planning",
     "PlanningError": "rt_drake.planning",
+    "MoveOptimizer": "rt_drake.planning.shape",
+    "MoveOptimizerOptions": "rt_drake.planning.shape",
+    "OptimizedMove": "rt_drake.planning.shape",
     "make_arm_plant": "rt_drake.plant",
     "GraspConstraint": "rt_drake.retiming",
     "JointLimits": "rt_drake.retiming",
@@ -120,6 +142,7 @@ _LAZY: dict[str, str] = {
 __all__ = [
     "__version__",
     "CupFrame",
+    "CupMount",
     "CupParameters",
     "CyclePlanner",
     "GeometricPath",
@@ -128,9 +151,12 @@ __all__ = [
     "InputError",
     "JointLimits",
     "MakeStation",
+    "MoveOptimizer",
+    "MoveOptimizerOptions",
     "ObjectInertia",
     "ObjectUncertainty",
     "OnlineMotions",
+    "OptimizedMove",
     "Phase",
     "PlannedPath",
     "PlanningError",
@@ -141,6 +167,8 @@ __all__ = [
     "Scenario",
     "ScenarioError",
     "TooLargeError",
+    "ToolParameters",
+    "ToolWrenchSet",
     "TrajectoryCheck",
     "WrenchPolytope",
     "cached_wrench_polytope",
@@ -157,6 +185,7 @@ __all__ = [
     "run_cycle",
     "sample_trajectory",
     "save_trajectory",
+    "tool_wrench_polytope",
     "worst_cup_polytope",
 ]
 

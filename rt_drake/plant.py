@@ -108,7 +108,7 @@ def add_scenario_models(
     cup_frame = scenario_cup_frame(plant, scenario)
     tool = cup_frame.model_instance()
     if plant.geometry_source_is_registered():
-        add_cup_rim(plant, cup_frame, scenario.cup)
+        add_cup_rim(plant, cup_frame, scenario.single_cup("the plant"))
     added: dict[str, ModelInstanceIndex] = {}
     if objects is not ObjectMode.NONE:
         for index, obj in enumerate(scenario.objects):

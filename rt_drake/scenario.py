@@ -3,7 +3,8 @@
 A scenario file names the cell (Drake model directives), the robot's home
 configuration and limits, the suction cup, the objects with their start and
 goal poses, and the vacuum (:mod:`rt_drake.scenario_vacuum`: attach and
-detach behaviour). :func:`load_scenario` refuses,
+detach behaviour) and how MOVEs are planned (``planning``: the MOVE path
+optimiser of issue 13). :func:`load_scenario` refuses,
 with a one-line :class:`~rt_drake.errors.ScenarioError` that names the file,
 the key path (``objects[1].start.translation``) and the offending value:
 unknown keys, a value of the wrong type, null where a value is needed, NaN
@@ -26,7 +27,8 @@ from pydrake.common.schema import Transform
 from pydrake.common.yaml import yaml_load_typed
 from pydrake.multibody.parsing import ModelDirective
 
-from rt_drake.contact import CupParameters
+from rt_drake.contact import CupMount, CupParameters, ToolParameters
+from rt_drake.contact.tool import is_identity_pose
 from rt_drake.cup_frame import DEFAULT_CUP_FRAME
 from rt_drake.errors import InputError, ScenarioError
 from rt_drake.object_model import model_file, read_model_inertia
@@ -98,23 +100,97 @@ class Region:
 
 @dataclasses.dataclass
 class RandomTransport:
-    """Where Table I's random start and goal poses of ``object`` are sampled."""
+    """Where Table I's random start and goal poses of ``object`` are sampled.
+
+    Attributes:
+        object: The object carried.
+        start_region, goal_region: Where its start and goal poses are drawn.
+        start_on_cup: Start each trial with the object already sealed on the
+            cup at its start pose (an object in free space, as the paper's
+            regions): the arm starts at a grasp configuration found by IK
+            instead of picking the object from home.
+    """
 
     object: str = ""
     start_region: Region = dataclasses.field(default_factory=Region)
     goal_region: Region = dataclasses.field(default_factory=Region)
+    start_on_cup: bool = False
+
+
+@dataclasses.dataclass
+class PlanningConfig:
+    """How MOVEs are planned (issue 13).
+
+    Attributes:
+        optimize_move: Shape each MOVE path for speed under the grasp
+            constraint (:func:`rt_drake.planning.shape.optimize_move`)
+            instead of keeping the planner's spline through its anchors.
+        max_tilt_deg: Largest angle (deg) between the cup axis and gravity
+            an optimised MOVE may reach, in [0, 90); 0 keeps the cup
+            vertical (open containers).
+        budget_s: Wall time (s) the optimisation may take per MOVE, the
+            spline MOVE's planning excluded.
+    """
+
+    optimize_move: bool = False
+    max_tilt_deg: float = 45.0
+    budget_s: float = 0.15
+
+
+@dataclasses.dataclass
+class ToolCupConfig:
+    """One cup of a multi-cup tool: its pose in the tool frame and its model.
+
+    Attributes:
+        pose: X_TC, pose of the cup frame C in the tool frame T (the frame
+            ``robot.cup_frame`` names); C's +z points out of the cup.
+        radius, points, friction, sides, suction_force, max_normal_force:
+            The cup's :class:`~rt_drake.contact.CupParameters` (same defaults).
+    """
+
+    pose: Transform = dataclasses.field(default_factory=Transform)
+    radius: float = CupParameters.radius
+    points: int = CupParameters.points
+    friction: float = CupParameters.friction
+    sides: int = CupParameters.sides
+    suction_force: float = CupParameters.suction_force
+    max_normal_force: float = CupParameters.max_normal_force
+
+    def parameters(self) -> CupParameters:
+        """The cup's point-contact model (validated)."""
+        return CupParameters(
+            radius=self.radius,
+            points=self.points,
+            friction=self.friction,
+            sides=self.sides,
+            suction_force=self.suction_force,
+            max_normal_force=self.max_normal_force,
+        )
+
+
+@dataclasses.dataclass
+class ToolConfig:
+    """A tool carrying several suction cups (``tool: {cups: [...]}``)."""
+
+    cups: list[ToolCupConfig] = dataclasses.field(default_factory=list)
 
 
 @dataclasses.dataclass
 class Scenario:
-    """Everything a cycle needs; see ``scenarios/stack_four_objects.yaml``."""
+    """Everything a cycle needs; see ``scenarios/stack_four_objects.yaml``.
+
+    ``cup`` is one cup whose frame is the tool frame; ``tool`` (instead of
+    ``cup``) a tool of several cups, each posed in the tool frame.
+    """
 
     directives: list[ModelDirective] = dataclasses.field(default_factory=list)
     robot: RobotConfig = dataclasses.field(default_factory=RobotConfig)
     cup: CupParameters = dataclasses.field(default_factory=CupParameters)
+    tool: ToolConfig | None = None
     objects: list[ObjectConfig] = dataclasses.field(default_factory=list)
     vacuum: Vacuum = dataclasses.field(default_factory=Vacuum)
     random_transport: RandomTransport | None = None
+    planning: PlanningConfig = dataclasses.field(default_factory=PlanningConfig)
     #: The file it was loaded from, for messages (set by load_scenario; not
     #: a YAML key).
     source: str = dataclasses.field(default="", metadata={"yaml": False})
@@ -123,6 +199,43 @@ class Scenario:
         """``"<file>: key '<key_path>'"``, the start of a message about a key."""
         where = f"key '{key_path}'"
         return f"{self.source}: {where}" if self.source else where
+
+    def tool_parameters(self) -> ToolParameters:
+        """The tool's cups and poses: ``tool``, or ``cup`` at the tool frame."""
+        if self.tool is None:
+            return ToolParameters.single(self.cup)
+        mounts = []
+        for entry in self.tool.cups:
+            X_TC = entry.pose.GetDeterministicValue()
+            mounts.append(
+                CupMount(
+                    entry.parameters(),
+                    X_TC.rotation().matrix(),
+                    X_TC.translation(),
+                )
+            )
+        return ToolParameters(cups=tuple(mounts))
+
+    def single_cup(self, what: str) -> CupParameters:
+        """The one cup, for the parts that model a single cup (``what``).
+
+        Raises:
+            ScenarioError: the scenario's ``tool`` has several cups (or one
+                cup away from the tool frame): ``what`` does not take them
+                yet; retime such a tool with ``rt-drake retime`` or
+                ``GraspConstraint.for_tool``.
+        """
+        if self.tool is None:
+            return self.cup
+        tool = self.tool_parameters()
+        mount = tool.cups[0]
+        if len(tool.cups) == 1 and is_identity_pose(mount):
+            return mount.cup
+        raise ScenarioError(
+            f"{self.key('tool')}: {what} takes one cup at the tool frame, got "
+            f"{len(tool.cups)} cup(s); retime a multi-cup tool with "
+            "rt-drake retime or GraspConstraint.for_tool"
+        )
 
     def object(self, name: str) -> ObjectConfig:
         """Return the object called ``name``; ScenarioError if there is none."""
@@ -163,6 +276,11 @@ def load_scenario(path: str | Path) -> Scenario:
     raw = read_yaml(path, text)
     check_renamed(path, raw)
     check_schema(path, raw, Scenario)
+    if "cup" in raw and "tool" in raw:
+        raise ScenarioError(
+            f"{path}: keys 'cup' and 'tool': give one cup ('cup') or a tool of "
+            "several cups ('tool'), not both"
+        )
     try:
         scenario = yaml_load_typed(schema=Scenario, data=text)
     except (RuntimeError, ValueError, TypeError) as error:
@@ -242,7 +360,41 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
         scenario.cup.validate()
     except InputError as error:
         raise ScenarioError(f"{path}: key 'cup': {error}") from None
+    if scenario.tool is not None:
+        _check_tool(path, scenario.tool)
     check_vacuum(path, scenario.vacuum)
+    _check_planning(path, scenario.planning)
+
+
+def _check_planning(path: Path, planning: PlanningConfig) -> None:
+    """``max_tilt_deg`` in [0, 90), ``budget_s`` > 0 (NaN and inf never load)."""
+    if not 0 <= planning.max_tilt_deg < 90:
+        raise ScenarioError(
+            f"{path}: key 'planning.max_tilt_deg': must be in [0, 90) deg, got "
+            f"{planning.max_tilt_deg}"
+        )
+    if not planning.budget_s > 0:
+        raise ScenarioError(
+            f"{path}: key 'planning.budget_s': must be > 0 s, got {planning.budget_s}"
+        )
+
+
+def _check_tool(path: Path, tool: ToolConfig) -> None:
+    """At least one cup; each cup's parameters in range and its pose fixed."""
+    if not tool.cups:
+        raise ScenarioError(f"{path}: key 'tool.cups': a tool needs at least one cup")
+    for index, entry in enumerate(tool.cups):
+        where = f"{path}: key 'tool.cups[{index}]"
+        if not entry.pose.IsDeterministic():
+            raise ScenarioError(
+                f"{where}.pose': must be a fixed pose, not a random one"
+            )
+        try:
+            entry.parameters()
+        except InputError as error:
+            message = str(error).removeprefix("cup ")
+            name = message.split(" ", 1)[0]
+            raise ScenarioError(f"{where}.{name}': {message}") from None
 
 
 def _check_robot(path: Path, robot: RobotConfig) -> None:
@@ -263,10 +415,13 @@ __all__ = [
     "MAX_DEPTH",
     "MAX_SCENARIO_BYTES",
     "ObjectConfig",
+    "PlanningConfig",
     "RandomTransport",
     "Region",
     "RobotConfig",
     "Scenario",
+    "ToolConfig",
+    "ToolCupConfig",
     "Vacuum",
     "VacuumModel",
     "load_scenario",

@@ -81,7 +81,18 @@ def _parse(text: str, kind: type, what: str):  # noqa: ANN202
     return value
 
 
+def add_optimize_flag(parser: argparse.ArgumentParser, what: str) -> None:
+    """``--optimize`` / ``--no-optimize`` (default: the scenario's ``planning``)."""
+    parser.add_argument(
+        "--optimize",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help=f"{what} (default: the scenario's planning.optimize_move)",
+    )
+
+
 __all__ = [
+    "add_optimize_flag",
     "finite_float",
     "float_in",
     "int_in",

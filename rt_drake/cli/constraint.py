@@ -105,7 +105,7 @@ def _cup(args: argparse.Namespace, scenario: Path | None):
     if scenario is not None:
         from rt_drake.scenario import load_scenario
 
-        cup = load_scenario(scenario).cup
+        cup = load_scenario(scenario).single_cup("rt-drake constraint")
     overrides = {
         f: getattr(args, f) for f in _CUP_FLAGS if getattr(args, f) is not None
     }

@@ -3,10 +3,12 @@
 Retimes the clamped C2 spline through joint-space waypoints (one row per
 waypoint, one column per joint, rad; ``#`` starts a comment) time-optimally
 under the scenario's joint limits and, unless ``--no-grasp-constraint``, the
-grasp stability of the named object held by the scenario's cup: of every
-object of its uncertainty set (and every cup of the cup's friction and
-suction range) if the scenario gives one or the flags ``--mass-uncertainty``,
-``--com-uncertainty``, ``--inertia-uncertainty`` do. Writes an
+grasp stability of the named object held by the scenario's cup, or by its
+multi-cup tool (``tool:``; the exact set W_T, computed once and cached, with
+``robot.cup_frame`` as the tool frame T): of every object of its uncertainty
+set (and every cup of the cup's friction and suction range) if the scenario
+gives one or the flags ``--mass-uncertainty``, ``--com-uncertainty``,
+``--inertia-uncertainty`` do (one cup only). Writes an
 ``.npz`` from which anyone can re-check the result (the format of
 ``rt_drake.save_trajectory``: samples every 1 ms of t, q, qd, qdd and the
 cup's pose X_WC, the object's inertia, the grasp constraint F, g, the cup,
@@ -178,9 +180,11 @@ def run(args: argparse.Namespace) -> int:
 
     from rt_drake import (
         CupFrame,
+        CupParameters,
         GraspConstraint,
         HeldObject,
         JointLimits,
+        ToolParameters,
         load_scenario,
         path_waypoints_and_knots,
         retime,
@@ -204,20 +208,29 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"{args.waypoints}: {error}") from None
     held = HeldObject.from_scenario_object(obj)
     obj = dataclasses.replace(obj, uncertainty=object_uncertainty(args, obj))
-    grasp = (
-        None
-        if args.no_grasp_constraint
-        else GraspConstraint.for_scenario_object(obj, scenario.cup)
-    )
+    uncertain = obj.uncertainty is not None and not obj.uncertainty.is_zero()
+    cup_model: CupParameters | ToolParameters
+    grasp: GraspConstraint | None = None
+    if scenario.tool is None or uncertain:
+        cup_model = scenario.single_cup("an object's uncertainty set")
+        if not args.no_grasp_constraint:
+            grasp = GraspConstraint.for_scenario_object(obj, cup_model)
+    else:
+        cup_model = scenario.tool_parameters()
+        if not args.no_grasp_constraint:
+            grasp = GraspConstraint.for_tool(held, cup_model)
     limits = JointLimits.from_plant(plant, scenario.robot)
     cup = CupFrame.of(plant, scenario.robot.cup_frame)
     result = retime(plant, waypoints, limits, grasp, args.gridpoints, cup=cup)
     saved = sample_trajectory(
-        plant, result, held, grasp, scenario.cup, obj.name, waypoints, knots,
+        plant, result, held, grasp, cup_model, obj.name, waypoints, knots,
         cup_frame=cup.frame,
     )  # fmt: skip
     save_trajectory(args.out, saved)
     constraint = "joint limits only" if grasp is None else "grasp constraint"
+    if isinstance(cup_model, ToolParameters):
+        count = len(cup_model.cups)
+        constraint += f", a tool of {count} cup{'s' if count != 1 else ''}"
     if grasp is not None and grasp.is_robust:
         constraint = (
             f"robust grasp constraint: {grasp.guarantee()}; "

@@ -14,7 +14,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from rt_drake.cli._args import float_in, nonnegative_int
+from rt_drake.cli._args import add_optimize_flag, float_in, nonnegative_int
 
 #: The file written beside the report.
 REPLAY_FILE = "replay.html"
@@ -62,6 +62,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="plan each motion when its phase starts, as the paper did, instead "
         "of during the motion and wait before it (the arm waits for all of it)",
     )
+    add_optimize_flag(parser, "shape each MOVE for speed (issue 13)")
     parser.add_argument(
         "--time-step",
         type=float_in(1e-4, 0.01),
@@ -105,6 +106,7 @@ def run(args: argparse.Namespace) -> int:
         grasp_constraint=not args.no_grasp_constraint,
         move_speed=args.speed,
         seed=args.seed,
+        optimize=args.optimize,
     )
     phases = [p for p in Phase if p is not Phase.DONE]
     names = [o.name for o in scenario.objects]

@@ -8,22 +8,29 @@ origin, expressed in C. The grasp is stable when ``F w <= g``.
 - :class:`CupParameters`: the point-contact model of the cup.
 - :func:`contact_wrench_polytope`: the exact set W_c (minimal H-rep and
   vertices); :func:`cached_wrench_polytope` stores it on disk.
-- :func:`is_realizable` (H-rep), :func:`is_realizable_lp` (independent LP).
+- :class:`ToolParameters`: a tool of several cups, each a
+  :class:`CupMount` (cup and pose in the tool frame T);
+  :func:`tool_wrench_polytope`: its exact set W_T, about T's origin, in T
+  (also cached by :func:`cached_wrench_polytope`).
+- :func:`is_realizable` (H-rep), :func:`is_realizable_lp` (independent LP,
+  for a cup or a tool).
 - :func:`guided_approximation`: the paper's inner approximation.
 - :func:`worst_cup_polytope`: the wrenches every cup of a friction and
   suction range can exert (``friction_min``, ``suction_force_min``).
 
-Only :mod:`rt_drake.contact.cup` (numpy) is imported with the package, so a
-scenario can name ``CupParameters`` cheaply; the rest (scipy) loads on first
-use of its names.
+Only :mod:`rt_drake.contact.cup` and :mod:`rt_drake.contact.tool` (numpy)
+are imported with the package, so a scenario can name ``CupParameters`` and
+``ToolParameters`` cheaply; the rest (scipy) loads on first use of its names.
 """
 
 import importlib
 from typing import TYPE_CHECKING
 
 from rt_drake.contact.cup import CupParameters, grasp_matrices, suction_wrench
+from rt_drake.contact.tool import CupMount, ToolParameterError, ToolParameters
 
 if TYPE_CHECKING:  # the lazy names below, for type checkers
+    from rt_drake.contact.adjacency import TooManyFacetsError
     from rt_drake.contact.approximation import (
         GuidedApproximation,
         guided_approximation,
@@ -37,6 +44,12 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers
     )
     from rt_drake.contact.lp import is_realizable_lp, lp_residual
     from rt_drake.contact.samplers import object_wrench_sampler
+    from rt_drake.contact.tool_polytope import (
+        ToolWrenchSet,
+        tool_summands,
+        tool_symmetry,
+        tool_wrench_polytope,
+    )
     from rt_drake.contact.worst_cup import worst_cup_polytope
     from rt_drake.contact.wrench_polytope import (
         WrenchPolytope,
@@ -61,12 +74,22 @@ _LAZY = {
     "contact_wrench_polytope": "wrench_polytope",
     "is_realizable": "wrench_polytope",
     "with_suction_force": "wrench_polytope",
+    "TooManyFacetsError": "adjacency",
+    "ToolWrenchSet": "tool_polytope",
+    "tool_summands": "tool_polytope",
+    "tool_symmetry": "tool_polytope",
+    "tool_wrench_polytope": "tool_polytope",
     "worst_cup_polytope": "worst_cup",
 }
 
 __all__ = [
+    "CupMount",
     "CupParameters",
     "GuidedApproximation",
+    "ToolParameterError",
+    "ToolParameters",
+    "ToolWrenchSet",
+    "TooManyFacetsError",
     "WrenchPolytope",
     "cache_path",
     "cached_wrench_polytope",
@@ -81,6 +104,9 @@ __all__ = [
     "object_wrench_sampler",
     "save_polytope",
     "suction_wrench",
+    "tool_summands",
+    "tool_symmetry",
+    "tool_wrench_polytope",
     "with_suction_force",
     "worst_cup_polytope",
 ]

@@ -14,6 +14,12 @@ Since Y is in W_c, H is inside W_c: every wrench H accepts is realizable.
 The hull is kept by qhull in scaled coordinates ``[torque / r; force]`` (N),
 which is also the metric of "farthest"; the result is mapped back to wrenches
 ``[torque; force]`` on the object, about and in the cup frame C, as unit rows.
+
+The same works for a multi-cup tool's set W_T (in the tool frame T, scaled by
+the tool's length): from its exact polytope, or, when that is too large, from
+a :class:`~rt_drake.contact.tool_polytope.ToolWrenchSet`, whose membership
+is the LP over all rim forces and whose farthest point beyond h* is its
+support point in h*'s direction (a vertex of W_T, found without facets).
 """
 
 from __future__ import annotations
@@ -24,6 +30,7 @@ from collections.abc import Callable
 import numpy as np
 from scipy.spatial import ConvexHull
 
+from rt_drake.contact.tool_polytope import ToolWrenchSet
 from rt_drake.contact.wrench_polytope import (
     WrenchPolytope,
     is_realizable,
@@ -37,6 +44,10 @@ MAX_VERTICES = 200
 #: Largest number of guiding samples accepted (200 vertices from 20 000
 #: samples take about 20 s; from 100 000, 80 s).
 MAX_SAMPLES = 20_000
+
+#: Random directions whose support points seed the initial simplex when the
+#: set is given by its support function.
+_POOL = 256
 
 
 @dataclasses.dataclass(frozen=True)
@@ -111,8 +122,21 @@ def _outside_counts(samples: np.ndarray, equations: np.ndarray, atol: float):
     return counts
 
 
+def _support(
+    polytope: WrenchPolytope | ToolWrenchSet, directions: np.ndarray, scale: np.ndarray
+) -> np.ndarray:
+    """Return the point of the set maximising each scaled direction, scaled.
+
+    ``(S w) . n = w . (S n)``: the raw direction is ``S n``.
+    """
+    if isinstance(polytope, ToolWrenchSet):
+        return polytope.support(directions * scale) * scale
+    vertices = polytope.vertices * scale
+    return vertices[np.argmax(directions @ vertices.T, axis=1)]
+
+
 def guided_approximation(
-    polytope: WrenchPolytope,
+    polytope: WrenchPolytope | ToolWrenchSet,
     guiding_samples: np.ndarray | Callable[[int], np.ndarray],
     max_vertices: int,
     seed: int = 0,
@@ -122,7 +146,8 @@ def guided_approximation(
     """Approximate W_c from inside by the hull of at most ``max_vertices`` points.
 
     Args:
-        polytope: The exact W_c.
+        polytope: The exact W_c (or W_T), or a tool's set given by its support
+            function and LP (:class:`ToolWrenchSet`).
         guiding_samples: (N, 6) wrenches ``[torque; force]`` in C, or a callable
             ``count -> (count, 6)`` called once with ``sample_count``.
         max_vertices: Largest number of points of Y (>= 7).
@@ -132,7 +157,7 @@ def guided_approximation(
             (N*m / N, like ``F w - g``).
 
     Raises:
-        ValueError: On bad arguments, or when no guiding sample lies in W_c.
+        InputError: On bad arguments, or when no guiding sample lies in the set.
     """
     for name, value, high in (
         ("max_vertices", max_vertices, MAX_VERTICES),
@@ -161,13 +186,20 @@ def guided_approximation(
         )
     if not np.all(np.isfinite(wrenches)):
         raise InputError("guiding samples contain NaN or inf")
-    inside = polytope.contains(wrenches, tol=0.0)
+    if isinstance(polytope, ToolWrenchSet):
+        inside = polytope.contains(wrenches)
+    else:
+        inside = polytope.contains(wrenches, tol=0.0)
     if not inside.any():
         raise InputError(f"none of the {len(wrenches)} guiding samples lies in W_c")
     scale = wrench_scale(polytope.cup)
-    samples, vertices = wrenches[inside] * scale, polytope.vertices * scale
-    atol = tol * max(1.0, float(np.abs(vertices).max()))
     rng = np.random.default_rng(seed)
+    samples = wrenches[inside] * scale
+    if isinstance(polytope, ToolWrenchSet):
+        vertices = _support(polytope, rng.normal(size=(_POOL, 6)), scale)
+    else:
+        vertices = polytope.vertices * scale
+    atol = tol * max(1.0, float(np.abs(vertices).max()))
     points = _initial_simplex(samples, vertices, rng, atol)
     while True:
         hull = ConvexHull(np.array(points))
@@ -177,10 +209,10 @@ def guided_approximation(
         if counts.max() == 0:
             break  # every sample is covered
         face = hull.equations[np.argmax(counts)]
-        beyond = vertices @ face[:-1] + face[-1]
-        if beyond.max() <= atol:
+        farthest = _support(polytope, face[None, :-1], scale)[0]
+        if farthest @ face[:-1] + face[-1] <= atol:
             break  # cannot happen in exact arithmetic: samples lie in W_c
-        points.append(vertices[np.argmax(beyond)])
+        points.append(farthest)
     F = hull.equations[:, :-1] * scale
     norms = np.linalg.norm(F, axis=1)
     rows = np.column_stack([F / norms[:, None], -hull.equations[:, -1] / norms])

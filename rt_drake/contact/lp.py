@@ -12,6 +12,11 @@ forces: t = 0 exactly when w is realizable, and for a wrench at distance
 delta outside W_c, ``t >= delta / sqrt(6)``. It uses the friction cone's
 inequalities, not the vertex list of the Minkowski enumeration, so tests can
 check one against the other.
+
+For a multi-cup tool (:mod:`rt_drake.contact.tool`) the same LP runs over
+every rim force of every cup, each mapped to the tool frame T by its cup's
+adjoint: ``w_T = sum_c Ad_c (sum_i G_ci f_ci + suction_c)``, with each f_ci
+in its own cup's pyramid; w is then about T's origin, in T.
 """
 
 from __future__ import annotations
@@ -22,10 +27,11 @@ from scipy.optimize import linprog
 
 from rt_drake.contact.cup import (
     CupParameters,
+    contact_positions,
+    contact_rotations,
     friction_halfspaces,
-    grasp_matrices,
-    suction_wrench,
 )
+from rt_drake.contact.tool import ToolParameters
 from rt_drake.errors import InputError
 
 _HIGHS_OPTIONS = {
@@ -34,23 +40,62 @@ _HIGHS_OPTIONS = {
 }
 
 
-def lp_residual(wrenches: np.ndarray, cup: CupParameters) -> np.ndarray:
+def _point_forces(
+    source: CupParameters | ToolParameters,
+) -> tuple[np.ndarray, np.ndarray, list[tuple[float | None, float | None]], np.ndarray]:
+    """Return the LP's data over all rim forces (3 per rim point).
+
+    Each rim point P (a cup's contact frame) is placed in the tool frame T by
+    ``p_TP = p_TC + R_TC p_CP`` and ``R_TP = R_TC R_CP``; its force f (in P)
+    gives the wrench ``[p_TP x (R_TP f); R_TP f]`` about T's origin, and the
+    suction force ``-P A z_C`` acts at C's origin. A cup alone is a tool with
+    C = T.
+
+    Returns ``G`` (6, 3n): forces -> wrench, the friction polygons' rows
+    ``A f <= 0`` (block diagonal), the bounds of every force component, and
+    the constant suction wrench.
+    """
+    if isinstance(source, ToolParameters):
+        mounts = [(m.cup, m.R_TC, m.p_TC) for m in source.cups]
+    else:
+        mounts = [(source, np.eye(3), np.zeros(3))]
+    columns, polygons, bounds, suction = [], [], [], np.zeros(6)
+    for cup, R_TC, p_TC in mounts:
+        positions = p_TC + contact_positions(cup) @ R_TC.T
+        for p_TP, R_TP in zip(positions, R_TC @ contact_rotations(cup), strict=True):
+            columns.append(np.vstack([np.cross(p_TP, R_TP.T).T, R_TP]))
+        A, _ = friction_halfspaces(cup)
+        polygons += [A[: cup.sides]] * cup.points
+        bounds += [(None, None), (None, None), (0.0, cup.max_normal_force)] * cup.points
+        pull = -cup.suction_force * R_TC[:, 2]
+        suction += np.concatenate([np.cross(p_TC, pull), pull])
+    return np.hstack(columns), block_diag(*polygons), bounds, suction
+
+
+def lp_residual(
+    wrenches: np.ndarray, cup: CupParameters | ToolParameters
+) -> np.ndarray:
     """Return ``min ||sum_i G_i f_i + suction - w||_inf`` for each wrench.
 
     Args:
-        wrenches: (..., 6) wrenches ``[torque; force]`` on the object in C.
-        cup: The cup model.
+        wrenches: (..., 6) wrenches ``[torque; force]`` on the object, in C
+            for a cup, in T (about T's origin) for a tool.
+        cup: The cup model, or a multi-cup tool (all its rim forces).
 
     Returns:
         Residuals of shape ``wrenches.shape[:-1]``, in mixed N*m / N units.
+
+    Raises:
+        InputError: a shape other than (..., 6), NaN or inf, a bad cup or tool.
     """
     wrenches = np.asarray(wrenches, dtype=float)
     if wrenches.shape[-1:] != (6,):
         raise InputError(f"{wrenches.shape=}: need (..., 6) wrenches")
-    m = cup.points
-    G = np.hstack(list(grasp_matrices(cup)))  # (6, 3m)
-    A, _ = friction_halfspaces(cup)
-    polygon = block_diag(*([A[: cup.sides]] * m))  # (k m, 3m)
+    if not np.all(np.isfinite(wrenches)):
+        raise InputError("wrenches must be finite, got NaN or inf")
+    cup.validate()
+    G, polygon, bounds, suction = _point_forces(cup)
+    forces = G.shape[1]
     ones = np.ones((6, 1))
     A_ub = np.vstack(
         [
@@ -59,11 +104,10 @@ def lp_residual(wrenches: np.ndarray, cup: CupParameters) -> np.ndarray:
             np.hstack([-G, -ones]),
         ]
     )
-    bounds = [(None, None), (None, None), (0.0, cup.max_normal_force)] * m
-    bounds.append((0.0, None))
-    cost = np.zeros(3 * m + 1)
+    bounds = [*bounds, (0.0, None)]
+    cost = np.zeros(forces + 1)
     cost[-1] = 1.0
-    flat = wrenches.reshape(-1, 6) - suction_wrench(cup)
+    flat = wrenches.reshape(-1, 6) - suction
     residuals = np.empty(len(flat))
     for row, target in enumerate(flat):
         b_ub = np.concatenate([np.zeros(len(polygon)), target, -target])
@@ -82,7 +126,7 @@ def lp_residual(wrenches: np.ndarray, cup: CupParameters) -> np.ndarray:
 
 
 def is_realizable_lp(
-    wrenches: np.ndarray, cup: CupParameters, tol: float = 1e-8
+    wrenches: np.ndarray, cup: CupParameters | ToolParameters, tol: float = 1e-8
 ) -> np.ndarray:
     """Return whether each (..., 6) wrench is realizable, by :func:`lp_residual`.
 

@@ -38,13 +38,11 @@ from collections.abc import Iterator, Sequence
 import numpy as np
 
 from rt_drake.contact.summand import Summand, cyclic_permutations, make_summand
-from rt_drake.errors import TooLargeError
+from rt_drake.contact.vertex_tuples import cyclic_vertex_tuples
 
 #: A combination's next direction must stick out of the span of the previous
 #: ones by this much (directions are unit vectors), or it is skipped.
 _INDEPENDENT = 1e-7
-#: Bytes per candidate vertex combination (codes, sort, decode), measured.
-BYTES_PER_VERTEX_CODE = 70
 
 
 @dataclasses.dataclass(frozen=True)
@@ -192,81 +190,79 @@ def _facets(
     return _rederive(normals, summands, atol)[0], seeds
 
 
-def _codes(tuples: np.ndarray, base: int) -> np.ndarray:
-    """Encode (C, m) vertex indices as integers ``sum_s t_s base^s``."""
-    return tuples @ (base ** np.arange(tuples.shape[1], dtype=np.int64))
+@dataclasses.dataclass(frozen=True)
+class SumSetup:
+    """A Minkowski sum's summands in the coordinates of its span L.
 
-
-def _decode(codes: np.ndarray, base: int, count: int) -> np.ndarray:
-    return (codes[:, None] // base ** np.arange(count, dtype=np.int64)) % base
-
-
-def _vertex_tuples(
-    incidence: np.ndarray,
-    seeds: np.ndarray,
-    sizes: Sequence[int],
-    perms: list[np.ndarray] | None,
-    max_memory: float | None = None,
-) -> np.ndarray:
-    """Return (count, m) vertex indices, one per summand, of the sum's vertices.
-
-    Candidates come from the facets ``seeds`` (incidence rows); with ``perms``
-    (vertex permutations of the symmetry) one tuple per orbit is tested and
-    the rest follow by rotation. The test uses every facet of ``incidence``.
-    Raises TooLargeError, before allocating them, if the candidates would
-    take more than ``max_memory`` bytes.
+    Attributes:
+        parts: The summands, pruned to their vertices, with their faces.
+        span: (d, n) orthonormal basis of L.
+        complement: (n - d, n) orthonormal basis of L's orthogonal complement.
+        offset: (n,) the constant term.
+        base: (n,) one point of the sum (offset plus every summand's first point).
+        atol: Absolute tolerance of "on a face", in the summands' units.
     """
-    m, base = len(sizes), max(sizes)
-    if float(base) ** m >= 2.0**62:
-        raise TooLargeError(f"{m} summands of {base} vertices: too many to encode")
-    starts = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
-    per_summand = np.add.reduceat(seeds.astype(np.float64), starts[:-1], axis=1)
-    count = float(np.prod(per_summand, axis=1).sum())
-    if max_memory is not None and BYTES_PER_VERTEX_CODE * count > max_memory:
-        raise TooLargeError(
-            f"{count:.3g} candidate vertex combinations need about "
-            f"{BYTES_PER_VERTEX_CODE * count / 2**30:.3g} GB "
-            f"(limit {max_memory / 2**30:.3g} GB)"
-        )
-    weights = base ** np.arange(m, dtype=np.int64)
-    pieces = []
-    for row in seeds:
-        code = np.zeros(1, dtype=np.int64)
-        for s in range(m):
-            local = np.flatnonzero(row[starts[s] : starts[s + 1]])
-            code = np.add.outer(code, local * weights[s]).ravel()
-        pieces.append(code)
-    codes = np.unique(np.concatenate(pieces))
 
-    def rotate(tuples: np.ndarray, perms: list[np.ndarray]) -> np.ndarray:
-        return np.roll(
-            np.column_stack([p[t] for p, t in zip(perms, tuples.T, strict=True)]), 1, 1
-        )
+    parts: list[Summand]
+    span: np.ndarray
+    complement: np.ndarray
+    offset: np.ndarray
+    base: np.ndarray
+    atol: float
 
-    if perms is not None:  # test one tuple per rotation orbit
-        tuples, lowest = _decode(codes, base, m), codes
-        for _ in range(m - 1):
-            tuples = rotate(tuples, perms)
-            lowest = np.minimum(lowest, _codes(tuples, base))
-        codes = np.unique(lowest)
-    tuples = _decode(codes, base, m)
-    table = incidence.astype(np.float32)
-    vertex = np.zeros(len(tuples), dtype=bool)
-    for chunk in range(0, len(tuples), 4096):
-        rows = tuples[chunk : chunk + 4096] + starts[:-1]
-        onehot = np.zeros((len(rows), table.shape[1]), dtype=np.float32)
-        np.put_along_axis(onehot, rows, 1.0, axis=1)
-        tight = (onehot @ table.T) == m
-        common = tight.astype(np.float32) @ table
-        minimal = common == tight.sum(axis=1, keepdims=True)
-        vertex[chunk : chunk + 4096] = minimal.sum(axis=1) == m
-    tuples = tuples[vertex]
-    if perms is not None:
-        images = [tuples]
-        for _ in range(m - 1):
-            images.append(rotate(images[-1], perms))
-        tuples = _decode(np.unique(_codes(np.vstack(images), base)), base, m)
-    return tuples
+    @property
+    def dimension(self) -> int:
+        """Dimension d of the span L."""
+        return len(self.span)
+
+
+def prepare_sum(
+    summands: Sequence[np.ndarray], offset: np.ndarray, tol: float
+) -> SumSetup:
+    """Find the span of the sum and each summand's vertices and faces in it.
+
+    ``tol`` is relative to the summands' extent (largest coordinate spread).
+    """
+    offset = np.asarray(offset, dtype=float)
+    full = [np.asarray(v, dtype=float).reshape(-1, offset.size) for v in summands]
+    spread = np.vstack([v - v[0] for v in full])
+    atol = tol * max(float(np.abs(spread).max(initial=0.0)), 1.0)
+    # vt must be (n, n); u need not be (N, N) (N points: N^2 floats).
+    _, singular, vt = np.linalg.svd(spread, full_matrices=len(spread) < spread.shape[1])
+    d = int(np.sum(singular > atol))
+    span = vt[:d]
+    return SumSetup(
+        parts=[make_summand(v, v @ span.T, atol) for v in full],
+        span=span,
+        complement=vt[d:],
+        offset=offset,
+        base=offset + sum(v[0] for v in full),
+        atol=atol,
+    )
+
+
+def assemble_sum(
+    setup: SumSetup, normals: np.ndarray, tuples: np.ndarray
+) -> MinkowskiSum:
+    """Return the sum from its facet normals (in L) and vertex index tuples.
+
+    The affine-hull rows come first, then the facets sorted by row and offset;
+    each offset is the support value ``sum_s max_j F_k . v_sj + F_k . offset``.
+    """
+    parts, span, complement, offset = (
+        setup.parts,
+        setup.span,
+        setup.complement,
+        setup.offset,
+    )
+    vertices = offset + sum(p.full[tuples[:, s]] for s, p in enumerate(parts))
+    rows = normals @ span
+    g = rows @ offset + sum(np.max(p.full @ rows.T, axis=0) for p in parts)
+    order = np.lexsort(np.column_stack([rows, g]).T[::-1])
+    base = setup.base
+    F = np.vstack([complement, -complement, rows[order]])
+    g = np.concatenate([complement @ base, -complement @ base, g[order]])
+    return MinkowskiSum(F=F, g=g, vertices=vertices, equalities=len(complement))
 
 
 def minkowski_sum(
@@ -291,20 +287,12 @@ def minkowski_sum(
         ValueError: If a summand has dimension > 3 or ``symmetry`` is wrong.
         TooLargeError: The vertex candidates would exceed ``max_memory``.
     """
-    offset = np.asarray(offset, dtype=float)
-    full = [np.asarray(v, dtype=float).reshape(-1, offset.size) for v in summands]
-    base = offset + sum(v[0] for v in full)
-    spread = np.vstack([v - v[0] for v in full])
-    atol = tol * max(float(np.abs(spread).max(initial=0.0)), 1.0)
-    # vt must be (n, n); u need not be (N, N) (N points: N^2 floats).
-    _, singular, vt = np.linalg.svd(spread, full_matrices=len(spread) < spread.shape[1])
-    d = int(np.sum(singular > atol))
-    span, complement = vt[:d], vt[d:]
-    parts = [make_summand(v, v @ span.T, atol) for v in full]
+    setup = prepare_sum(summands, offset, tol)
+    parts, span, atol, d = setup.parts, setup.span, setup.atol, setup.dimension
     perms, rotation = None, None
     if symmetry is not None:
         symmetry = np.asarray(symmetry, dtype=float)
-        if np.abs(symmetry @ offset - offset).max() > atol:
+        if np.abs(symmetry @ setup.offset - setup.offset).max() > atol:
             raise ValueError("symmetry does not fix the offset")
         perms = cyclic_permutations(parts, symmetry, atol)
         rotation = span @ symmetry @ span.T
@@ -314,11 +302,5 @@ def minkowski_sum(
         normals, seeds = _facets(parts, d, atol, rotation)
         incidence = _incidence(normals, parts, atol)
         sizes = [len(p.local) for p in parts]
-        tuples = _vertex_tuples(incidence, seeds, sizes, perms, max_memory)
-    vertices = offset + sum(p.full[tuples[:, s]] for s, p in enumerate(parts))
-    rows = normals @ span
-    g = rows @ offset + sum(np.max(p.full @ rows.T, axis=0) for p in parts)
-    order = np.lexsort(np.column_stack([rows, g]).T[::-1])
-    F = np.vstack([complement, -complement, rows[order]])
-    g = np.concatenate([complement @ base, -complement @ base, g[order]])
-    return MinkowskiSum(F=F, g=g, vertices=vertices, equalities=len(complement))
+        tuples = cyclic_vertex_tuples(incidence, seeds, sizes, perms, max_memory)
+    return assemble_sum(setup, normals, tuples)

@@ -6,6 +6,11 @@ polytope when it is 3-dimensional), each with an orthonormal basis of its
 directions. They come from qhull in the summand's own (<= 3)-dimensional
 coordinates, where it is cheap and exact enough: faces are then identified
 by their vertices with an absolute tolerance.
+
+:func:`face_table` lists the same faces with their own facets, for the walk
+of :mod:`rt_drake.contact.adjacency`; :func:`vertex_permutation` and
+:func:`cyclic_permutations` turn a symmetry of the sum into a map of the
+summands' vertices.
 """
 
 from __future__ import annotations
@@ -122,3 +127,90 @@ def cyclic_permutations(
             )
         permutations.append(perm)
     return permutations
+
+
+def vertex_permutation(
+    summands: list[Summand], symmetry: np.ndarray, atol: float
+) -> np.ndarray:
+    """Return where ``symmetry`` sends each vertex of the concatenated summands.
+
+    ``perm[j]`` is the index, among all summands' vertices in order, of
+    ``symmetry @ v_j``; ``symmetry`` must map each summand onto a summand (a
+    permutation of the summands, in any order).
+
+    Raises:
+        ValueError: If ``symmetry`` does not map the summands onto each other.
+    """
+    starts = np.cumsum([0] + [len(s.full) for s in summands])
+    permutation = np.empty(starts[-1], dtype=np.intp)
+    targets = set(range(len(summands)))
+    for s, summand in enumerate(summands):
+        image = summand.full @ symmetry.T
+        for t in sorted(targets):
+            target = summands[t].full
+            if len(target) != len(image):
+                continue
+            distance = np.linalg.norm(image[:, None, :] - target[None, :, :], axis=2)
+            perm = np.argmin(distance, axis=1)
+            if len(set(perm.tolist())) == len(perm) and np.all(
+                distance[np.arange(len(perm)), perm] <= atol
+            ):
+                permutation[starts[s] : starts[s + 1]] = starts[t] + perm
+                targets.remove(t)
+                break
+        else:
+            raise ValueError(f"symmetry does not map summand {s} onto a summand")
+    return permutation
+
+
+@dataclasses.dataclass(frozen=True)
+class Face:
+    """A face of one summand: directions and its own facets (sub-faces).
+
+    Attributes:
+        members: (p,) booleans: which of the summand's vertices it holds.
+        directions: (q, d) orthonormal basis of the face's directions.
+        subfaces: One ``(members, coefficients)`` per facet sigma of the face:
+            members (p,) booleans over the summand's vertices, coefficients
+            (q,) ``D nu`` with nu sigma's outward unit normal within the face.
+    """
+
+    members: np.ndarray
+    directions: np.ndarray
+    subfaces: list[tuple[np.ndarray, np.ndarray]]
+
+
+def vertex_mask(members: np.ndarray) -> int:
+    """Return the integer with bit j set when vertex j is a member."""
+    return int.from_bytes(np.packbits(members, bitorder="little").tobytes(), "little")
+
+
+def face_table(summand: Summand) -> dict[int, Face]:
+    """Return every face of dimension >= 1 of a summand, by vertex mask.
+
+    The facets of an edge are its endpoints, of a polygon its edges, of a
+    3-D summand its 2-faces. For a facet sigma of a face with directions D
+    (q, d), ``nu = D^T c`` is the unit vector in the face's span orthogonal
+    to sigma with ``nu . (x - y) < 0`` for x in the face off sigma, y in
+    sigma; c is stored.
+    """
+    table: dict[int, Face] = {}
+    points = summand.local
+    for q, (members, _, directions) in sorted(summand.options.items()):
+        if q == 1:
+            lower = [np.eye(len(points), dtype=bool)[j] for j in range(len(points))]
+        else:
+            lower = list(summand.options[q - 1][0])
+        for face, basis in zip(members, directions, strict=True):
+            subfaces = []
+            for sub in lower:
+                if not np.all(face[sub]) or np.array_equal(face, sub):
+                    continue
+                inner = points[sub] - points[sub][0]
+                coefficients = np.linalg.svd(inner @ basis.T)[2][-1]
+                outside = points[face & ~sub][0] - points[sub][0]
+                if (outside @ basis.T) @ coefficients > 0.0:
+                    coefficients = -coefficients
+                subfaces.append((sub, coefficients))
+            table[vertex_mask(face)] = Face(face, basis, subfaces)
+    return table

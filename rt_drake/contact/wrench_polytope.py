@@ -31,6 +31,7 @@ from rt_drake.contact.cup import (
 )
 from rt_drake.contact.exact_cost import DEFAULT_MAX_MEMORY, check_exact_cost
 from rt_drake.contact.minkowski import minkowski_sum
+from rt_drake.contact.tool import ToolParameters
 from rt_drake.errors import InputError
 
 #: A row of F whose norm is below this (relative to the largest row) is zero.
@@ -44,13 +45,15 @@ class WrenchPolytope:
     """Contact wrench set ``W_c = {w : F w <= g} = conv(vertices)``.
 
     Attributes:
-        cup: The parameters it was computed for.
+        cup: The parameters it was computed for: a cup (W_c, in the cup frame
+            C), or a multi-cup tool (W_T, in the tool frame T, see
+            :mod:`rt_drake.contact.tool_polytope`).
         F: (rows, 6) unit rows, one per facet (no redundant or duplicate row).
         g: (rows,) offsets; ``F w - g`` is a signed distance, N*m and N.
         vertices: (count, 6) vertices ``[torque; force]``.
     """
 
-    cup: CupParameters
+    cup: CupParameters | ToolParameters
     F: np.ndarray
     g: np.ndarray
     vertices: np.ndarray
@@ -168,8 +171,14 @@ def with_suction_force(
     d. A weaker vacuum (P' < P) moves the set toward +f_z: less pull.
 
     Raises:
-        InputError: ``suction_force`` not > 0 (the cup parameters' own check).
+        InputError: ``suction_force`` not > 0 (the cup parameters' own check),
+            or a multi-cup tool's set (each cup has its own suction force).
     """
+    if isinstance(polytope.cup, ToolParameters):
+        raise InputError(
+            "with_suction_force takes one cup's W_c, got a tool's set "
+            f"({len(polytope.cup.cups)} cups, each with its own suction force)"
+        )
     cup = dataclasses.replace(polytope.cup, suction_force=float(suction_force))
     shift = polytope.cup.suction_force - cup.suction_force
     return WrenchPolytope(
@@ -180,9 +189,14 @@ def with_suction_force(
     )
 
 
-def wrench_scale(cup: CupParameters) -> np.ndarray:
-    """Return the diagonal S with ``S w = [torque / r; force]`` (all in N)."""
-    return np.array([1.0 / cup.radius] * 3 + [1.0] * 3)
+def wrench_scale(cup: CupParameters | ToolParameters) -> np.ndarray:
+    """Return the diagonal S with ``S w = [torque / L; force]`` (all in N).
+
+    L is the cup's radius r, or a tool's ``length_scale`` (``max |p_TCi| +
+    r_i``, which is r for one cup at the tool frame's origin).
+    """
+    length = cup.length_scale if isinstance(cup, ToolParameters) else cup.radius
+    return np.array([1.0 / length] * 3 + [1.0] * 3)
 
 
 def rotation_symmetry(cup: CupParameters) -> np.ndarray:

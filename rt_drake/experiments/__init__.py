@@ -2,7 +2,8 @@
 
 - :mod:`.rollout`: play one MOVE in the cycle's physics and measure slip.
 - :mod:`.transport`: Table I, random transports with and without the grasp
-  constraint; :mod:`.transport_report` and :mod:`.plots` write its report.
+  constraint; :mod:`.optimized_transport`: the optimised MOVE of each
+  (issue 13); :mod:`.transport_report` and :mod:`.plots` write its report.
 - :mod:`.robust_transport`: Table I with objects known only to an
   uncertainty set, nominal and robust plans played with a true object;
   :mod:`.robust_report` writes its report.
@@ -40,6 +41,7 @@ from rt_drake.experiments.transport import (
 )
 from rt_drake.experiments.transport_report import (
     TRANSPORT_FILES,
+    optimized_summary,
     transport_table,
     write_transport_report,
 )
@@ -54,6 +56,7 @@ __all__ = [
     "Rollout",
     "critical_speed",
     "cycle_report",
+    "optimized_summary",
     "robust_table",
     "robust_trial",
     "run_robust_transport_experiment",

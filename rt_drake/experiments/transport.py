@@ -6,6 +6,12 @@ goal on the destination region, both sampled from the scenario's
 grasp constraint, and play each in the physics of the cycle
 (:mod:`.rollout`). Then play the constrained MOVE faster and faster to find
 the speed at which the object starts to slip.
+
+The grasp configuration comes from APPROACH and REACH from home, or, when
+``random_transport.start_on_cup`` is set (objects in free space, as the
+paper's regions), from IK at the start pose with the object already sealed
+on the cup (the first grasp yaw flip whose MOVE plans). With ``optimize``,
+each trial also optimises its MOVE and plays it (:mod:`.optimized_transport`).
 """
 
 from __future__ import annotations
@@ -24,16 +30,22 @@ from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
 
 from rt_drake.errors import InputError, ScenarioError
+from rt_drake.experiments.optimized_transport import (
+    REPLAY_FILE,
+    optimized_trial,
+    summarize_optimized,
+)
 from rt_drake.experiments.rollout import (
     SPEED_FACTORS,
     critical_speed,
     rollout_scenario,
     simulate_move,
 )
-from rt_drake.planning import GeometricPath, sample_transports
+from rt_drake.phase import Phase
+from rt_drake.planning import GeometricPath, PlanningError, sample_transports
 from rt_drake.retiming import GraspConstraint, RetimeResult
-from rt_drake.scenario import Scenario, load_scenario
-from rt_drake.simulation import OnlineMotions
+from rt_drake.scenario import ObjectConfig, Scenario, load_scenario
+from rt_drake.simulation import Motion, OnlineMotions
 
 
 def transport_trial(
@@ -43,8 +55,14 @@ def transport_trial(
     X_WO_start: RigidTransform,
     X_WO_goal: RigidTransform,
     seed: int,
+    optimize: bool = False,
+    replay_path: Path | None = None,
 ) -> dict[str, Any]:
-    """Plan, retime (with and without the constraint) and simulate one transport."""
+    """Plan, retime (with and without the constraint) and simulate one transport.
+
+    With ``optimize``, also the optimised MOVE (:func:`.optimized_trial`),
+    its Meshcat replay written to ``replay_path`` if given.
+    """
     obj = scenario.object(object_name)
     planner_scenario = dataclasses.replace(
         scenario,
@@ -55,15 +73,22 @@ def transport_trial(
         ],
     )
     constrained = OnlineMotions(
-        planner_scenario, grasp_constraint=True, seed=seed + index
+        planner_scenario, grasp_constraint=True, seed=seed + index, optimize=False
     )
     planned_obj = planner_scenario.objects[0]
-    approach = constrained.approach(constrained.q_home, planned_obj)
-    reach = constrained.reach(approach.q_end, planned_obj)
-    q_grasp = reach.q_end
-    start = time.perf_counter()
-    move_c = constrained.move(q_grasp, planned_obj, reach)
+    transport = scenario.random_transport
+    if transport is not None and transport.start_on_cup:
+        start = time.perf_counter()
+        move_c = _move_from_the_cup(constrained, planned_obj, X_WO_start)
+        q_grasp = move_c.planned.q_start if move_c.planned is not None else None
+    else:
+        approach = constrained.approach(constrained.q_home, planned_obj)
+        reach = constrained.reach(approach.q_end, planned_obj)
+        q_grasp = reach.q_end
+        start = time.perf_counter()
+        move_c = constrained.move(q_grasp, planned_obj, reach)
     assert move_c.planned is not None and move_c.retimed is not None
+    assert q_grasp is not None
     assert move_c.grasp is not None
     path = move_c.planned.path
     result_c = move_c.retimed
@@ -75,7 +100,7 @@ def transport_trial(
     critical, sweep = critical_speed(rollout_world, q_grasp, move_c.trajectory)
     constrained_rollout = sweep[0][1]
     d_u, d_c = result_u.duration, result_c.duration
-    return {
+    trial = {
         "index": index,
         "start": _pose_list(X_WO_start),
         "goal": _pose_list(X_WO_goal),
@@ -93,6 +118,41 @@ def transport_trial(
         "plan_and_retime_s": plan_s,
         "profiles": _profiles(constrained, path, move_c.grasp, result_c, result_u),
     }
+    if optimize:
+        trial.update(
+            optimized_trial(
+                planner_scenario,
+                constrained.planner,
+                move_c.planned,
+                result_c,
+                move_c.grasp,
+                rollout_world,
+                replay_path,
+            )  # fmt: skip
+        )
+    return trial
+
+
+def _move_from_the_cup(
+    motions: OnlineMotions, obj: ObjectConfig, X_WO_start: RigidTransform
+) -> Motion:
+    """The MOVE from the object sealed on the cup at X_WO_start (IK, first flip).
+
+    Raises:
+        PlanningError: no grasp yaw flip has a reachable, collision-free
+            configuration whose MOVE plans.
+    """
+    planner = motions.planner
+    error: PlanningError | None = None
+    for X_OC in planner.grasps(obj.name):
+        try:
+            planner.prepare(Phase.MOVE, obj.name, planner.q_home, X_OC)
+            q = planner.configuration_for(X_WO_start @ X_OC, planner.q_home, obj.name)
+            return motions.move(q, obj)
+        except PlanningError as exc:
+            error = exc
+    assert error is not None
+    raise error
 
 
 def _pose_list(X: RigidTransform) -> list[float]:
@@ -129,7 +189,7 @@ def _profiles(
 
 def _trial_job(args: tuple) -> dict[str, Any]:
     """One trial in a worker: scenarios do not pickle, so it is loaded again."""
-    path, object_name, index, X_start, X_goal, seed = args
+    path, object_name, index, X_start, X_goal, seed, optimize, replay = args
     scenario = load_scenario(path)
     return transport_trial(
         scenario,
@@ -138,6 +198,8 @@ def _trial_job(args: tuple) -> dict[str, Any]:
         RigidTransform(X_start),
         RigidTransform(X_goal),
         seed,
+        optimize,
+        replay,
     )
 
 
@@ -147,10 +209,16 @@ def run_transport_experiment(
     seed: int = 0,
     object_name: str | None = None,
     workers: int = 1,
+    optimize: bool | None = None,
+    out_dir: Path | None = None,
     progress: Callable[[int, int], None] | None = None,
 ) -> dict[str, Any]:
     """Run n trials (in ``workers`` processes); return results and a summary.
 
+    With ``optimize`` (None: the scenario's ``planning.optimize_move``),
+    each trial also optimises its MOVE and plays it; the
+    first trial's optimised MOVE is replayed in Meshcat into
+    ``out_dir / REPLAY_FILE`` if ``out_dir`` is given.
     ``progress(done, n)`` is called as each trial finishes (and with 0 first).
 
     Raises:
@@ -170,9 +238,21 @@ def run_transport_experiment(
         )
     name = object_name or transport.object
     scenario.object(name)
+    if optimize is None:
+        optimize = scenario.planning.optimize_move
     pairs = sample_transports(scenario, n, seed)
+    replay = None if out_dir is None or not optimize else Path(out_dir) / REPLAY_FILE
     jobs = [
-        (str(scenario_path), name, i, X_s.GetAsMatrix4(), X_g.GetAsMatrix4(), seed)
+        (
+            str(scenario_path),
+            name,
+            i,
+            X_s.GetAsMatrix4(),
+            X_g.GetAsMatrix4(),
+            seed,
+            optimize,
+            replay if i == 0 else None,
+        )  # fmt: skip
         for i, (X_s, X_g) in enumerate(pairs)
     ]
     report = progress or (lambda done, total: None)
@@ -192,6 +272,7 @@ def run_transport_experiment(
         "object": name,
         "seed": seed,
         "n": n,
+        "optimize": optimize,
         "trials": trials,
         "summary": summarize(trials),
     }
@@ -218,6 +299,7 @@ def summarize(trials: list[dict[str, Any]]) -> dict[str, Any]:
         if len(finite) == len(critical)
         else SPEED_FACTORS[-1],
         "critical_speed_factors": critical,
+        **(summarize_optimized(trials) if "duration_optimized_s" in trials[0] else {}),
     }
 
 

@@ -17,7 +17,8 @@ from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 
-from rt_drake.contact import CupParameters, cached_wrench_polytope
+from rt_drake.contact import CupParameters, ToolParameters, cached_wrench_polytope
+from rt_drake.contact.tool_polytope import DEFAULT_MAX_FACETS
 from rt_drake.contact.worst_cup import worst_cup_polytope
 from rt_drake.contact.wrench_polytope import check_h_representation
 from rt_drake.dynamics import HeldObject
@@ -134,6 +135,15 @@ class JointLimits:
         return cls(chosen["velocity"], chosen["acceleration"], chosen.get("torque"))
 
 
+def _check_single_cup(cup: object, method: str) -> None:
+    """Sets of objects are held by one cup (not yet by a multi-cup tool)."""
+    if not isinstance(cup, CupParameters):
+        raise RetimeInputError(
+            f"GraspConstraint.{method} needs one cup (CupParameters), got "
+            f"{type(cup).__name__}"
+        )
+
+
 def _effort_limits(plant: MultibodyPlant) -> np.ndarray:
     """Per velocity: the effort limit of the joint's actuator (inf if none)."""
     limits = np.full(plant.num_velocities(), np.inf)
@@ -162,13 +172,18 @@ class GraspConstraint:
     object about the cup origin Co, in the cup frame C (:mod:`rt_drake.contact`
     conventions). ``g > 0`` row-wise: the zero wrench is strictly inside.
 
+    For a tool of several cups (:class:`~rt_drake.contact.ToolParameters`)
+    the frame the retimer is given (``cup=``, default ``suction_cup``) is the
+    tool frame T: ``held`` is the object's inertia in T, and F, g describe
+    the tool's set W_T about T's origin, in T (:meth:`for_tool`).
+
     Attributes:
-        held: Inertia of the object in C (the nominal one of a set).
+        held: Inertia of the object in C or T (the nominal one of a set).
         F: (R, 6) rows (unit norm from :mod:`rt_drake.contact`).
         g: (R,) offsets.
-        cup: The cup the polytope belongs to (for messages), if known.
+        cup: The cup or tool the polytope belongs to (for messages), if known.
         objects: The set of objects to hold (None: ``held`` alone); see
-            :attr:`is_robust`.
+            :attr:`is_robust` (one cup only).
         worst_cup: Whether F, g hold for every cup of ``cup``'s friction and
             suction range (:func:`~rt_drake.contact.worst_cup_polytope`).
     """
@@ -176,7 +191,7 @@ class GraspConstraint:
     held: HeldObject
     F: np.ndarray
     g: np.ndarray
-    cup: CupParameters | None = None
+    cup: CupParameters | ToolParameters | None = None
     objects: ObjectSet | None = None
     worst_cup: bool = False
 
@@ -225,6 +240,7 @@ class GraspConstraint:
             cup: The cup, with optional ``friction_min``, ``suction_force_min``.
             R_CO: (3, 3) the object's axes in C (default identity).
         """
+        _check_single_cup(cup, "robust")
         F, g = worst_cup_polytope(cup)
         objects = uncertain_object(held, uncertainty, R_CO)
         return cls(
@@ -246,6 +262,7 @@ class GraspConstraint:
         sample of an uncertainty set, its duration bounds the robust optimum
         from below.
         """
+        _check_single_cup(cup, "for_objects")
         F, g = worst_cup_polytope(cup)
         return cls(
             held=objects[0],
@@ -291,7 +308,7 @@ class GraspConstraint:
             what = f"every object of the set ({self.objects.label})"
         else:
             what = f"the nominal object ({self.held.mass:.3g} kg)"
-        if self.worst_cup and self.cup is not None:
+        if self.worst_cup and isinstance(self.cup, CupParameters):
             cup = self.cup.worst_case()
             what += (
                 f", friction down to {cup.friction:.3g} and suction down to "
@@ -299,12 +316,68 @@ class GraspConstraint:
             )
         return what
 
+    @classmethod
+    def for_tool(
+        cls,
+        held: HeldObject,
+        tool: ToolParameters,
+        max_facets: int | None = DEFAULT_MAX_FACETS,
+    ) -> GraspConstraint:
+        """The exact set W_T of a multi-cup ``tool`` (cached on disk).
+
+        ``held`` is the object's inertia in the tool frame T, which is the
+        frame given to the retimer. Two paper cups take about a minute the
+        first time (47,728 rows); a tool whose set has more than
+        ``max_facets`` facets raises ``TooManyFacetsError`` (a
+        ``TooLargeError``): use :meth:`inner_for_tool` instead.
+        """
+        if not isinstance(tool, ToolParameters):
+            raise RetimeInputError(
+                f"for_tool needs a ToolParameters, got {type(tool).__name__}"
+            )
+        polytope = cached_wrench_polytope(tool, max_facets=max_facets)
+        return cls(held=held, F=polytope.F, g=polytope.g, cup=tool)
+
+    @classmethod
+    def inner_for_tool(
+        cls,
+        held: HeldObject,
+        tool: ToolParameters,
+        guiding_samples: np.ndarray,
+        max_vertices: int = 60,
+        seed: int = 0,
+    ) -> GraspConstraint:
+        """A sound inner approximation of a tool's W_T, without its facets.
+
+        The hull of at most ``max_vertices`` support points of W_T chosen to
+        cover ``guiding_samples`` ((N, 6) wrenches in T, e.g. the wrenches of
+        the motions to come; the zero wrench is added): every wrench it
+        accepts is realizable (the paper's guided approximation over
+        :class:`~rt_drake.contact.ToolWrenchSet`).
+        For tools whose exact set is too large (four cups: > 1.5 million
+        facets).
+        """
+        from rt_drake.contact import ToolWrenchSet, guided_approximation
+
+        if not isinstance(tool, ToolParameters):
+            raise RetimeInputError(
+                f"inner_for_tool needs a ToolParameters, got {type(tool).__name__}"
+            )
+        samples = np.vstack([np.zeros(6), np.asarray(guiding_samples, float)])
+        inner = guided_approximation(
+            ToolWrenchSet(tool), samples, max_vertices, seed=seed
+        )
+        return cls(held=held, F=inner.F, g=inner.g, cup=tool)
+
     def describe(self) -> str:
-        """E.g. ``object 0.551 kg, suction 20 N``."""
+        """E.g. ``object 0.551 kg, suction 20 N`` (a tool: ``2 cups, 20 + 20 N``)."""
         text = f"object {self.held.mass:.3g} kg"
         if self.is_robust:
             text = f"every object of the set around {text}"
-        if self.cup is not None:
+        if isinstance(self.cup, ToolParameters):
+            forces = " + ".join(f"{m.cup.suction_force:.3g}" for m in self.cup.cups)
+            text += f", {len(self.cup.cups)} cups, suction {forces} N"
+        elif self.cup is not None:
             text += f", suction {self.cup.suction_force:.3g} N"
             if self.cup.suction_force_min is not None:
                 text += f" (at least {self.cup.suction_force_min:.3g} N)"

@@ -8,7 +8,10 @@ A file holds (SI units; C the cup frame, W the world):
 - ``object_name``, ``object_mass`` (kg), ``p_CoScm_C`` (m), ``I_Scm_C``
   (kg m^2): the held object's inertia in C;
 - ``F``, ``g``: the grasp constraint ``F w <= g`` used ((0, 6) and (0,)
-  without one); ``cup_names``, ``cup_values``: the cup parameters;
+  without one); ``cup_names``, ``cup_values``: the cup parameters (for a
+  multi-cup tool, every cup's as ``cups[i].radius``, ..., and its pose in
+  the tool frame T as ``cups[i].R_TC[r][c]``, ``cups[i].p_TC[r]``; C is
+  then T);
 - ``waypoints``, ``knots``, ``gridpoints``, ``sd``: the path and the s'(s)
   profile; ``format_version``.
 
@@ -31,7 +34,7 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import Frame
 
 from rt_drake.atomic_file import output_problem, write_atomically
-from rt_drake.contact import CupParameters
+from rt_drake.contact import CupParameters, ToolParameters
 from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import HeldObject
 from rt_drake.errors import InputError, TooLargeError
@@ -76,7 +79,7 @@ def sample_trajectory(
     result: RetimeResult,
     held: HeldObject,
     grasp: GraspConstraint | None,
-    cup: CupParameters,
+    cup: CupParameters | ToolParameters,
     object_name: str,
     waypoints: np.ndarray,
     knots: np.ndarray,
@@ -90,7 +93,7 @@ def sample_trajectory(
         result: The retimed path.
         held: The held object's inertia in C (recorded even without a grasp).
         grasp: The grasp constraint used, or None.
-        cup: The cup's parameters (recorded).
+        cup: The cup's parameters, or a multi-cup tool's (recorded).
         object_name: The held object's name.
         waypoints: (K, n) the path's waypoints (rad).
         knots: (K,) their path parameters s.
@@ -122,7 +125,7 @@ def sample_trajectory(
     for i, qi in enumerate(q):
         plant.SetPositions(context, qi)
         X_WC[i] = frame.CalcPoseInWorld(context).GetAsMatrix4()
-    parameters = cup.as_dict()
+    parameters = _flat_parameters(cup)
     return SavedTrajectory(
         t=t,
         q=q,
@@ -143,6 +146,22 @@ def sample_trajectory(
         gridpoints=result.gridpoints,
         sd=result.sd,
     )
+
+
+def _flat_parameters(cup: CupParameters | ToolParameters) -> dict[str, float]:
+    """Name -> number: a cup's fields, or every cup's fields and pose."""
+    if isinstance(cup, CupParameters):
+        return {name: float(value) for name, value in cup.as_dict().items()}
+    flat: dict[str, float] = {}
+    for i, mount in enumerate(cup.cups):
+        for name, value in mount.cup.as_dict().items():
+            flat[f"cups[{i}].{name}"] = float(value)
+        for r in range(3):
+            for c in range(3):
+                flat[f"cups[{i}].R_TC[{r}][{c}]"] = float(mount.R_TC[r, c])
+        for r in range(3):
+            flat[f"cups[{i}].p_TC[{r}]"] = float(mount.p_TC[r])
+    return flat
 
 
 def save_trajectory(path: str | Path, saved: SavedTrajectory) -> Path:

@@ -4,7 +4,11 @@
 :class:`~rt_drake.simulation.motion.MotionSource`: each phase's path comes
 from the :class:`~rt_drake.planning.CyclePlanner` and is retimed by
 :func:`~rt_drake.retiming.retime` under the joint limits, MOVE also under the
-grasp constraint ``F w <= g`` of the held object (unless disabled). Both are
+grasp constraint ``F w <= g`` of the held object (unless disabled). With
+MOVE optimisation on (the scenario's ``planning.optimize_move``, or
+``optimize=True``), the spline MOVE is then reshaped for speed by
+:class:`~rt_drake.planning.shape.MoveOptimizer` within
+``planning.budget_s``, and the path it returns is the one retimed. Both are
 timed on the wall clock, as in the paper's Table II. The grasp polytope is
 computed once, offline, per cup (as the paper did), not in the cycle; with
 a ``first_order`` vacuum the MOVE is retimed for the force guaranteed when
@@ -46,6 +50,8 @@ from rt_drake.errors import InputError
 from rt_drake.inertial_set import uncertain_object
 from rt_drake.phase import Phase
 from rt_drake.planning import CyclePlanner, GeometricPath, PlannedPath
+from rt_drake.planning.shape import MoveOptimizer, MoveOptimizerOptions
+from rt_drake.planning.shape import warm_up as warm_up_optimizer
 from rt_drake.plant import make_arm_plant
 from rt_drake.retiming import (
     GraspConstraint,
@@ -83,6 +89,8 @@ class OnlineMotions:
         robust: hold every object of an object's uncertainty set (and every
             cup of the cup's range) when the scenario gives one; False: the
             nominal object and cup only.
+        optimize: shape each MOVE for speed (None: the scenario's
+            ``planning.optimize_move``); needs the grasp constraint.
     """
 
     def __init__(
@@ -93,6 +101,7 @@ class OnlineMotions:
         gridpoints: int = 100,
         seed: int = 0,
         robust: bool = True,
+        optimize: bool | None = None,
     ) -> None:
         if not move_speed > 0:
             raise InputError(f"speed factor must be > 0, got {move_speed}")
@@ -106,18 +115,32 @@ class OnlineMotions:
         self._gridpoints = gridpoints
         self._polytope = self._nominal_polytope() if grasp_constraint else None
         self._robust = robust
-        self._move_cup = move_cup(scenario)
+        self._move_cup = move_cup(scenario) if grasp_constraint else None
         self._worst_cup = (
             worst_cup_polytope(self._move_cup)
-            if grasp_constraint and robust and self._move_cup.is_uncertain()
+            if self._move_cup is not None and robust and self._move_cup.is_uncertain()
             else None
         )
         warm_up()  # compile the retimer here, not in the first timed MOVE
+        if optimize is None:
+            optimize = scenario.planning.optimize_move
+        self._optimizer = None
+        if optimize and grasp_constraint:
+            options = MoveOptimizerOptions.from_config(scenario.planning)
+            self._optimizer = MoveOptimizer(
+                self._plant, self._limits, options, self._cup, self._context
+            )
+            warm_up_optimizer()
 
     @property
     def q_home(self) -> np.ndarray:
         """The arm's home configuration (rad)."""
         return self._planner.q_home
+
+    @property
+    def planner(self) -> CyclePlanner:
+        """The planner (its scene holds the objects of the last motion)."""
+        return self._planner
 
     def retime_path(
         self, path: GeometricPath, grasp: GraspConstraint | None
@@ -147,7 +170,7 @@ class OnlineMotions:
         gives a set or a range; else the nominal object and cup.
         """
         robust = self._robust if robust is None else robust
-        cup = self._move_cup
+        cup = self._move_cup or move_cup(self._scenario)
         held = held_object(obj, X_OC)
         uncertainty = obj.uncertainty or ObjectUncertainty()
         if not robust or (uncertainty.is_zero() and not cup.is_uncertain()):
@@ -168,11 +191,12 @@ class OnlineMotions:
 
     def _nominal_polytope(self) -> WrenchPolytope:
         """The nominal cup's W_c at the suction a MOVE may rely on."""
-        full = cached_wrench_polytope(self._scenario.cup)
+        cup = self._scenario.single_cup("the cycle")
+        full = cached_wrench_polytope(cup)
         fraction = self._scenario.vacuum.move_force_fraction
         if fraction == 1.0:
             return full
-        return with_suction_force(full, fraction * self._scenario.cup.suction_force)
+        return with_suction_force(full, fraction * cup.suction_force)
 
     def velocity_bound(self, path: GeometricPath, s: np.ndarray) -> np.ndarray:
         """Largest s' (1/s) the joint velocity limits allow at each s."""
@@ -286,9 +310,18 @@ class OnlineMotions:
         grasp = None
         if carrying and self._polytope is not None:
             grasp = self.grasp_for(obj, planned.X_OC)
-        start = time.perf_counter()
-        result = self.retime_path(planned.path, grasp)
-        retime_s = time.perf_counter() - start
+        if grasp is not None and self._optimizer is not None:
+            # the optimiser's search counts as planning, its final retime as retiming
+            optimized = self._optimizer.optimize(self._planner, planned, grasp)
+            path = optimized.path
+            planned = dataclasses.replace(planned, path=path, polyline=path.waypoints)
+            result = optimized.retimed
+            planned_s += optimized.wall_s - optimized.retime_wall_s
+            retime_s = optimized.retime_wall_s
+        else:
+            start = time.perf_counter()
+            result = self.retime_path(planned.path, grasp)
+            retime_s = time.perf_counter() - start
         trajectory: Trajectory = result.trajectory
         guarantee = ""
         if carrying:
@@ -307,13 +340,13 @@ class OnlineMotions:
 
 
 def move_cup(scenario: Scenario) -> CupParameters:
-    """The scenario's cup with the suction range a MOVE may rely on.
+    """The scenario's (single) cup with the suction range a MOVE may rely on.
 
     With a ``first_order`` vacuum the MOVE starts when "part present" fires,
     at ``part_present_fraction`` of the suction, and the force then builds
     up: the range reaches down to that fraction of its lowest P A.
     """
-    cup = scenario.cup
+    cup = scenario.single_cup("the cycle")
     fraction = scenario.vacuum.move_force_fraction
     if fraction == 1.0:
         return cup

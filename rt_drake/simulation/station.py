@@ -136,7 +136,7 @@ def MakeStation(
                 _suction_target(plant, scene_graph, models, o.name)
                 for o in scenario.objects
             ],
-            suction_force=scenario.cup.suction_force,
+            suction_force=scenario.single_cup("the station").suction_force,
             seal_distance=options.seal_distance,
             vacuum=scenario.vacuum,
             time_step=options.time_step,

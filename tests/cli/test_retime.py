@@ -137,3 +137,61 @@ def test_bad_uncertainty_flags_are_one_line_errors(csv, tmp_path, flags, message
             str(tmp_path / "o.npz"),
         )
     assert "\n" not in str(error.value)
+
+
+def test_retimes_under_a_multi_cup_tool(tmp_path, capsys):
+    """A scenario ``tool:`` of two coarse cups: the motion stays in W_T.
+
+    Checked by the LP of ``tests/tool_reference.py`` over every rim force
+    of both cups, on wrenches from the written samples by Newton-Euler.
+    """
+    from tool_reference import residual
+
+    from rt_drake import CupFrame, CupParameters, HeldObject, load_scenario
+    from rt_drake.newton_euler import reference_object_wrench
+    from rt_drake.plant import make_arm_plant
+    from rt_drake.resources import scenarios_dir
+
+    text = (scenarios_dir() / "stack_four_objects.yaml").read_text()
+    start, end = text.index("\ncup:\n"), text.index("max_normal_force: 33.3\n")
+    tool = (
+        "\ntool:\n  cups:\n"
+        "    - {pose: {translation: [0.06, 0, 0]}, points: 4, sides: 3}\n"
+        "    - {pose: {translation: [-0.06, 0, 0]}, points: 4, sides: 3}\n"
+    )
+    scenario = tmp_path / "two_cups.yaml"
+    scenario.write_text(
+        text[:start] + tool + text[end + len("max_normal_force: 33.3\n") :]
+    )
+    waypoints = tmp_path / "waypoints.csv"
+    np.savetxt(waypoints, WAYPOINTS, delimiter=",")
+    out = tmp_path / "out.npz"
+    parser = argparse.ArgumentParser()
+    command.register(parser.add_subparsers(dest="command"))
+    args = parser.parse_args(
+        ["retime", str(scenario), "--waypoints", str(waypoints)]
+        + ["--object", "notebook", "--out", str(out)]
+    )
+    assert args.run(args) == 0
+    assert "grasp constraint, a tool of 2 cups" in capsys.readouterr().out
+
+    data = np.load(out)
+    cup = dict(zip(data["cup_names"], data["cup_values"], strict=True))
+    assert cup["cups[0].points"] == 4 and cup["cups[1].sides"] == 3
+    assert cup["cups[1].p_TC[0]"] == -0.06 and cup["cups[1].R_TC[2][2]"] == 1.0
+    plant = make_arm_plant(load_scenario(scenario))
+    held = HeldObject(float(data["object_mass"]), data["p_CoScm_C"], data["I_Scm_C"])
+    every = slice(None, None, max(1, len(data["t"]) // 80))
+    wrenches = reference_object_wrench(
+        plant,
+        held,
+        CupFrame.of(plant),
+        data["q"][every],
+        data["qd"][every],
+        data["qdd"][every],
+    )
+    coarse = CupParameters(points=4, sides=3)
+    two = [(coarse, np.array([0.06, 0.0, 0.0])), (coarse, np.array([-0.06, 0.0, 0.0]))]
+    assert residual(wrenches, two).max() <= 1e-3
+    # Too fast for one of these cups: the tool's set, not a cup's, was used.
+    assert residual(wrenches, [(coarse, np.zeros(3))]).max() > 0.1

@@ -1,0 +1,135 @@
+"""The Ray executor: each row one Ray task, on this machine or a cluster.
+
+``ray.init()`` starts a local Ray instance (``workers`` CPUs, default all),
+or, given an address (``auto``, ``ray://host:10001``, ``host:6379``), joins
+a running cluster; a Ray instance the caller already started is used as it
+is. Tasks are submitted in a window of twice the cluster's CPUs, so that the
+driver holds few references whatever the campaign's size. A Ray worker
+process builds the campaign's shared inputs at its first task and keeps
+them (:mod:`.worker`); Ray reuses its worker processes across tasks.
+
+A task whose worker or node dies is retried once by Ray
+(``max_retries=1``); if it dies again the row is recorded as ``crashed``.
+Every node needs rt-drake installed and the campaign's files at the same
+paths (a shared file system, or the same checkout on each node).
+
+Ray is an optional extra (``pip install "rt-drake[ray]"``).
+"""
+
+from __future__ import annotations
+
+import collections
+import warnings
+from collections.abc import Callable, Iterator, Sequence
+from types import ModuleType
+from typing import Any
+
+from rt_drake.errors import InputError, RtDrakeError
+from rt_drake.experiments.campaign.campaign import Campaign
+from rt_drake.experiments.campaign.errors import ExecutorUnavailableError
+from rt_drake.experiments.campaign.local_executor import MAX_ATTEMPTS, crashed
+from rt_drake.experiments.campaign.rows import Outcome, RowKey
+from rt_drake.experiments.campaign.worker import Task, run_task
+
+#: The Ray version rt-drake is tested with (the ``ray`` extra pins it).
+RAY_VERSION = "2.52.0"
+
+
+def import_ray() -> ModuleType:
+    """The ``ray`` module; ExecutorUnavailableError saying how to install it."""
+    try:
+        import ray
+    except ImportError:
+        raise ExecutorUnavailableError(
+            "the ray executor needs Ray, an optional extra: "
+            f'pip install "rt-drake[ray]" (or pip install "ray=={RAY_VERSION}")'
+        ) from None
+    return ray
+
+
+class RayExecutor:
+    """Run rows as Ray tasks (see the module docstring).
+
+    Args:
+        address: A running cluster to join (None: start Ray on this machine).
+        workers: CPUs of a Ray started here (None: all); ignored when joining.
+        task: What a Ray task runs per row (tests inject one that crashes).
+    """
+
+    def __init__(
+        self,
+        address: str | None = None,
+        workers: int | None = None,
+        task: Callable[[Task], Outcome] = run_task,
+    ) -> None:
+        self._task = task
+        if workers is not None and workers < 1:
+            raise InputError(f"number of Ray CPUs must be >= 1, got {workers}")
+        self.address = address
+        self.workers = workers
+        self._ray = import_ray()
+
+    def describe(self) -> str:
+        """One line for the progress header."""
+        where = f"cluster at {self.address}" if self.address else "this machine"
+        return f"ray executor, {where}"
+
+    def run(self, campaign: Campaign, keys: Sequence[RowKey]) -> Iterator[Outcome]:
+        """Yield each row's outcome as it finishes (in no particular order)."""
+        ray = self._ray
+        started = not ray.is_initialized()
+        if started:
+            self._init()
+        remote = ray.remote(num_cpus=1, max_retries=MAX_ATTEMPTS - 1)(self._task)
+        running: dict[Any, RowKey] = {}
+        try:
+            window = 2 * max(1, int(ray.cluster_resources().get("CPU", 1)))
+            pending = collections.deque(keys)
+            while pending or running:
+                while pending and len(running) < window:
+                    key = pending.popleft()
+                    task = Task(str(campaign.path), campaign.content_hash, key)
+                    running[remote.remote(task)] = key
+                done, _ = ray.wait(list(running), num_returns=1)
+                for ref in done:
+                    yield self._outcome(ref, running.pop(ref))
+        finally:
+            for ref in running:
+                ray.cancel(ref, force=True)
+            if started:
+                ray.shutdown()
+
+    def _init(self) -> None:
+        options: dict[str, Any] = {
+            "include_dashboard": False,
+            "log_to_driver": False,
+            "logging_level": "WARNING",
+        }
+        if self.address is None:
+            options["num_cpus"] = self.workers
+        try:
+            with warnings.catch_warnings():  # Ray's notices of future changes
+                warnings.simplefilter("ignore", FutureWarning)
+                self._ray.init(address=self.address, **options)
+        except (ConnectionError, RuntimeError, ValueError) as error:
+            message = " ".join(str(error).split())
+            raise ExecutorUnavailableError(
+                f"cannot start or join Ray: {message}"
+            ) from None
+
+    def _outcome(self, ref: Any, key: RowKey) -> Outcome:
+        """The task's outcome; a crash (after Ray's retry) as a ``crashed`` row."""
+        exceptions = self._ray.exceptions
+        try:
+            return self._ray.get(ref)
+        except exceptions.RayTaskError as error:
+            cause = getattr(error, "cause", None)
+            if isinstance(cause, RtDrakeError):
+                raise cause from None
+            raise
+        except exceptions.RayError as error:  # worker or node died
+            first = str(error).strip().splitlines()[0] if str(error) else ""
+            return crashed(key, MAX_ATTEMPTS, f"{type(error).__name__}: {first}")
+
+
+__all__ = ["RAY_VERSION", "RayExecutor", "import_ray"]

@@ -1,0 +1,301 @@
+"""Campaigns without physics: the file, the registry, the database, the report.
+
+The physics runs (local and Ray executors, kill and resume) are in
+test_campaign_run.py.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+import random
+import sqlite3
+import statistics
+import sys
+
+import pytest
+from campaign_helpers import write_campaign
+
+from rt_drake.cli import main
+from rt_drake.experiments.campaign import (
+    VARIANTS,
+    CampaignError,
+    CampaignMismatchError,
+    Outcome,
+    RowKey,
+    RowResult,
+    Status,
+    Variant,
+    load_campaign,
+    write_campaign_report,
+)
+from rt_drake.experiments.campaign.progress import Progress
+from rt_drake.experiments.campaign.store import ResultStore
+from rt_drake.resources import scenarios_dir
+
+SHIPPED = scenarios_dir() / "campaigns" / "two_objects_two_cups.yaml"
+
+
+def test_shipped_campaign_loads_with_its_rows_and_grasps():
+    campaign = load_campaign(SHIPPED)
+    assert [o.name for o in campaign.objects] == ["notebook", "kindle_box"]
+    assert [c.name for c in campaign.cups] == ["paper", "small"]
+    assert campaign.cups[1].parameters.suction_force == 4.0
+    assert campaign.cups[1].parameters.points == 6  # default: the paper's cup
+    keys = campaign.row_keys()
+    assert len(keys) == len(set(keys)) == 2 * 2 * 2 * 3
+    # Boxes are gripped at the centre of their top face (notebook 25 mm
+    # thick, kindle box 28 mm), cup +z pointing down into the box.
+    grasp = {o.name: o.X_OC for o in campaign.objects}
+    assert grasp["notebook"].translation() == pytest.approx([0, 0, 0.0125])
+    assert grasp["kindle_box"].translation() == pytest.approx([0, 0, 0.014])
+    assert grasp["kindle_box"].rotation().matrix()[:, 2] == pytest.approx([0, 0, -1])
+
+
+def test_trials_are_paired_and_objects_lie_where_the_base_object_would():
+    campaign = load_campaign(SHIPPED)
+    notebook = campaign.combination(
+        RowKey("notebook", "paper", 0, 1, Variant.SPEED_SWEEP)
+    )
+    kindle = campaign.combination(
+        RowKey("kindle_box", "small", 0, 1, Variant.CONSTRAINED)
+    )
+    (n,), (k,) = notebook.scenario.objects, kindle.scenario.objects
+    X_n, X_k = n.start.GetDeterministicValue(), k.start.GetDeterministicValue()
+    # Same pose, the kindle box's centre 1.5 mm higher (half of 28 - 25 mm).
+    assert X_k.translation() - X_n.translation() == pytest.approx([0, 0, 0.0015])
+    assert X_k.rotation().matrix() == pytest.approx(X_n.rotation().matrix())
+    assert kindle.scenario.cup == campaign.cups[1].parameters
+    assert notebook.planner_seed == kindle.planner_seed == 1
+
+
+def test_content_hash_follows_content_not_formatting(tmp_path):
+    base = load_campaign(write_campaign(tmp_path / "a.yaml"))
+    again = load_campaign(write_campaign(tmp_path / "b.yaml"))
+    (tmp_path / "c.yaml").write_text(
+        "# a comment\n" + (tmp_path / "a.yaml").read_text().replace(": ", ":  ")
+    )
+    assert base.content_hash == again.content_hash
+    assert load_campaign(tmp_path / "c.yaml").content_hash == base.content_hash
+    more = load_campaign(write_campaign(tmp_path / "d.yaml", trials=3))
+    assert more.content_hash != base.content_hash
+
+
+def test_every_variant_has_a_function_and_unknown_ones_list_the_known():
+    assert set(VARIANTS) == set(Variant)
+    with pytest.raises(CampaignError) as error:
+        Variant.parse("robust")
+    assert str(error.value) == (
+        "unknown variant 'robust' (known: constrained, unconstrained, speed_sweep)"
+    )
+
+
+BAD_EDITS = [
+    # (old text, new text, words the one-line message must contain)
+    ("trials: 2", "trails: 2", ["bad.yaml", "unknown key 'trails'"]),
+    ("  radius: 0.010", "  radus: 0.010", ["bad.yaml", "cups[1].radus"]),
+    ("trials: 2", "trials: two", ["bad.yaml", "'trials'", "'two'"]),
+    ("trials: 2", "trials: 0", ["bad.yaml", "'trials'", "got 0"]),
+    ("[constrained]", "[constrained, robust]", ["variants[1]", "robust", "known:"]),
+    ("  radius: 0.010", "  points: 2", ["bad.yaml", "cups[1]", "points", "2"]),
+    ("- name: small", "- name: paper", ["cups[1].name", "duplicate", "paper"]),
+    ("notebook.sdf", "notbook.sdf", ["objects[0].model", "notbook.sdf"]),
+    ("random_transport", "stack_four_objects", ["'scenario'", "random_transport"]),
+    ("random_transport", "nowhere", ["'scenario'", "nowhere"]),
+    ("seed: 0", "seed: 0\nseed: 1", ["bad.yaml", "duplicate key 'seed'"]),
+    ("  radius: 0.010", "  radius: .nan", ["bad.yaml", "cups[1].radius", "finite"]),
+]
+
+
+@pytest.mark.parametrize("old,new,words", BAD_EDITS)
+def test_bad_campaign_is_one_line_naming_file_key_value(tmp_path, old, new, words):
+    text = write_campaign(tmp_path / "good.yaml").read_text()
+    assert old in text, old
+    path = tmp_path / "bad.yaml"
+    path.write_text(text.replace(old, new, 1))
+    with pytest.raises(CampaignError) as error:
+        load_campaign(path)
+    message = str(error.value)
+    assert "\n" not in message
+    for word in words:
+        assert word in message, (word, message)
+
+
+def _outcome(key: RowKey, result: RowResult) -> Outcome:
+    return Outcome(key, result, 1.0, 0.5, worker="test:1", code_version="test")
+
+
+def test_store_keeps_one_row_per_combination_and_refuses_another_campaign(tmp_path):
+    campaign = load_campaign(write_campaign(tmp_path / "c.yaml"))
+    key = campaign.row_keys()[0]
+    db = tmp_path / "c.db"
+    with ResultStore(db, campaign) as store:
+        store.add(_outcome(key, RowResult(Status.OK, duration_s=1.0, success=True)))
+        store.add(_outcome(key, RowResult(Status.OK, duration_s=2.0, success=False)))
+        store.add(
+            _outcome(campaign.row_keys()[1], RowResult.failed(Status.CRASHED, "x"))
+        )
+        assert store.finished() == set(campaign.row_keys()[:2])
+        assert store.forget(Status.ERROR, Status.CRASHED) == 1
+    with sqlite3.connect(db) as connection:
+        assert connection.execute("PRAGMA journal_mode").fetchone() == ("wal",)
+        rows = connection.execute("SELECT duration_s, success FROM rollouts").fetchall()
+    assert rows == [(1.0, 1)]  # the first one stays
+    other = load_campaign(write_campaign(tmp_path / "d.yaml", trials=3))
+    with pytest.raises(CampaignMismatchError) as error:
+        ResultStore(db, other)
+    assert "c.yaml" in str(error.value) and "d.yaml" in str(error.value)
+
+
+def test_cli_refuses_to_mix_campaigns_in_one_database(tmp_path, capsys):
+    first = load_campaign(write_campaign(tmp_path / "c.yaml"))
+    ResultStore(tmp_path / "c.db", first).close()
+    other = write_campaign(tmp_path / "d.yaml", trials=3)
+    argv = ["experiment", "campaign", str(other), "--out", str(tmp_path / "c.db")]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1
+    assert err.startswith("rt-drake experiment campaign: error:")
+    assert "another campaign" in err and first.content_hash[:12] in err
+
+
+def test_ray_executor_without_ray_says_how_to_install_it(tmp_path, capsys, monkeypatch):
+    monkeypatch.setitem(sys.modules, "ray", None)  # import ray -> ImportError
+    path = write_campaign(tmp_path / "c.yaml")
+    argv = ["experiment", "campaign", str(path), "--out", str(tmp_path / "c.db")]
+    assert main([*argv, "--executor", "ray"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1
+    assert 'pip install "rt-drake[ray]"' in err
+    assert not (tmp_path / "c.db").exists()
+
+
+def test_plain_progress_lines_count_done_failures_and_eta():
+    stream = io.StringIO()
+    progress = Progress(total=4, done=1, failed=1, stream=stream, interval=0.0)
+    progress.advance(failed=False)
+    progress.advance(failed=True)
+    lines = stream.getvalue().splitlines()
+    assert lines[0].startswith("campaign: 2/4 rows (50%), 1 failed")
+    assert lines[1].startswith("campaign: 3/4 rows (75%), 2 failed")
+    assert "rows/min" in lines[1] and "ETA" in lines[1]
+
+
+def _synthetic(campaign, seed: int = 0) -> list[Outcome]:
+    """Random results for every row: some infeasible, crashed, never slipping."""
+    rng = random.Random(seed)
+    outcomes = []
+    for key in campaign.row_keys():
+        roll = rng.random()
+        if roll < 0.1:
+            result = RowResult.failed(Status.INFEASIBLE, "GraspUnstableAtRestError: x")
+        elif roll < 0.15:
+            result = RowResult.failed(Status.CRASHED, "WorkerCrashed: y")
+        else:
+            critical = rng.choice([None, 1.1, 1.2, 1.3, 1.6])
+            result = RowResult(
+                Status.OK,
+                duration_s=rng.uniform(0.8, 1.6),
+                speed=1.0,
+                success=rng.random() < 0.7,
+                critical_speed=critical if key.variant is Variant.SPEED_SWEEP else None,
+            )
+        outcomes.append(_outcome(key, result))
+    return outcomes
+
+
+def test_report_numbers_equal_an_independent_sql_aggregation(tmp_path):
+    campaign = load_campaign(
+        write_campaign(tmp_path / "c.yaml", trials=6, variants=None)
+    )
+    db = tmp_path / "c.db"
+    with ResultStore(db, campaign) as store:
+        for outcome in _synthetic(campaign):
+            store.add(outcome)
+    written = write_campaign_report(db, tmp_path / "report")
+    assert {p.name for p in written} >= {"summary.md", "success_rates.png"}
+    summary = json.loads((tmp_path / "report" / "summary.json").read_text())
+    groups = {(g["object"], g["cup"]): g for g in summary["groups"]}
+    with sqlite3.connect(db) as sql:
+        assert (
+            summary["rows"]
+            == sql.execute("SELECT COUNT(*) FROM rollouts").fetchone()[0]
+        )
+        counts = sql.execute(
+            "SELECT object, cup, variant, COUNT(*),"
+            " SUM(status = 'ok'), SUM(CASE WHEN status = 'ok' THEN success END),"
+            " SUM(status = 'infeasible'), SUM(status IN ('error', 'crashed'))"
+            " FROM rollouts GROUP BY object, cup, variant"
+        ).fetchall()
+        for obj, cup, variant, rows, ran, held, infeasible, failed in counts:
+            got = groups[(obj, cup)]["variants"][variant]
+            assert (got["rows"], got["ran"], got["held"]) == (rows, ran, held or 0)
+            assert (got["infeasible"], got["failed"]) == (infeasible, failed)
+            assert got["success_rate"] == (held / ran if ran else None)
+        extension = sql.execute(
+            "SELECT c.object, c.cup, COUNT(*),"
+            " AVG(100.0 * (c.duration_s - u.duration_s) / c.duration_s),"
+            " MIN(100.0 * (c.duration_s - u.duration_s) / c.duration_s)"
+            " FROM rollouts c JOIN rollouts u USING (object, cup, seed, trial)"
+            " WHERE c.variant = 'constrained' AND u.variant = 'unconstrained'"
+            " AND c.status = 'ok' AND u.status = 'ok' GROUP BY c.object, c.cup"
+        ).fetchall()
+        assert len(extension) == len(groups)
+        for obj, cup, n, mean, low in extension:
+            got = groups[(obj, cup)]["time_extension_pct"]
+            assert got["n"] == n
+            assert got["mean"] == pytest.approx(mean, rel=1e-12)
+            assert got["min"] == pytest.approx(low, rel=1e-12)
+        for (obj, cup), group in groups.items():
+            critical = [
+                value
+                for (value,) in sql.execute(
+                    "SELECT critical_speed FROM rollouts WHERE object = ? AND cup = ?"
+                    " AND variant = 'speed_sweep' AND status = 'ok'",
+                    (obj, cup),
+                )
+            ]
+            slipped = [c for c in critical if c is not None]
+            got = group["critical_speed"]
+            assert got["n"] == len(slipped)
+            assert got["held_through_sweep"] == len(critical) - len(slipped)
+            if slipped:
+                assert got["median"] == statistics.median(slipped)
+                assert got["min"] == min(slipped)
+    table = (tmp_path / "report" / "summary.md").read_text()
+    for (obj, cup), group in groups.items():
+        held = group["variants"]["constrained"]
+        assert f"| {obj} | {cup} | {held['held']}/{held['ran']} |" in table
+    assert not math.isnan(summary["groups"][0]["time_extension_pct"]["mean"])
+
+
+@pytest.mark.parametrize(
+    "argv,words",
+    [
+        (["campaign", "{campaign}", "--out", "{text}"], ["not.db", "not a campaign"]),
+        (["report", "{missing}", "--out", "{tmp}"], ["missing.db", "does not exist"]),
+        (["report", "{text}", "--out", "{tmp}"], ["not.db", "not a campaign"]),
+        (
+            ["campaign", "{campaign}", "--out", "{tmp}/c.db", "--ray-address", "auto"],
+            ["Ray address", "ray executor"],
+        ),
+        (
+            ["campaign", "{campaign}", "--out", "{tmp}/c.db", "--workers", "1000"],
+            ["--workers", "[1, 64]", "1000"],
+        ),
+    ],
+)
+def test_bad_database_or_flags_exit_2_with_one_line(tmp_path, capsys, argv, words):
+    (tmp_path / "not.db").write_text("a text file, not SQLite\n" * 100)
+    names = {
+        "campaign": write_campaign(tmp_path / "c.yaml"),
+        "text": tmp_path / "not.db",
+        "missing": tmp_path / "missing.db",
+        "tmp": tmp_path,
+    }
+    assert main(["experiment", *(a.format(**names) for a in argv)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and ": error: " in err
+    for word in words:
+        assert word in err, (word, err)

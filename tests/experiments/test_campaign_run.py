@@ -1,0 +1,212 @@
+"""Campaigns in the physics: local and Ray executors, kill and resume, crashes.
+
+One small campaign, 2 objects x 2 cups x 2 trials, the ``constrained``
+variant only (one rollout per row, the cheapest variant): 8 rows, of which
+the 2 of the notebook on the small cup are infeasible (it slips off even at
+rest), so 6 physics rollouts per run.
+
+- The local run is killed (SIGKILL to the driver and its workers) once its
+  first row is committed, then rerun with the same command to completion.
+- The Ray run uses a Ray instance the test starts on this machine
+  (``ray.init(num_cpus=2)``), so CI needs no external service.
+
+Each run takes 1-2 minutes on 2 busy cores.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import sqlite3
+import subprocess
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import pytest
+from campaign_helpers import (
+    CRASH_DIR,
+    crash_always,
+    crash_once,
+    no_init,
+    write_campaign,
+)
+
+import rt_drake
+from rt_drake.cli import main
+from rt_drake.experiments.campaign import RowKey, Status, Variant, load_campaign
+from rt_drake.experiments.campaign.local_executor import LocalExecutor
+
+pytestmark = pytest.mark.slow
+
+#: The columns that depend only on the combination (not wall times, workers).
+RESULT_COLUMNS = (
+    "object, cup, seed, trial, variant, status, duration_s, speed, success, "
+    "slip_translation_mm, slip_rotation_deg, critical_speed, error, detail"
+)
+
+
+def _rows(db: Path, columns: str = RESULT_COLUMNS) -> list[tuple]:
+    with sqlite3.connect(db) as connection:
+        return connection.execute(
+            f"SELECT {columns} FROM rollouts ORDER BY object, cup, seed, trial, variant"
+        ).fetchall()
+
+
+def _count(db: Path) -> int:
+    try:
+        with sqlite3.connect(f"file:{db}?mode=ro", uri=True) as connection:
+            return connection.execute("SELECT COUNT(*) FROM rollouts").fetchone()[0]
+    except sqlite3.Error:  # not created yet
+        return 0
+
+
+@pytest.fixture(scope="module")
+def campaign_file(tmp_path_factory) -> Path:
+    return write_campaign(tmp_path_factory.mktemp("campaign") / "campaign.yaml")
+
+
+@pytest.fixture(scope="module")
+def killed_and_resumed(campaign_file, tmp_path_factory):
+    """The local run: killed after its first committed row, then rerun."""
+    out = tmp_path_factory.mktemp("local")
+    db = out / "campaign.db"
+    argv = ["experiment", "campaign", str(campaign_file), "--out", str(db)]
+    with (out / "killed.log").open("w") as log:
+        process = subprocess.Popen(
+            [sys.executable, "-m", "rt_drake.cli", *argv, "--workers", "2"],
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            start_new_session=True,  # its own process group: driver and workers
+        )
+        deadline = time.monotonic() + 900
+        while _count(db) == 0 and process.poll() is None:
+            assert time.monotonic() < deadline, "no row committed in 15 minutes"
+            time.sleep(0.2)
+        os.killpg(process.pid, signal.SIGKILL)
+        process.wait()
+    before = _rows(db, "object, cup, seed, trial, variant, finished_at")
+    assert main([*argv, "--workers", "2"]) == 0
+    return db, before
+
+
+@pytest.fixture(scope="module")
+def ray_run(campaign_file, tmp_path_factory):
+    """The Ray run, on a Ray instance started here (tests/ on the workers' path)."""
+    ray = pytest.importorskip("ray")
+    tests = str(Path(__file__).resolve().parents[1])
+    path = os.pathsep.join(p for p in (tests, os.environ.get("PYTHONPATH")) if p)
+    with warnings.catch_warnings():  # Ray's notices of future changes
+        warnings.simplefilter("ignore", FutureWarning)
+        ray.init(
+            num_cpus=2,
+            include_dashboard=False,
+            log_to_driver=False,
+            runtime_env={"env_vars": {"PYTHONPATH": path}},
+        )
+    try:
+        db = tmp_path_factory.mktemp("ray") / "campaign.db"
+        argv = ["experiment", "campaign", str(campaign_file), "--out", str(db)]
+        start = time.perf_counter()
+        assert main([*argv, "--executor", "ray"]) == 0
+        print(f"ray campaign run: {time.perf_counter() - start:.0f} s")
+        yield ray, db
+    finally:
+        ray.shutdown()
+
+
+def test_kill_and_resume_loses_no_row_and_duplicates_none(
+    campaign_file, killed_and_resumed
+):
+    db, before = killed_and_resumed
+    expected = {
+        (k.object, k.cup, k.seed, k.trial, k.variant.value)
+        for k in load_campaign(campaign_file).row_keys()
+    }
+    keys = [row[:5] for row in _rows(db, "object, cup, seed, trial, variant")]
+    assert len(keys) == len(set(keys)) == 8
+    assert set(keys) == expected
+    # Killed midway: some rows were committed, not all; they were kept as
+    # they were (not computed again).
+    assert 1 <= len(before) < 8
+    after = set(_rows(db, "object, cup, seed, trial, variant, finished_at"))
+    assert set(before) <= after
+
+
+def test_rows_hold_the_results_and_infeasible_combinations_are_data(
+    killed_and_resumed,
+):
+    db, _ = killed_and_resumed
+    for row in _rows(db, "object, cup, status, duration_s, success, error, attempts"):
+        obj, cup, status, duration, success, error, attempts = row
+        assert attempts == 1
+        if (obj, cup) == ("notebook", "small"):
+            assert status == Status.INFEASIBLE.value and duration is None
+            assert error.startswith("GraspUnstableAtRestError: object slips even at")
+        else:  # the constraint holds every object it accepts
+            assert status == Status.OK.value and error is None
+            assert success == 1 and 0.5 < duration < 3.0
+
+
+def test_local_and_ray_executors_give_the_same_rows(killed_and_resumed, ray_run):
+    local_db, _ = killed_and_resumed
+    _, ray_db = ray_run
+    local, remote = _rows(local_db), _rows(ray_db)
+    assert len(local) == len(remote) == 8
+    assert local == remote
+    for db in (local_db, ray_db):
+        (versions,) = zip(*_rows(db, "code_version"), strict=True)
+        assert all(v.startswith(rt_drake.__version__) for v in versions)
+
+
+def test_report_equals_the_rows(killed_and_resumed, tmp_path):
+    db, _ = killed_and_resumed
+    assert main(["experiment", "report", str(db), "--out", str(tmp_path)]) == 0
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert summary["rows"] == summary["total_rows"] == 8
+    groups = {(g["object"], g["cup"]): g for g in summary["groups"]}
+    with sqlite3.connect(db) as sql:
+        for obj, cup, ran, held, infeasible in sql.execute(
+            "SELECT object, cup, SUM(status = 'ok'), SUM(success),"
+            " SUM(status = 'infeasible') FROM rollouts GROUP BY object, cup"
+        ):
+            got = groups[(obj, cup)]["variants"]["constrained"]
+            assert (got["ran"], got["held"] or None, got["infeasible"]) == (
+                ran,
+                held,
+                infeasible,
+            )
+    table = (tmp_path / "summary.md").read_text()
+    assert "| notebook | small | 0/0 | - | 2 | 0 | - | - | - |" in table
+    assert "| notebook | paper | 2/2 | - | 0 | 0 | - | - | - |" in table
+
+
+def test_local_worker_crash_is_retried_once_then_recorded(
+    campaign_file, tmp_path, monkeypatch
+):
+    campaign = load_campaign(campaign_file)
+    keys = [RowKey("notebook", "paper", 0, t, Variant.CONSTRAINED) for t in (0, 1)]
+    always = LocalExecutor(1, task=crash_always, initializer=no_init)
+    outcomes = {o.key.trial: o for o in always.run(campaign, keys)}
+    assert outcomes[0].result.status is Status.CRASHED
+    assert outcomes[0].attempts == 2 and "died 2 times" in outcomes[0].result.error
+    assert outcomes[1].result.status is Status.OK
+    monkeypatch.setenv(CRASH_DIR, str(tmp_path))
+    once = LocalExecutor(1, task=crash_once, initializer=no_init)
+    (outcome,) = once.run(campaign, keys[:1])
+    assert outcome.result.status is Status.OK and outcome.attempts == 2
+
+
+def test_ray_worker_crash_is_retried_once_then_recorded(campaign_file, ray_run):
+    from rt_drake.experiments.campaign.ray_executor import RayExecutor
+
+    campaign = load_campaign(campaign_file)
+    keys = [RowKey("notebook", "paper", 0, t, Variant.CONSTRAINED) for t in (0, 1)]
+    outcomes = {
+        o.key.trial: o for o in RayExecutor(task=crash_always).run(campaign, keys)
+    }
+    assert outcomes[0].result.status is Status.CRASHED
+    assert "WorkerCrashedError" in outcomes[0].result.error
+    assert outcomes[1].result.status is Status.OK

@@ -1,0 +1,222 @@
+"""Retiming under a two-cup tool's exact wrench set, checked independently.
+
+The tool frame T is the plant's ``suction_cup`` frame; the two cups sit
+0.12 m apart on T's x axis. A coarse cup model (4 rim points, 3-sided
+friction polygons) keeps the exact sets small: 100 rows for one cup, 4266
+for the tool (about a second). The reference is an LP written apart
+(``tests/tool_reference.py``), over every rim force of every cup as a convex
+combination of its friction pyramid's vertices (not the H-form of
+``rt_drake.contact.lp``), applied to the object wrenches of the retimed
+motion computed by Newton-Euler from the bodies' accelerations
+(:mod:`rt_drake.newton_euler`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from pydrake.multibody.plant import MultibodyPlant
+from tool_reference import residual as _residual
+
+from rt_drake import (
+    CupFrame,
+    CupMount,
+    CupParameters,
+    GraspConstraint,
+    HeldObject,
+    JointLimits,
+    ToolParameters,
+    check_trajectory,
+    retime,
+)
+from rt_drake.newton_euler import reference_object_wrench
+from rt_drake.plant import make_parser
+from rt_drake.retiming import GraspUnstableAtRestError, RetimeInputError
+
+CUP = CupParameters(points=4, sides=3)
+TWO_CUPS = ToolParameters(
+    cups=[
+        CupMount(CUP, np.eye(3), [0.06, 0.0, 0.0]),
+        CupMount(CUP, np.eye(3), [-0.06, 0.0, 0.0]),
+    ]
+)
+HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
+SWING = np.array(
+    [
+        HOME,
+        HOME + [0.6, -0.2, -0.2, 0.0, 0.3, 0.4],
+        HOME + [1.2, 0.0, 0.0, 0, 0, 0.7],
+    ]
+)
+
+
+@pytest.fixture(scope="module")
+def arm() -> MultibodyPlant:
+    plant = MultibodyPlant(0.0)
+    parser = make_parser(plant)
+    (robot,) = parser.AddModels(url="package://rt_drake/robot/vs060.urdf")
+    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base_link", robot))
+    (tool,) = parser.AddModels(url="package://rt_drake/tool/suction_tool.urdf")
+    plant.WeldFrames(
+        plant.GetFrameByName("link6", robot), plant.GetFrameByName("tool", tool)
+    )
+    plant.Finalize()
+    return plant
+
+
+def _box(mass: float, p_TScm: list[float]) -> HeldObject:
+    """A 0.2 x 0.1 x 0.06 m box of ``mass`` kg, its centre at ``p_TScm``."""
+    a, b, c = 0.2, 0.1, 0.06
+    inertia = mass / 12.0 * np.diag([b * b + c * c, a * a + c * c, a * a + b * b])
+    return HeldObject(mass, np.array(p_TScm), inertia)
+
+
+ONE = [(CUP, np.zeros(3))]
+TWO = [(CUP, np.array([0.06, 0.0, 0.0])), (CUP, np.array([-0.06, 0.0, 0.0]))]
+
+
+def _object_wrenches(plant, result, held, count=60):
+    trajectory = result.trajectory
+    times = np.linspace(0.0, result.duration, count)
+    q = np.array([trajectory.value(t).ravel() for t in times])
+    v = np.array([trajectory.EvalDerivative(t, 1).ravel() for t in times])
+    vdot = np.array([trajectory.EvalDerivative(t, 2).ravel() for t in times])
+    return reference_object_wrench(plant, held, CupFrame.of(plant), q, v, vdot)
+
+
+@pytest.fixture(scope="module")
+def limits(arm):
+    return JointLimits.from_plant(arm)
+
+
+def test_the_reference_lp_agrees_with_the_exact_tool_set_at_rest():
+    """Static carton wrenches: inside W_T iff the reference LP says so."""
+    exact = GraspConstraint.for_tool(_box(1.0, [0, 0, 0.03]), TWO_CUPS)
+    rng = np.random.default_rng(3)
+    wrenches = []
+    for _ in range(40):
+        mass, x = rng.uniform(0.5, 6.0), rng.uniform(-0.1, 0.1)
+        weight = np.array([0.0, 0.0, mass * 9.81])  # gravity along +z_T
+        p = np.array([x, rng.uniform(-0.02, 0.02), 0.03])
+        wrenches.append(np.concatenate([-np.cross(p, weight), -weight]))
+    wrenches = np.array(wrenches)
+    distance = (wrenches @ exact.F.T - exact.g).max(axis=1)
+    residual = _residual(wrenches, TWO)
+    clear = np.abs(distance) > 1e-6
+    assert np.all((distance[clear] <= 0) == (residual[clear] <= 1e-9))
+    assert 5 < np.sum(distance < 0) < 35  # both kinds were drawn
+
+
+def test_two_cups_hold_a_box_one_cup_cannot_hold_at_rest(arm, limits):
+    held = _box(2.5, [0.0, 0.0, 0.03])  # 24.5 N: more than one cup's 20 N
+    with pytest.raises(GraspUnstableAtRestError):
+        retime(arm, SWING, limits, GraspConstraint.for_cup(held, CUP))
+    grasp = GraspConstraint.for_tool(held, TWO_CUPS)
+    result = retime(arm, SWING, limits, grasp)
+    check = check_trajectory(arm, result.trajectory, limits, grasp)
+    assert check.worst() <= 1e-3, check.summary()
+    wrenches = _object_wrenches(arm, result, held)
+    assert _residual(wrenches, TWO).max() <= 1e-3
+    assert _residual(wrenches, ONE).min() > 1.0  # one cup: N short everywhere
+
+
+def test_two_cups_move_an_offset_box_faster_than_one(arm, limits):
+    held = _box(0.8, [0.01, 0.0, 0.03])
+    one = retime(arm, SWING, limits, GraspConstraint.for_cup(held, CUP))
+    grasp = GraspConstraint.for_tool(held, TWO_CUPS)
+    two = retime(arm, SWING, limits, grasp)
+    assert two.duration < 0.9 * one.duration
+    for result, cups in ((one, ONE), (two, TWO)):
+        wrenches = _object_wrenches(arm, result, held)
+        assert _residual(wrenches, cups).max() <= 1e-3
+    # The two-cup motion is too fast for one cup somewhere.
+    assert _residual(_object_wrenches(arm, two, held), ONE).max() > 1e-2
+
+
+def test_an_inner_approximation_is_sound_and_no_faster_than_the_exact_set(arm, limits):
+    held = _box(2.5, [0.0, 0.0, 0.03])
+    exact = retime(arm, SWING, limits, GraspConstraint.for_tool(held, TWO_CUPS))
+    samples = _object_wrenches(arm, exact, held, count=200)
+    inner = GraspConstraint.inner_for_tool(held, TWO_CUPS, samples, max_vertices=60)
+    result = retime(arm, SWING, limits, inner)
+    assert result.duration >= exact.duration - 1e-6
+    wrenches = _object_wrenches(arm, result, held)
+    assert _residual(wrenches, TWO).max() <= 1e-3
+
+
+def test_a_tool_grasp_is_described_and_a_cup_is_not_a_tool():
+    grasp = GraspConstraint.for_tool(_box(2.5, [0, 0, 0.03]), TWO_CUPS)
+    assert grasp.describe() == "object 2.5 kg, 2 cups, suction 20 + 20 N"
+    with pytest.raises(RetimeInputError, match="needs a ToolParameters"):
+        GraspConstraint.for_tool(_box(1.0, [0, 0, 0.03]), CUP)  # type: ignore[arg-type]
+
+
+TOOL_SCENARIO = """
+directives: []
+robot: {home: [0, 0, 0, 0, 0, 0]}
+tool:
+  cups:
+    - pose: {translation: [0.06, 0, 0]}
+      suction_force: 25.0
+    - pose: {translation: [-0.06, 0, 0], rotation: !Rpy {deg: [0, 0, 90]}}
+objects:
+  - name: box
+    model: package://rt_drake/objects/notebook.sdf
+"""
+
+
+def _write(tmp_path, text):
+    path = tmp_path / "tool.yaml"
+    path.write_text(text)
+    return path
+
+
+def test_a_scenario_tool_gives_its_cups_and_poses(tmp_path):
+    from rt_drake import load_scenario
+
+    scenario = load_scenario(_write(tmp_path, TOOL_SCENARIO))
+    tool = scenario.tool_parameters()
+    assert [m.cup.suction_force for m in tool.cups] == [25.0, 20.0]
+    np.testing.assert_allclose(tool.cups[1].p_TC, [-0.06, 0.0, 0.0])
+    np.testing.assert_allclose(tool.cups[1].R_TC @ [1, 0, 0], [0, 1, 0], atol=1e-12)
+    text = TOOL_SCENARIO.split("tool:")[0] + "objects:"
+    single = load_scenario(_write(tmp_path, text + TOOL_SCENARIO.split("objects:")[1]))
+    assert len(single.tool_parameters().cups) == 1
+
+
+NO_CUPS = "tool:\n  cups: []\nobjects:" + TOOL_SCENARIO.split("objects:")[1]
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "message"),
+    [
+        (
+            "suction_force: 25.0",
+            "suction_force: -1.0",
+            r"'tool.cups\[0\].suction_force'",
+        ),
+        (
+            "suction_force: 25.0",
+            "suction: 25.0",
+            r"unknown key 'tool.cups\[0\].suction'",
+        ),
+        ("tool:", "cup: {radius: 0.01}\ntool:", "keys 'cup' and 'tool'"),
+        ("points", "points", "key 'tool.cups': a tool needs at least one cup"),
+    ],
+)
+def test_a_wrong_tool_is_refused_naming_the_key(tmp_path, old, new, message):
+    from rt_drake import ScenarioError, load_scenario
+
+    text = TOOL_SCENARIO.replace(old, new, 1)
+    if "at least one cup" in message:
+        text = TOOL_SCENARIO.split("tool:")[0] + NO_CUPS
+    with pytest.raises(ScenarioError, match=message):
+        load_scenario(_write(tmp_path, text))
+
+
+def test_the_station_parts_refuse_a_multi_cup_tool_by_name(tmp_path):
+    from rt_drake import ScenarioError, load_scenario
+
+    scenario = load_scenario(_write(tmp_path, TOOL_SCENARIO))
+    with pytest.raises(ScenarioError, match="key 'tool': the plant takes one cup"):
+        scenario.single_cup("the plant")
