@@ -176,9 +176,21 @@ def grasp_midpoint_rows(
         F: (R, 6) the rows in force.
         g: (R,) their bounds.
     """
-    a, b, c = (segments.interpolate(v, MIDDLE) for v in wrench)  # (N, 6)
-    Fa, Fb, Fc = a @ F.T, b @ F.T, c @ F.T
-    return StageRows(Fa + segments.ds[:, None] * Fb, Fb, Fc - g)
+    shape = (len(segments.ds), len(g))
+    A, B, C = np.empty(shape), np.empty(shape), np.empty(shape)
+    K.midpoint_rows(
+        *(kernel_array(v) for v in wrench),
+        kernel_array(F),
+        kernel_array(g),
+        segments.s,
+        segments._weights,
+        segments._index,
+        MIDDLE,
+        A,
+        B,
+        C,
+    )
+    return StageRows(A, B, C)
 
 
 def joint_cuts(
@@ -271,10 +283,10 @@ def refinement_points(
         x: (G,) ``s'^2`` at the grid points.
         u: (G-1,) ``s''`` per segment.
         limits: Joint limits.
-        normals: (6, R) grasp rows ``F / g`` (transposed) of one object, or
-            None.
-        row_max: (R,) each grasp row's largest ``F_k w / g_k`` at the grid
-            points (from the exactness check), or None.
+        normals: (6, R) grasp rows ``F / g`` (transposed), or None.
+        row_max: (R,) each grasp row's largest ``F_k w / g_k`` over the
+            wrenches the stage LPs enforced (from the exactness check; exact
+            where above ``1 - ROW_SCREEN``), or None.
         tolerance: Relative excess allowed.
         grasp_ratio: For a set of objects, (N, K) its worst object's largest
             ``F_k w / g_k`` and torque ratio at the sub-points (from

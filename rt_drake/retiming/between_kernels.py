@@ -94,10 +94,13 @@ def affine_excess(weights, index, a, b, c, step, x, u, rows, absolute, out):  # 
     The coefficients at each sub-point are interpolated (``weights``,
     ``index``: the Lagrange stencil); ``rows`` (m, R) maps a value to
     ratios (``F / g`` transposed for the grasp, ``diag(1 / tau_max)`` for
-    torques); ``absolute``: take the absolute value (torques).
+    torques); ``absolute``: take the absolute value (torques). The ratios
+    are summed a coordinate at a time over all rows (the same sums, in the
+    same order, as row by row; the loop over rows vectorises).
     """
-    m = a.shape[1]
+    m, count = rows.shape
     value = np.empty(m)
+    ratio = np.empty(count)
     for i in range(weights.shape[0]):
         best = -math.inf
         for j in range(weights.shape[1]):
@@ -110,14 +113,16 @@ def affine_excess(weights, index, a, b, c, step, x, u, rows, absolute, out):  # 
                         g = index[i, slot]
                         total += w * (a[g, d] * u[i] + b[g, d] * x_j + c[g, d])
                 value[d] = total
-            for r in range(rows.shape[1]):
-                ratio = 0.0
-                for d in range(m):
-                    ratio += rows[d, r] * value[d]
-                if absolute:
-                    ratio = abs(ratio)
-                if ratio - 1.0 > best:
-                    best = ratio - 1.0
+            ratio[:] = 0.0
+            for d in range(m):
+                v = value[d]
+                for r in range(count):
+                    ratio[r] += rows[d, r] * v
+            largest = -math.inf  # of the ratios, or of their absolute values
+            for r in range(count):
+                item = abs(ratio[r]) if absolute else ratio[r]
+                largest = item if item > largest else largest
+            best = max(best, largest - 1.0)
         out[i] = best
 
 
@@ -151,6 +156,39 @@ def enforced_wrenches(a, b, c, x, u, s, weights, index, middle, out):  # noqa: D
                     g = index[i, slot]
                     total += w * (a[g, d] * u[i] + b[g, d] * x_middle + c[g, d])
             out[2 * count + 1 + i, d] = total
+
+
+@njit(cache=True)
+def midpoint_rows(a, b, c, F, g, s, weights, index, middle, A, B, C):  # noqa: D417
+    """Rows ``F (a(m) u + b(m) (x + ds u) + c(m)) - g <= 0`` at every midpoint.
+
+    ``m = s_i + ds_i / 2``, the coefficients interpolated (sub-point
+    ``middle`` of the stencil ``weights``, ``index``); A, B, C (N, k) are
+    written in place: ``A = F a(m) + ds_i F b(m)``, ``B = F b(m)``,
+    ``C = F c(m) - g``.
+    """
+    k, m = F.shape
+    here = np.empty((3, m))
+    for i in range(A.shape[0]):
+        for d in range(m):
+            sum_a = sum_b = sum_c = 0.0
+            for slot in range(4):
+                w = weights[i, middle, slot]
+                g_i = index[i, slot]
+                sum_a += w * a[g_i, d]
+                sum_b += w * b[g_i, d]
+                sum_c += w * c[g_i, d]
+            here[0, d], here[1, d], here[2, d] = sum_a, sum_b, sum_c
+        ds = s[i + 1] - s[i]
+        for r in range(k):
+            f_a = f_b = f_c = 0.0
+            for d in range(m):
+                f_a += here[0, d] * F[r, d]
+                f_b += here[1, d] * F[r, d]
+                f_c += here[2, d] * F[r, d]
+            A[i, r] = f_a + ds * f_b
+            B[i, r] = f_b
+            C[i, r] = f_c - g[r]
 
 
 @njit(cache=True)
@@ -199,6 +237,7 @@ __all__ = [
     "enforced_wrenches",
     "interior_rows",
     "joint_excess",
+    "midpoint_rows",
     "position_excess",
     "sub_derivatives",
 ]

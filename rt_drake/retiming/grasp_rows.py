@@ -21,12 +21,10 @@ from toppra.constraint import LinearConstraint
 
 from rt_drake.retiming import rows as R
 from rt_drake.retiming.at_rest import check_grasp_at_rest
-from rt_drake.retiming.between import (
-    Segments,
-    grasp_midpoint_rows,
-)
+from rt_drake.retiming.between import ROW_SCREEN, Segments, grasp_midpoint_rows
 from rt_drake.retiming.limits import GraspConstraint
 from rt_drake.retiming.passes import AffineConstraint
+from rt_drake.retiming.row_groups import RowGroups
 from rt_drake.retiming.samples import PathSamples
 
 #: Grasp rows violated by more than this (N or N m) are added and re-solved.
@@ -41,8 +39,9 @@ class Check(NamedTuple):
         ratio: (G,) the largest ``F_k w / g_k`` at each grid point (the
             acceleration of the segment that starts there).
         screen: Where to look between grid points: each row's largest
-            ``F_k w / g_k`` over the wrenches enforced (R,) (for a set of
-            objects, an upper bound of its worst object's).
+            ``F_k w / g_k`` over the wrenches enforced (R,), exact where above
+            ``1 - ROW_SCREEN`` (for a set of objects, an upper bound of its
+            worst object's).
     """
 
     added: bool
@@ -60,6 +59,8 @@ class ObjectRows:
             them).
         rows: The rows of the current solve (``selected`` plus repairs).
         repairs: Times the current solve added rows.
+        groups: The rows grouped for the exactness check (at the first
+            check, reused by every later one: :func:`.rows.wrench_groups`).
     """
 
     robust = False
@@ -70,6 +71,7 @@ class ObjectRows:
         self.selected = np.zeros(0, dtype=int)
         self.rows = self.selected
         self.repairs = 0
+        self.groups: RowGroups | None = None
 
     def add(self, samples: PathSamples) -> None:
         """Check holding at rest at new samples; select their rows."""
@@ -109,8 +111,15 @@ class ObjectRows:
         """Every row at every enforced wrench; add the rows missed."""
         assert samples.wrench is not None
         enforced = segments.enforced_wrenches(samples.wrench, x, u)
+        if self.groups is None:  # grouped at the first check, then reused
+            self.groups = R.wrench_groups(enforced, self.normals, self.grasp.g)
         ratio, violated, row_max = R.wrench_ratios(
-            enforced, self.normals, self.grasp.g, ROW_TOLERANCE
+            enforced,
+            self.normals,
+            self.grasp.g,
+            ROW_TOLERANCE,
+            1.0 - ROW_SCREEN,
+            self.groups,
         )
         missed = np.setdiff1d(violated, self.rows) if violated.size else violated
         if missed.size:

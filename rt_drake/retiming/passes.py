@@ -122,6 +122,22 @@ class Reachability(NamedTuple):
     failed_stage: int | None
 
 
+class StageLPs(NamedTuple):
+    """Every stage's LP: rows ``A u + B x + C <= 0``, box ``lo <= (u, x) <= hi``.
+
+    Attributes:
+        A, B, C: (N+1, R); rows 0, 1 are left for the next controllable set
+            and the last stage's rows are inactive (0 u + 0 x - 1 <= 0).
+        lo, hi: (N+1, 2) boxes on (u, x): toppra's +-1e8 and the x bounds.
+    """
+
+    A: np.ndarray
+    B: np.ndarray
+    C: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+
+
 def reachability(
     constraints: list[LinearConstraint],
     path: toppra.SplineInterpolator | None,
@@ -129,6 +145,7 @@ def reachability(
     sd_start: float = 0.0,
     sd_end: float = 0.0,
     engine: str = "compiled",
+    base: StageLPs | None = None,
 ) -> Reachability:
     """Run TOPP-RA (see the module docstring).
 
@@ -139,6 +156,9 @@ def reachability(
         sd_start: Path velocity at s = 0 (1/s).
         sd_end: Path velocity at s = 1 (1/s).
         engine: "compiled" or "toppra".
+        base: Constraints already projected by :func:`stage_rows` on this
+            grid, which come before ``constraints`` (compiled engine only:
+            constraints fixed while others change are projected once).
     """
     if engine == "toppra":
         algorithm = TOPPRA(constraints, path, gridpoints, solver_wrapper="seidel")
@@ -153,7 +173,7 @@ def reachability(
         raise RetimeInputError(f"engine must be 'compiled' or 'toppra', got {engine!r}")
     ds = np.diff(gridpoints)
     x, u, K, failed = seidel.passes(
-        *stage_rows(constraints, ds), ds, float(sd_start), float(sd_end)
+        *stage_rows(constraints, ds, base), ds, float(sd_start), float(sd_end)
     )
     if failed >= 0:
         return Reachability(None, None, K, int(failed))
@@ -161,28 +181,41 @@ def reachability(
 
 
 def stage_rows(
-    constraints: list[LinearConstraint], ds: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    constraints: list[LinearConstraint],
+    ds: np.ndarray,
+    base: StageLPs | None = None,
+) -> StageLPs:
     """Rows ``A u + B x + C <= 0`` and boxes of every stage's LP.
 
-    Returns:
-        A, B, C: (N+1, R); rows 0, 1 are left for the next controllable set
-            and the last stage's rows are inactive (0 u + 0 x - 1 <= 0).
-        lo, hi: (N+1, 2) boxes on (u, x): toppra's +-1e8 and the x bounds.
+    Args:
+        constraints: The constraints, projected in this order.
+        ds: (N,) grid steps.
+        base: Rows already projected (by this function, on the same grid):
+            they come first, then those of ``constraints``; not modified.
     """
     stages = len(ds)
-    width = 2
+    width = 2 if base is None else base.A.shape[1]
     for c in constraints:
         if isinstance(c, AffineConstraint):
             width += 2 * len(c.coefficients[4])
         elif isinstance(c, StageRows):
             width += c.rows[0].shape[1]
-    A = np.zeros((stages + 1, width))
-    B = np.zeros((stages + 1, width))
-    C = np.full((stages + 1, width), -1.0)
-    lo = np.full((stages + 1, 2), -VAR_BOUND)
-    hi = np.full((stages + 1, 2), VAR_BOUND)
-    column = 2
+    if base is None:
+        A = np.zeros((stages + 1, width))
+        B = np.zeros((stages + 1, width))
+        C = np.full((stages + 1, width), -1.0)
+        lo = np.full((stages + 1, 2), -VAR_BOUND)
+        hi = np.full((stages + 1, 2), VAR_BOUND)
+        column = 2
+    else:
+        A, B, C = (np.empty((stages + 1, width)) for _ in range(3))
+        column = base.A.shape[1]
+        for target, rows, inactive in zip(
+            (A, B, C), base[:3], (0.0, 0.0, -1.0), strict=True
+        ):
+            target[:, :column] = rows
+            target[stages, column:] = inactive
+        lo, hi = base.lo.copy(), base.hi.copy()
     for constraint in constraints:
         if isinstance(constraint, XBound):
             np.maximum(lo[:, 1], constraint.x_bound[:, 0], out=lo[:, 1])
@@ -196,12 +229,13 @@ def stage_rows(
             column += count
         else:
             raise TypeError(f"unsupported constraint {type(constraint).__name__}")
-    return A, B, C, lo, hi
+    return StageLPs(A, B, C, lo, hi)
 
 
 __all__ = [
     "AffineConstraint",
     "Reachability",
+    "StageLPs",
     "StageRows",
     "XBound",
     "reachability",

@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from rt_drake.retiming.row_groups import RowGroups, group_rows, grouped_ratios
 from rt_drake.retiming.seidel import kernel_array
 
 #: Heights, as fractions of the height x_top reached from rest along +x, of
@@ -84,33 +85,56 @@ def wrench_ratios(
     normals: np.ndarray,
     g: np.ndarray,
     tol: float,
+    floor: float = -np.inf,
+    groups: RowGroups | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Evaluate every grasp row at every wrench.
+    """Evaluate every grasp row at every wrench (rows far below skipped).
+
+    Rows are grouped in boxes (:mod:`.row_groups`); a group that can hold
+    neither a wrench's largest value nor a value above ``floor`` is skipped
+    at that wrench, which changes none of the results below (nor does the
+    grouping: any grouping of these rows gives the same results).
 
     Args:
         wrenches: (M, 6) wrenches on the object (N m, N).
         normals: (6, R) from :func:`normalised_rows`.
         g: (R,) the rows' offsets.
-        tol: Excess (N or N m) above which a row counts as violated.
+        tol: Excess (N or N m, >= 0) above which a row counts as violated.
+        floor: ``row_max`` is exact where above it (at most 1; -inf: for
+            every row).
+        groups: The rows grouped by :func:`wrench_groups` (to reuse them
+            across calls); None: grouped here for these wrenches.
 
     Returns:
         ratio: (M,) ``max_k n_k w`` (<= 1: the wrench is in the polytope).
         violated: Sorted rows with ``g_k (n_k w - 1) > tol`` at some wrench.
-        row_max: (R,) ``max_w n_k w`` of every row over the wrenches.
+        row_max: (R,) ``max_w n_k w`` of each row over the wrenches where
+            that is above ``floor``; at most ``floor`` for the others.
     """
+    if not tol >= 0.0:
+        raise ValueError(f"tol must be >= 0, got {tol}")
+    wrenches = kernel_array(wrenches)
+    if groups is None:
+        groups = wrench_groups(wrenches, normals, g)
     ratio = np.empty(len(wrenches))
     violated = np.zeros(len(g), dtype=np.bool_)
-    row_max = np.full(len(g), -np.inf)
-    _ratios(
-        kernel_array(wrenches),
-        normals,
-        kernel_array(g),
-        float(tol),
-        ratio,
-        violated,
-        row_max,
+    row_max = np.empty(len(g))
+    grouped_ratios(
+        wrenches, groups, float(tol), min(float(floor), 1.0), ratio, violated, row_max
     )
     return ratio, np.flatnonzero(violated), row_max
+
+
+def wrench_groups(
+    wrenches: np.ndarray, normals: np.ndarray, g: np.ndarray
+) -> RowGroups:
+    """The grasp rows grouped for :func:`wrench_ratios` at such wrenches.
+
+    The wrenches only weight the split (by each coordinate's magnitude), so
+    the groups serve as well for other wrenches of the same path.
+    """
+    scale = np.abs(wrenches).max(axis=0) if len(wrenches) else np.ones(6)
+    return group_rows(normals, kernel_array(g), kernel_array(scale))
 
 
 @njit(cache=True)
@@ -127,34 +151,32 @@ def _products(n, w0, w1, w2, w3, w4, w5, out):
         )
 
 
-@njit(cache=True)
-def _ratios(wrenches, n, g, tol, ratio, violated, row_max):
-    values = np.empty(n.shape[1])
-    g_min = g.min()
-    for i in range(wrenches.shape[0]):
-        w = wrenches[i]
-        _products(n, w[0], w[1], w[2], w[3], w[4], w[5], values)
-        best = -np.inf
-        for k in range(values.shape[0]):
-            if values[k] > best:
-                best = values[k]
-            if values[k] > row_max[k]:
-                row_max[k] = values[k]
-        ratio[i] = best
-        if g_min * (best - 1.0) <= 0.0:
-            continue  # no row exceeds its bound at all
-        for k in range(values.shape[0]):
-            if g[k] * (values[k] - 1.0) > tol:
-                violated[k] = True
+#: Skipping a division (:func:`_argmax_ratio`, :func:`_side_hits`): a row
+#: with ``d > 1e-290`` and ``num <= best' d (1 - 2^-50)`` (as computed)
+#: cannot beat ``best``, where ``best' = best`` if it is at least 1e-290,
+#: else 0. Then ``num / d <= best (1 - 5u)`` (u the unit roundoff; an
+#: underflow in the products adds at most 5e-324 / d), which rounds below
+#: ``best``, or ``num <= 0``: the row found is the one dividing every row
+#: would find, with a fraction of the divisions.
+_SHRINK = 1.0 - 2.0**-50
+_NORMAL = 1e-290
 
 
 @njit(cache=True)
-def _argmax_positive(values, sign):
-    """First k maximising ``sign values[k]`` among the positive ones (else -1)."""
-    hit, best = -1, 0.0
-    for k in range(values.shape[0]):
-        if sign * values[k] > best:
-            hit, best = k, sign * values[k]
+def _argmax_ratio(num, den):
+    """First k maximising ``num[k] / den[k]`` among the positive ones (else -1).
+
+    Divides only the rows that can beat the best so far (see ``_SHRINK``).
+    """
+    hit, best, scale = -1, 0.0, 0.0
+    for k in range(num.shape[0]):
+        d = den[k]
+        if d > _NORMAL and num[k] <= scale * d * _SHRINK:
+            continue
+        value = num[k] / d
+        if value > best:
+            hit, best = k, value
+            scale = best if best >= _NORMAL else 0.0
     return hit
 
 
@@ -162,26 +184,34 @@ def _argmax_positive(values, sign):
 def _side_hits(alpha, beta, slack, lifts, selected):
     """Mark the rows maximising and minimising ``alpha / (slack - lift beta)``.
 
-    One pass over the rows for every lift (rays along +u and -u from (0,
-    lift)); only positive maxima count (-1: that ray hits nothing).
+    For every lift (rays along +u and -u from (0, lift)); only positive
+    maxima count (none: that ray hits nothing). Divides only the rows that
+    can beat the running extremes (see ``_SHRINK``).
     """
-    count = lifts.shape[0]
-    plus = np.full(count, -1)
-    minus = np.full(count, -1)
-    best_plus = np.zeros(count)
-    best_minus = np.zeros(count)
-    for k in range(alpha.shape[0]):
-        for j in range(count):
-            value = alpha[k] / (slack[k] - lifts[j] * beta[k])
-            if value > best_plus[j]:
-                plus[j], best_plus[j] = k, value
-            if -value > best_minus[j]:
-                minus[j], best_minus[j] = k, -value
-    for j in range(count):
-        if plus[j] >= 0:
-            selected[plus[j]] = True
-        if minus[j] >= 0:
-            selected[minus[j]] = True
+    for j in range(lifts.shape[0]):
+        lift = lifts[j]
+        plus, minus = -1, -1
+        best_plus = best_minus = scale_plus = scale_minus = 0.0
+        for k in range(alpha.shape[0]):
+            d = slack[k] - lift * beta[k]
+            top = alpha[k]
+            if (
+                d > _NORMAL
+                and top <= scale_plus * d * _SHRINK
+                and -top <= scale_minus * d * _SHRINK
+            ):
+                continue
+            value = top / d
+            if value > best_plus:
+                plus, best_plus = k, value
+                scale_plus = best_plus if best_plus >= _NORMAL else 0.0
+            if -value > best_minus:
+                minus, best_minus = k, -value
+                scale_minus = best_minus if best_minus >= _NORMAL else 0.0
+        if plus >= 0:
+            selected[plus] = True
+        if minus >= 0:
+            selected[minus] = True
 
 
 @njit(cache=True)
@@ -190,7 +220,6 @@ def _rest_and_rays(a, b, c, n, x_cap, stride, heights, rest, selected):
     slack = np.empty(rows)
     alpha = np.empty(rows)
     beta = np.empty(rows)
-    ratio = np.empty(rows)
     held = True
     for i in range(c.shape[0]):
         _products(n, c[i, 0], c[i, 1], c[i, 2], c[i, 3], c[i, 4], c[i, 5], slack)
@@ -206,9 +235,7 @@ def _rest_and_rays(a, b, c, n, x_cap, stride, heights, rest, selected):
         _products(n, a[i, 0], a[i, 1], a[i, 2], a[i, 3], a[i, 4], a[i, 5], alpha)
         _products(n, b[i, 0], b[i, 1], b[i, 2], b[i, 3], b[i, 4], b[i, 5], beta)
         # Along +x from rest: the first row hit maximises beta / slack.
-        for k in range(rows):
-            ratio[k] = beta[k] / slack[k]
-        top = _argmax_positive(ratio, 1.0)
+        top = _argmax_ratio(beta, slack)
         x_top = x_cap[i]
         if top >= 0:
             selected[top] = True
@@ -227,5 +254,6 @@ __all__ = [
     "RAY_STRIDE",
     "normalised_rows",
     "rest_and_candidates",
+    "wrench_groups",
     "wrench_ratios",
 ]

@@ -73,6 +73,7 @@ from rt_drake.retiming.passes import (
     StageRows,
     XBound,
     reachability,
+    stage_rows,
 )
 from rt_drake.retiming.robust_grasp import SetRows
 from rt_drake.retiming.samples import PathSamples, sample_path
@@ -423,15 +424,20 @@ def _solve_exact(
 
     ``fixed``: every other constraint (:func:`_joint_constraints`, cuts);
     ``family``: the grasp rows (:mod:`.grasp_rows`, :mod:`.robust_grasp`).
+    With a grasp the compiled engine projects ``fixed`` once for all the
+    solves.
     """
     s = samples.s
+    base = None
     if family is not None:
         family.begin()
+        if engine == "compiled":
+            base = stage_rows(fixed, np.diff(s))
     while True:
-        constraints = list(fixed)
+        constraints = [] if base is not None else list(fixed)
         if family is not None:
             constraints += family.constraints(samples, segments)
-        solution = reachability(constraints, spline, s, sd_start, sd_end, engine)
+        solution = reachability(constraints, spline, s, sd_start, sd_end, engine, base)
         if solution.x is None or solution.u is None:
             if family is not None and family.widen():
                 continue

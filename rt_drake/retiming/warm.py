@@ -62,6 +62,7 @@ def warm_up() -> None:
         segments, samples, x, u, limits, normals, np.ones(12), 1e-3
     )
     segments.enforced_wrenches(coefficients, x, u)
+    between.grasp_midpoint_rows(segments, coefficients, F, np.ones(12))
     position_excess(grid, path, path, path, -np.ones(1), np.ones(1), 1e-9)
 
 

@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from rt_drake.contact.cache import cached_wrench_polytope
-from rt_drake.retiming import rows, seidel
+from rt_drake.retiming import row_groups, rows, seidel
 from rt_drake.retiming.warm import warm_up
 
 
@@ -74,16 +74,26 @@ def test_no_rows_selected_when_the_object_falls_at_rest(polytope):
 
 
 @settings(max_examples=15, deadline=None)
-@given(seed=st.integers(0, 2**32 - 1), scale=st.floats(0.5, 3.0))
-def test_wrench_ratios_equal_numpy(polytope, seed, scale):
+@given(
+    seed=st.integers(0, 2**32 - 1),
+    scale=st.floats(0.5, 3.0),
+    floor=st.sampled_from([-np.inf, 0.5, 0.9]),
+)
+def test_wrench_ratios_equal_numpy(polytope, seed, scale, floor):
+    """Every row evaluated by numpy; with a floor, the skipped groups change
+    nothing but the maxima of rows that stay at or below the floor."""
     F, g = polytope.F, polytope.g
     rng = np.random.default_rng(seed)
     wrenches = scale * rng.normal(size=(40, 6)) * [0.2, 0.2, 0.1, 3.0, 3.0, 6.0]
     ratio, violated, row_max = rows.wrench_ratios(
-        wrenches, rows.normalised_rows(F, g), g, 1e-9
+        wrenches, rows.normalised_rows(F, g), g, 1e-9, floor=floor
     )
     expected_max = (wrenches @ F.T / g).max(axis=0)
-    np.testing.assert_allclose(row_max, expected_max, rtol=1e-12, atol=1e-12)
+    above = expected_max > floor + 1e-12
+    np.testing.assert_allclose(
+        row_max[above], expected_max[above], rtol=1e-12, atol=1e-12
+    )
+    assert np.all(row_max[~above] <= floor + 2e-12)
     products = wrenches @ F.T
     np.testing.assert_allclose(ratio, (products / g).max(axis=1), rtol=1e-12)
     expected = np.flatnonzero((products - g > 1e-9).any(axis=0))
@@ -104,7 +114,8 @@ def test_warm_up_compiles_what_retime_uses(plant, scenario, polytope):
     kernels = [
         seidel.passes,
         seidel.project,
-        rows._ratios,
+        row_groups._build,
+        row_groups.grouped_ratios,
         rows._rest_and_rays,
         between._lagrange_kernel,
         *(getattr(between_kernels, name) for name in between_kernels.__all__),
