@@ -214,9 +214,10 @@ def test_a_wrong_tool_is_refused_naming_the_key(tmp_path, old, new, message):
         load_scenario(_write(tmp_path, text))
 
 
-def test_the_station_parts_refuse_a_multi_cup_tool_by_name(tmp_path):
+def test_rt_drake_constraint_refuses_a_multi_cup_tool_by_name(tmp_path):
     from rt_drake import ScenarioError, load_scenario
 
     scenario = load_scenario(_write(tmp_path, TOOL_SCENARIO))
-    with pytest.raises(ScenarioError, match="key 'tool': the plant takes one cup"):
-        scenario.single_cup("the plant")
+    message = "key 'tool': rt-drake constraint takes one cup"
+    with pytest.raises(ScenarioError, match=message):
+        scenario.single_cup("rt-drake constraint")

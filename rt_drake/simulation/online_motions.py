@@ -10,7 +10,8 @@ MOVE optimisation on (the scenario's ``planning.optimize_move``, or
 :class:`~rt_drake.planning.shape.MoveOptimizer` within
 ``planning.budget_s``, and the path it returns is the one retimed. Both are
 timed on the wall clock, as in the paper's Table II. The grasp polytope is
-computed once, offline, per cup (as the paper did), not in the cycle; with
+computed once, offline, per cup or multi-cup tool (as the paper did: the
+exact W_c, or the tool's W_T about the tool frame), not in the cycle; with
 a ``first_order`` vacuum the MOVE is retimed for the force guaranteed when
 "part present" fires, ``part_present_fraction P A``: the same polytope
 translated (:func:`~rt_drake.contact.with_suction_force`).
@@ -39,6 +40,7 @@ from pydrake.trajectories import Trajectory
 
 from rt_drake.contact import (
     CupParameters,
+    ToolParameters,
     WrenchPolytope,
     cached_wrench_polytope,
     with_suction_force,
@@ -74,6 +76,38 @@ def held_object(obj: ObjectConfig, X_OC: RigidTransform) -> HeldObject:
     return HeldObject.from_scenario_object(
         dataclasses.replace(obj, grasp=Transform(X_OC))
     )
+
+
+def move_polytope(scenario: Scenario) -> WrenchPolytope:
+    """The exact wrench set the MOVE is retimed under (cached on disk).
+
+    The scenario's cup W_c, or its tool's W_T (about the tool frame, in it;
+    two paper cups: 47,728 rows, about a minute the first time); with a
+    ``first_order`` vacuum, for the suction force guaranteed at "part
+    present": every cup's ``P A`` times ``part_present_fraction`` (one cup:
+    W_c translated; a tool: the set of the tool with those forces).
+    """
+    fraction = scenario.vacuum.move_force_fraction
+    if scenario.tool is None:
+        full = cached_wrench_polytope(scenario.cup)
+        if fraction == 1.0:
+            return full
+        return with_suction_force(full, fraction * scenario.cup.suction_force)
+    tool = scenario.tool_parameters()
+    if fraction != 1.0:
+        tool = ToolParameters(
+            cups=tuple(
+                dataclasses.replace(
+                    mount,
+                    cup=dataclasses.replace(
+                        mount.cup,
+                        suction_force=fraction * mount.cup.suction_force,
+                    ),
+                )
+                for mount in tool.cups
+            )
+        )
+    return cached_wrench_polytope(tool)
 
 
 class OnlineMotions:
@@ -113,14 +147,19 @@ class OnlineMotions:
         self._limits = JointLimits.from_plant(self._plant, scenario.robot)
         self._speed = move_speed
         self._gridpoints = gridpoints
-        self._polytope = self._nominal_polytope() if grasp_constraint else None
+        self._polytope = None
+        if grasp_constraint:
+            self._polytope = move_polytope(scenario)
         self._robust = robust
-        self._move_cup = move_cup(scenario) if grasp_constraint else None
-        self._worst_cup = (
-            worst_cup_polytope(self._move_cup)
-            if self._move_cup is not None and robust and self._move_cup.is_uncertain()
-            else None
-        )
+        # One cup with a friction or suction range: its worst-case rows, once.
+        self._worst_cup = None
+        if (
+            grasp_constraint
+            and robust
+            and scenario.tool is None
+            and scenario.cup.is_uncertain()
+        ):
+            self._worst_cup = worst_cup_polytope(move_cup(scenario))
         warm_up()  # compile the retimer here, not in the first timed MOVE
         if optimize is None:
             optimize = scenario.planning.optimize_move
@@ -170,14 +209,17 @@ class OnlineMotions:
         gives a set or a range; else the nominal object and cup.
         """
         robust = self._robust if robust is None else robust
-        cup = self._move_cup or move_cup(self._scenario)
         held = held_object(obj, X_OC)
         uncertainty = obj.uncertainty or ObjectUncertainty()
-        if not robust or (uncertainty.is_zero() and not cup.is_uncertain()):
-            polytope = self._polytope or self._nominal_polytope()
+        uncertain_cup = (
+            self._scenario.tool is None and self._scenario.cup.is_uncertain()
+        )
+        if not robust or (uncertainty.is_zero() and not uncertain_cup):
+            polytope = self._polytope or move_polytope(self._scenario)
             return GraspConstraint(
                 held=held, F=polytope.F, g=polytope.g, cup=polytope.cup
             )
+        cup = move_cup(self._scenario)
         F, g = self._worst_cup or worst_cup_polytope(cup)
         R_CO = X_OC.inverse().rotation().matrix()
         return GraspConstraint(
@@ -188,15 +230,6 @@ class OnlineMotions:
             objects=uncertain_object(held, uncertainty, R_CO),
             worst_cup=cup.is_uncertain(),
         )
-
-    def _nominal_polytope(self) -> WrenchPolytope:
-        """The nominal cup's W_c at the suction a MOVE may rely on."""
-        cup = self._scenario.single_cup("the cycle")
-        full = cached_wrench_polytope(cup)
-        fraction = self._scenario.vacuum.move_force_fraction
-        if fraction == 1.0:
-            return full
-        return with_suction_force(full, fraction * cup.suction_force)
 
     def velocity_bound(self, path: GeometricPath, s: np.ndarray) -> np.ndarray:
         """Largest s' (1/s) the joint velocity limits allow at each s."""
@@ -346,7 +379,7 @@ def move_cup(scenario: Scenario) -> CupParameters:
     at ``part_present_fraction`` of the suction, and the force then builds
     up: the range reaches down to that fraction of its lowest P A.
     """
-    cup = scenario.single_cup("the cycle")
+    cup = scenario.single_cup("a robust grasp (an uncertainty set)")
     fraction = scenario.vacuum.move_force_fraction
     if fraction == 1.0:
         return cup
@@ -372,4 +405,11 @@ def time_at(result: RetimeResult, s: float) -> float:
     return float(result.trajectory.start_time() + dt[:i].sum() + tau)
 
 
-__all__ = ["NO_GUARANTEE", "OnlineMotions", "held_object", "move_cup", "time_at"]
+__all__ = [
+    "NO_GUARANTEE",
+    "OnlineMotions",
+    "held_object",
+    "move_cup",
+    "move_polytope",
+    "time_at",
+]

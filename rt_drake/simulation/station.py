@@ -1,7 +1,7 @@
 """The simulated cell as a Drake Diagram: ``MakeStation(scenario) -> Diagram``.
 
 A discrete MultibodyPlant (SAP solver) holds the arm, the suction tool (its
-rim: spheres at the contact points of the scenario's cup), the cell and the
+rims: spheres at the contact points of each of the scenario's cups), the cell and the
 objects as free bodies. Objects are compliant hydroelastic boxes against the
 rigid cell and each other (area contact, so they rest and stack flat); the
 rim spheres touch them through point contact. The arm tracks a commanded
@@ -9,7 +9,8 @@ state through the plant's implicit PD actuators, with an inverse-dynamics
 feedforward (gravity, Coriolis and the commanded acceleration, for the arm
 and tool without payload) computed on a separate controller plant. The
 vacuum is a :class:`~rt_drake.simulation.suction.SuctionCup` with the
-scenario's :class:`~rt_drake.scenario.Vacuum` model.
+scenario's :class:`~rt_drake.scenario.Vacuum` model: one vacuum force and
+one seal per cup of the scenario's ``cup`` or ``tool``.
 
 Exported ports of the Diagram:
 
@@ -17,8 +18,9 @@ Exported ports of the Diagram:
   (6), ``suction.valve`` (1; on when > 0.5);
 - outputs ``robot.state`` ([q; v] measured), ``body_poses``,
   ``body_spatial_velocities``, ``suction.sealed`` (per object, 1 while the
-  vacuum holds it), ``suction.suction_force`` (N, the vacuum's current
-  force), ``suction.part_present`` (the vacuum switch, 1 or 0),
+  vacuum of a cup holds it), ``suction.suction_force`` (N, the vacuum's
+  current force, summed over the cups), ``suction.part_present`` (the vacuum
+  switch, 1 or 0: every cup's),
   ``contact_results``, ``query_object``.
 """
 
@@ -49,11 +51,12 @@ from rt_drake.plant import (
     ObjectMode,
     ScenarioModels,
     add_scenario_models,
+    cup_poses_in_body,
     make_arm_plant,
     scenario_cup_frame,
 )
 from rt_drake.scenario import Scenario
-from rt_drake.simulation.suction import SuctionCup, SuctionTarget
+from rt_drake.simulation.suction import CupOnTool, SuctionCup, SuctionTarget
 
 
 @dataclasses.dataclass
@@ -127,16 +130,22 @@ def MakeStation(
     )
 
     cup_frame = scenario_cup_frame(plant, scenario)
+    tool = scenario.tool_parameters()
+    cups = [
+        CupOnTool(X_TC=X_BC, suction_force=mount.cup.suction_force)
+        for mount, X_BC in zip(
+            tool.cups, cup_poses_in_body(cup_frame, tool), strict=True
+        )
+    ]
     suction = builder.AddNamedSystem(
         "suction",
         SuctionCup(
             tool_body_index=cup_frame.body().index(),
-            X_TC=cup_frame.GetFixedPoseInBodyFrame(),
+            cups=cups,
             targets=[
                 _suction_target(plant, scene_graph, models, o.name)
                 for o in scenario.objects
             ],
-            suction_force=scenario.single_cup("the station").suction_force,
             seal_distance=options.seal_distance,
             vacuum=scenario.vacuum,
             time_step=options.time_step,

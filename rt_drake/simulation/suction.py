@@ -1,18 +1,21 @@
-"""Suction physics: the vacuum force between the cup and a box-shaped object.
+"""Suction physics: the vacuum force between each cup and a box-shaped object.
 
-While an object's face lies within the seal distance of the cup, the vacuum
-pulls that object onto the cup with the force ``lambda P A`` along ``-z_C``
-(lambda: the vacuum level of :mod:`.vacuum`, 1 while the valve is on in the
-``fixed`` model) (C: the cup frame, +z out of the cup into the object), applied
-at the point of the face under the cup's centre; the opposite force acts on
-the tool at the cup's centre. Everything else (friction, the rim pushing the
-object) comes from the plant's contact between the six rim spheres and the
-object, with the friction coefficient of the contact model.
+A tool carries one or more cups (:class:`CupOnTool`). Each cup i seals on its
+own: while an object's face lies within the seal distance of cup i, the
+vacuum pulls that object onto the cup with the force ``lambda_i P_i A_i``
+along ``-z_Ci`` (lambda_i: cup i's vacuum level of :mod:`.vacuum`, 1 while
+the valve is on and the cup sealed in the ``fixed`` model) (C_i: the cup's
+frame, +z out of the cup into the object), applied at the point of the face
+under the cup's centre; the opposite force acts on the tool at the cup's
+centre. Everything else (friction, the rims pushing the object) comes from
+the plant's contact between each cup's rim spheres and the object, with the
+friction coefficient of the contact model. One valve drives every cup.
 """
 
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
 
 import numpy as np
 from pydrake.common.value import AbstractValue
@@ -22,6 +25,7 @@ from pydrake.multibody.plant import ExternallyAppliedSpatialForce
 from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.framework import BasicVector, Context, DiscreteValues, LeafSystem
 
+from rt_drake.errors import InputError
 from rt_drake.scenario import Vacuum, VacuumModel
 from rt_drake.simulation.vacuum import next_level, part_present
 
@@ -41,6 +45,19 @@ class SuctionTarget:
 
     body_index: BodyIndex
     half_extents: np.ndarray
+
+
+@dataclasses.dataclass(frozen=True)
+class CupOnTool:
+    """One cup of the tool, for the suction physics.
+
+    Attributes:
+        X_TC: pose of the cup frame C in the tool body T.
+        suction_force: N, the cup's full vacuum force P A.
+    """
+
+    X_TC: RigidTransform
+    suction_force: float
 
 
 @dataclasses.dataclass(frozen=True)
@@ -85,7 +102,7 @@ def find_seal(
 
 
 class SuctionCup(LeafSystem):
-    """The vacuum force of a suction cup on the object under it.
+    """The vacuum force of the tool's suction cups on the objects under them.
 
     .. pydrake_system::
 
@@ -99,24 +116,25 @@ class SuctionCup(LeafSystem):
         - suction_force
         - part_present
 
-    ``valve`` (1-vector, on when > 0.5); ``body_poses`` is the plant's
-    ``body_poses`` output. The cup seals on the target whose face is nearest
-    (gap at most ``seal_distance``); the vacuum level lambda follows the
-    scenario's :class:`~rt_drake.scenario.Vacuum` (:mod:`.vacuum`; state:
-    one discrete value, updated every ``time_step``, ``fixed`` needs none).
-    ``spatial_forces`` is a list of ExternallyAppliedSpatialForce for the
-    plant: ``lambda P A`` on the sealed target and its reaction on the tool;
-    ``sealed`` holds, per target, 1 if the vacuum pulls it, else 0;
-    ``suction_force`` is ``lambda P A`` (N, 1-vector); ``part_present`` is the
-    vacuum switch (1-vector, 1 or 0).
+    ``valve`` (1-vector, on when > 0.5; it drives every cup); ``body_poses``
+    is the plant's ``body_poses`` output. Each cup seals on the target whose
+    face is nearest to it (gap at most ``seal_distance``); each cup's vacuum
+    level lambda_i follows the scenario's :class:`~rt_drake.scenario.Vacuum`
+    (:mod:`.vacuum`; state: one discrete value per cup, updated every
+    ``time_step``, ``fixed`` needs none). ``spatial_forces`` is a list of
+    ExternallyAppliedSpatialForce for the plant: per cup that pulls,
+    ``lambda_i P_i A_i`` on its sealed target and the reaction on the tool;
+    ``sealed`` holds, per target, 1 if the vacuum of any cup pulls it, else 0;
+    ``suction_force`` is ``sum_i lambda_i P_i A_i`` (N, 1-vector);
+    ``part_present`` is the vacuum switch (1-vector, 1 when every cup's level
+    reads part present, else 0).
     """
 
     def __init__(
         self,
         tool_body_index: BodyIndex,
-        X_TC: RigidTransform,
+        cups: Sequence[CupOnTool],
         targets: list[SuctionTarget],
-        suction_force: float,
         seal_distance: float = 0.005,
         vacuum: Vacuum | None = None,
         time_step: float = 1e-3,
@@ -124,19 +142,19 @@ class SuctionCup(LeafSystem):
         """Make the system.
 
         Args:
-            tool_body_index: body T that carries the cup.
-            X_TC: pose of the cup frame C in T.
-            targets: the objects the cup may hold.
-            suction_force: N, the full vacuum force P A.
+            tool_body_index: body T that carries the cups.
+            cups: the cups, each posed in T, with its full vacuum force.
+            targets: the objects the cups may hold.
             seal_distance: m, the largest gap at which the vacuum seals.
             vacuum: how the force follows the valve (default: fixed).
             time_step: s, period of the first_order level update.
         """
         super().__init__()
+        if not cups:
+            raise InputError("the suction tool needs at least one cup, got none")
         self._tool = tool_body_index
-        self._X_TC = X_TC
+        self._cups = tuple(cups)
         self._targets = list(targets)
-        self._force = float(suction_force)
         self._seal_distance = float(seal_distance)
         self._vacuum = vacuum or Vacuum()
         self._valve_port = self.DeclareVectorInputPort("valve", 1)
@@ -145,7 +163,7 @@ class SuctionCup(LeafSystem):
         )
         self._level_index = None
         if self._vacuum.kind is VacuumModel.FIRST_ORDER:
-            self._level_index = self.DeclareDiscreteState(1)
+            self._level_index = self.DeclareDiscreteState(len(self._cups))
             # The update at t_k + h stores lambda(t_k + h): hold, never lead.
             self.DeclarePeriodicDiscreteUpdateEvent(
                 time_step, time_step, self._UpdateLevel
@@ -171,72 +189,93 @@ class SuctionCup(LeafSystem):
     def _valve_on(self, context: Context) -> bool:
         return bool(self._valve_port.Eval(context)[0] > 0.5)
 
-    def _seal(self, context: Context) -> tuple[int, Seal] | None:
-        """Index and seal of the target the cup is sealed on, if any."""
+    def _seals(self, context: Context) -> list[tuple[int, Seal] | None]:
+        """Per cup: index and seal of the target it is sealed on, if any."""
         poses = self._poses_port.Eval(context)
-        X_WC = poses[int(self._tool)] @ self._X_TC
-        best: tuple[int, Seal] | None = None
-        for i, target in enumerate(self._targets):
-            seal = find_seal(X_WC, poses[int(target.body_index)], target.half_extents)
-            if seal is None or seal.gap > self._seal_distance:
-                continue
-            if best is None or seal.gap < best[1].gap:
-                best = (i, seal)
-        return best
+        X_WT = poses[int(self._tool)]
+        seals = []
+        for cup in self._cups:
+            X_WC = X_WT @ cup.X_TC
+            best: tuple[int, Seal] | None = None
+            for i, target in enumerate(self._targets):
+                seal = find_seal(
+                    X_WC, poses[int(target.body_index)], target.half_extents
+                )
+                if seal is None or seal.gap > self._seal_distance:
+                    continue
+                if best is None or seal.gap < best[1].gap:
+                    best = (i, seal)
+            seals.append(best)
+        return seals
 
-    def _level(self, context: Context) -> float:
-        """The vacuum level lambda in [0, 1] (fixed: the valve and the seal)."""
+    def _levels(self, context: Context) -> np.ndarray:
+        """Each cup's vacuum level lambda_i in [0, 1] (fixed: valve and seal)."""
         if self._level_index is None:
-            on = self._valve_on(context) and self._seal(context) is not None
-            return next_level(self._vacuum, 0.0, on, 0.0)
-        return float(context.get_discrete_state(self._level_index).GetAtIndex(0))
+            valve = self._valve_on(context)
+            return np.array(
+                [
+                    next_level(self._vacuum, 0.0, valve and seal is not None, 0.0)
+                    for seal in self._seals(context)
+                ]
+            )
+        return context.get_discrete_state(self._level_index).CopyToVector()
 
-    def _held(self, context: Context) -> tuple[int, Seal, float] | None:
-        """Index, seal and force (N) of the target the vacuum pulls, if any."""
-        force = self._level(context) * self._force
-        if force <= 0.0:
-            return None
-        seal = self._seal(context)
-        return None if seal is None else (*seal, force)
+    def _held(self, context: Context) -> list[tuple[int, int, Seal, float]]:
+        """Cup, target index, seal and force (N) of every cup that pulls."""
+        held = []
+        levels = self._levels(context)
+        for k, (cup, seal) in enumerate(
+            zip(self._cups, self._seals(context), strict=True)
+        ):
+            force = levels[k] * cup.suction_force
+            if force > 0.0 and seal is not None:
+                held.append((k, seal[0], seal[1], force))
+        return held
 
     def _UpdateLevel(self, context: Context, state: DiscreteValues) -> None:
-        on = self._valve_on(context) and self._seal(context) is not None
-        level = next_level(self._vacuum, self._level(context), on, self._time_step)
-        state.get_mutable_vector(self._level_index).SetAtIndex(0, level)
+        valve = self._valve_on(context)
+        levels = self._levels(context)
+        vector = state.get_mutable_vector(self._level_index)
+        for k, seal in enumerate(self._seals(context)):
+            on = valve and seal is not None
+            vector.SetAtIndex(
+                k, next_level(self._vacuum, levels[k], on, self._time_step)
+            )
 
     def _CalcSealed(self, context: Context, output: BasicVector) -> None:
         sealed = np.zeros(len(self._targets))
-        held = self._held(context)
-        if held is not None:
-            sealed[held[0]] = 1.0
+        for _, index, _, _ in self._held(context):
+            sealed[index] = 1.0
         output.SetFromVector(sealed)
 
     def _CalcSuctionForce(self, context: Context, output: BasicVector) -> None:
-        output.SetFromVector([self._level(context) * self._force])
+        forces = [cup.suction_force for cup in self._cups]
+        output.SetFromVector([float(self._levels(context) @ forces)])
 
     def _CalcPartPresent(self, context: Context, output: BasicVector) -> None:
-        present = part_present(self._vacuum, self._level(context))
+        present = all(
+            part_present(self._vacuum, level) for level in self._levels(context)
+        )
         output.SetFromVector([1.0 if present else 0.0])
 
     def _CalcSpatialForces(self, context: Context, output: AbstractValue) -> None:
-        held = self._held(context)
-        if held is None:
-            output.set_value([])
-            return
-        index, seal, force = held
         poses = self._poses_port.Eval(context)
-        X_WC = poses[int(self._tool)] @ self._X_TC
-        # Pull on the object toward the cup: -z_C, in W.
-        f_W = -force * X_WC.rotation().matrix()[:, 2]
-        on_object = ExternallyAppliedSpatialForce()
-        on_object.body_index = self._targets[index].body_index
-        on_object.p_BoBq_B = seal.p_OQ_O
-        on_object.F_Bq_W = _force_only(f_W)
-        on_tool = ExternallyAppliedSpatialForce()
-        on_tool.body_index = self._tool
-        on_tool.p_BoBq_B = self._X_TC.translation()
-        on_tool.F_Bq_W = _force_only(-f_W)
-        output.set_value([on_object, on_tool])
+        forces = []
+        for k, index, seal, force in self._held(context):
+            X_TC = self._cups[k].X_TC
+            X_WC = poses[int(self._tool)] @ X_TC
+            # Pull on the object toward the cup: -z_C, in W.
+            f_W = -force * X_WC.rotation().matrix()[:, 2]
+            on_object = ExternallyAppliedSpatialForce()
+            on_object.body_index = self._targets[index].body_index
+            on_object.p_BoBq_B = seal.p_OQ_O
+            on_object.F_Bq_W = _force_only(f_W)
+            on_tool = ExternallyAppliedSpatialForce()
+            on_tool.body_index = self._tool
+            on_tool.p_BoBq_B = X_TC.translation()
+            on_tool.F_Bq_W = _force_only(-f_W)
+            forces += [on_object, on_tool]
+        output.set_value(forces)
 
 
 def _force_only(f_W: np.ndarray) -> SpatialForce:

@@ -96,26 +96,32 @@ class PathFamily:
         self.q_place = np.asarray(q_place, float)
         self.scale = np.asarray(scale, float)
         self.vertical = vertical
-        self.up = self._vertical_line(self.q_grasp, vertical_height, vertical_points)
-        down = self._vertical_line(self.q_place, vertical_height, vertical_points)
+        self.up, down = self._vertical_lines(vertical_height, vertical_points)
         self.down = down[::-1]
         reference = np.asarray(reference, float)
         self.reference = self.project_vertical(reference) if vertical else reference
         self.dim = self.reference.size
 
-    def _vertical_line(self, q: np.ndarray, height: float, count: int) -> np.ndarray:
-        R, p = self.chain.cup_pose(q)
+    def _vertical_lines(self, height: float, count: int) -> np.ndarray:
+        """(2, count, n): the points up from the grasp and up from the place.
+
+        Newton's method for all of them at once, each seeded at its end.
+        """
+        ends = np.array([self.q_grasp, self.q_place])
+        R, p = self.chain.cup_pose(ends)
         up = -self.chain.gravity_W / np.linalg.norm(self.chain.gravity_W)
-        out = []
-        for h in height * np.arange(1, count + 1) / count:
-            q, error = self.chain.solve_pose(R, p + h * up, q, iterations=20)
-            if error > 1e-8:
-                raise FamilyError(
-                    f"cup pose {1e3 * h:.0f} mm above an end of the MOVE unreachable "
-                    f"by Newton's method (pose error {error:.1e})"
-                )
-            out.append(q)
-        return np.array(out)
+        h = height * np.arange(1, count + 1) / count
+        targets = p[:, None, :] + h[None, :, None] * up
+        R_targets = np.broadcast_to(R[:, None], (2, count, 3, 3))
+        seeds = np.broadcast_to(ends[:, None], (2, count, len(self.q_grasp)))
+        q, error = self.chain.solve_pose(R_targets, targets, seeds, iterations=20)
+        if error.max() > 1e-8:
+            _, k = np.unravel_index(int(np.argmax(error)), error.shape)
+            raise FamilyError(
+                f"cup pose {1e3 * h[k]:.0f} mm above an end of the MOVE unreachable "
+                f"by Newton's method (pose error {error.max():.1e})"
+            )
+        return q
 
     def project_vertical(self, q: np.ndarray, iterations: int = 4) -> np.ndarray:
         """Configurations near q (..., n) with the cup axis along gravity.

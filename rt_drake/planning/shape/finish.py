@@ -95,12 +95,32 @@ def coarse_profile(
 
     On ``grid`` (a number of uniform points, or the points).
     """
-    surrogate = CoarseRetimer(chain, limits, grasp, grid)
-    surrogate.select_rows(np.asarray(waypoints)[None])
+    s, sd, _ = _profile(chain, limits, grasp, waypoints, grid)
+    return None if s is None or sd is None else (s, sd)
+
+
+def _profile(
+    chain: CupChain,
+    limits: JointLimits,
+    grasp: GraspConstraint,
+    waypoints: np.ndarray,
+    grid: int | np.ndarray,
+    rows: np.ndarray | None = None,
+) -> tuple[np.ndarray | None, np.ndarray | None, np.ndarray]:
+    """:func:`coarse_profile`'s ``(s, s')`` (Nones if rejected), and its rows.
+
+    The rows start as ``rows`` if given (the exactness check adds any row
+    the profile violates, so the profile is TOPP-RA's with every row
+    either way), else as those ray shooting picks on the path.
+    """
+    surrogate = CoarseRetimer(chain, limits, grasp, grid, rows)
+    if rows is None:
+        surrogate.select_rows(np.asarray(waypoints)[None])
     duration, x = surrogate.profile(waypoints)
+    used = np.flatnonzero(surrogate.rows)
     if not np.isfinite(duration):
-        return None
-    return surrogate.s, np.sqrt(np.maximum(x, 0.0))
+        return None, None, used
+    return surrogate.s, np.sqrt(np.maximum(x, 0.0)), used
 
 
 def retime_adaptive(
@@ -145,10 +165,13 @@ def retime_adaptive(
     else:
         chain = chain or CupChain(plant, cup)
         waypoints = np.asarray(getattr(path, "waypoints", path), dtype=float)
-        profile = coarse_profile(chain, limits, grasp, waypoints)
-        if profile is not None:
-            middle = adaptive_grid(*profile, MIDDLE_POINTS, weight)
-            profile = coarse_profile(chain, limits, grasp, waypoints, middle)
+        s, sd, rows = _profile(chain, limits, grasp, waypoints, COARSE_POINTS)
+        profile = None
+        if s is not None and sd is not None:
+            # The second pass starts from the first's rows (no ray shooting).
+            middle = adaptive_grid(s, sd, MIDDLE_POINTS, weight)
+            s, sd, _ = _profile(chain, limits, grasp, waypoints, middle, rows)
+            profile = None if s is None or sd is None else (s, sd)
     if profile is not None:
         try:
             return timed(adaptive_grid(*profile, points, weight))
