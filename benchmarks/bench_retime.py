@@ -16,6 +16,13 @@ timed including its dynamics evaluation:
   the cup frame (a box on its spatial acceleration: another constraint, so
   another duration; timed for reference).
 
+Then the robust grasp (issue 15): ours with every object of the uncertainty
+set ``{mass: 0.2, com: [0.01, 0.01, 0.005], inertia: 0.2}`` around the
+notebook (``GraspConstraint.robust``), timed interleaved with the nominal
+retime on the same paths so that the ratio of the two is measured side by
+side, in CPU time of the retiming thread (``time.thread_time``: the machine
+is shared) (``--robust-repeats``).
+
 OpenBLAS is made single-threaded (unless OPENBLAS_NUM_THREADS is set): on a
 busy 2-core machine its threads made toppra's matrix products 10-50x slower.
 """
@@ -54,6 +61,7 @@ from rt_drake.retiming import GraspConstraint, JointLimits, retime  # noqa: E402
 from rt_drake.retiming.passes import AffineConstraint  # noqa: E402
 from rt_drake.retiming.path import drake_path, path_waypoints_and_knots  # noqa: E402
 from rt_drake.scenario import load_scenario  # noqa: E402
+from rt_drake.uncertainty import ObjectUncertainty  # noqa: E402
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 
@@ -155,6 +163,33 @@ METHODS = {
 }
 
 
+#: The uncertainty set of the robust row (issue 15's target set).
+UNCERTAINTY = ObjectUncertainty(mass=0.2, com=[0.01, 0.01, 0.005], inertia=0.2)
+
+
+def robust_vs_nominal(plant, paths, limits, held, cup, R_CO, grid, context, repeats):
+    """Median CPU times (ms, this thread's) of the nominal and robust retime.
+
+    Interleaved, retime by retime, so that both see the same machine load;
+    ``time.thread_time`` does not count time the thread waited for a core.
+
+    Returns (nominal times, robust times, nominal durations, robust durations).
+    """
+    nominal = GraspConstraint.for_cup(held, cup)
+    robust = GraspConstraint.robust(held, UNCERTAINTY, cup, R_CO)
+    times: dict[str, list[float]] = {"nominal": [], "robust": []}
+    durations: dict[str, list[float]] = {"nominal": [], "robust": []}
+    for path in paths:
+        for name, grasp in (("nominal", nominal), ("robust", robust)):
+            durations[name].append(ours(plant, path, limits, grasp, grid, context))
+        for _ in range(repeats):
+            for name, grasp in (("nominal", nominal), ("robust", robust)):
+                start = time.thread_time()
+                ours(plant, path, limits, grasp, grid, context)
+                times[name].append(1e3 * (time.thread_time() - start))
+    return times, durations
+
+
 def main() -> None:
     """Time every method on the same paths and print a table of medians."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -162,6 +197,10 @@ def main() -> None:
     parser.add_argument("--paths", type=int, default=5)
     parser.add_argument("--gridpoints", type=int, default=100)
     parser.add_argument("--object", default="notebook")
+    parser.add_argument("--robust-repeats", type=int, default=30)
+    parser.add_argument(
+        "--only-robust", action="store_true", help="skip the method comparison"
+    )
     args = parser.parse_args()
     scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
     plant = make_arm_plant(scenario)
@@ -179,7 +218,7 @@ def main() -> None:
     print(
         f"{'method':44s} {'median ms':>10s} {'p10 ms':>8s} {'p90 ms':>8s}  durations s"
     )
-    for name, method in METHODS.items():
+    for name, method in {} if args.only_robust else METHODS.items():
         times, durations = [], []
         for path in paths:
             durations.append(method(plant, path, limits, grasp, grid, context))  # warm
@@ -192,6 +231,28 @@ def main() -> None:
             f"{name:44s} {statistics.median(times):10.2f} {deciles[0]:8.2f} "
             f"{deciles[-1]:8.2f}  " + " ".join(f"{d:.3f}" for d in durations)
         )
+    obj = scenario.object(args.object)
+    R_CO = obj.grasp.GetDeterministicValue().inverse().rotation().matrix()
+    times, durations = robust_vs_nominal(
+        plant, paths, limits, held, scenario.cup, R_CO, grid, context,
+        args.robust_repeats,
+    )  # fmt: skip
+    median = {name: statistics.median(t) for name, t in times.items()}
+    print(
+        f"\nrobust grasp (set {UNCERTAINTY}), interleaved with the nominal, "
+        f"{args.robust_repeats} repeats per path, CPU ms (thread_time):"
+    )
+    for name in ("nominal", "robust"):
+        deciles = statistics.quantiles(times[name], n=10)
+        print(
+            f"{name:44s} {median[name]:10.2f} {deciles[0]:8.2f} {deciles[-1]:8.2f}  "
+            + " ".join(f"{d:.3f}" for d in durations[name])
+        )
+    ratios = [r / n for n, r in zip(times["nominal"], times["robust"], strict=True)]
+    print(
+        f"robust / nominal: ratio of medians {median['robust'] / median['nominal']:.2f}"
+        f", median of paired ratios {statistics.median(ratios):.2f}"
+    )
 
 
 if __name__ == "__main__":

@@ -16,6 +16,10 @@ scenario -> plant -> (IK, planner) -> path -> (dynamics + grasp constraint)
   ``GraspConstraint.for_tool`` or ``GraspConstraint.inner_for_tool``;
 - dynamics: ``HeldObject``, ``CupFrame`` (the cup frame of a plant),
   ``object_wrench``, ``make_arm_plant``;
+- what the robot does not know: ``ObjectUncertainty`` (an object's set),
+  ``GraspConstraint.robust`` (hold every object of it, with the worst
+  friction and suction: ``worst_cup_polytope``), ``ObjectInertia`` (objects
+  of a set, for checks and physics);
 - retiming: ``retime``, ``RetimeResult``, ``JointLimits``,
   ``GraspConstraint``, ``check_trajectory``, ``TrajectoryCheck``,
   ``save_trajectory``, ``load_trajectory``, ``sample_trajectory``;
@@ -49,9 +53,11 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
         is_realizable_lp,
         tool_wrench_polytope,
     )
+    from rt_drake.contact.worst_cup import worst_cup_polytope
     from rt_drake.cup_frame import CupFrame
     from rt_drake.dynamics import HeldObject, object_wrench
     from rt_drake.errors import InputError, RtDrakeError, ScenarioError, TooLargeError
+    from rt_drake.object_samples import ObjectInertia
     from rt_drake.phase import Phase
     from rt_drake.planning import (
         CyclePlanner,
@@ -81,6 +87,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
     )
     from rt_drake.scenario import Scenario, load_scenario
     from rt_drake.simulation import MakeStation, OnlineMotions, run_cycle
+    from rt_drake.uncertainty import ObjectUncertainty
 
 #: Public name -> module defining it, imported on first access.
 _LAZY: dict[str, str] = {
@@ -94,9 +101,12 @@ _LAZY: dict[str, str] = {
     "contact_wrench_polytope": "rt_drake.contact",
     "is_realizable": "rt_drake.contact",
     "is_realizable_lp": "rt_drake.contact",
+    "worst_cup_polytope": "rt_drake.contact",
     "CupFrame": "rt_drake.cup_frame",
     "HeldObject": "rt_drake.dynamics",
     "object_wrench": "rt_drake.dynamics",
+    "ObjectInertia": "rt_drake.object_samples",
+    "ObjectUncertainty": "rt_drake.uncertainty",
     "InputError": "rt_drake.errors",
     "RtDrakeError": "rt_drake.errors",
     "ScenarioError": "rt_drake.errors",
@@ -143,6 +153,8 @@ __all__ = [
     "MakeStation",
     "MoveOptimizer",
     "MoveOptimizerOptions",
+    "ObjectInertia",
+    "ObjectUncertainty",
     "OnlineMotions",
     "OptimizedMove",
     "Phase",
@@ -174,6 +186,7 @@ __all__ = [
     "sample_trajectory",
     "save_trajectory",
     "tool_wrench_polytope",
+    "worst_cup_polytope",
 ]
 
 

@@ -155,7 +155,7 @@ def path_wrench_coefficients(
         cup: The cup frame C (default: ``suction_cup``).
     """
     q, dq, ddq = _as_rows(q, dq, ddq)
-    kin = _path_kinematics(plant, held.p_CoScm_C, q, dq, ddq, context, cup)
+    kin = path_kinematics(plant, held.p_CoScm_C, q, dq, ddq, context, cup)
     return _wrench_coefficients(held, kin, dq, ddq)
 
 
@@ -176,7 +176,7 @@ def path_torque_coefficients(
     """
     q, dq, ddq = _as_rows(q, dq, ddq)
     p = np.zeros(3) if held is None else held.p_CoScm_C
-    kin = _path_kinematics(plant, p, q, dq, ddq, context, cup, dynamics=True)
+    kin = path_kinematics(plant, p, q, dq, ddq, context, cup, dynamics=True)
     assert kin.M is not None and kin.Cv is not None and kin.tau_g is not None
     a = _matvec(kin.M, dq)
     b = _matvec(kin.M, ddq) + kin.Cv
@@ -205,7 +205,7 @@ def object_wrench(
     and ``omega = J_w v`` for Scm, then Newton-Euler (module docstring).
     """
     q, v, vdot = _as_rows(q, v, vdot)
-    kin = _path_kinematics(plant, held.p_CoScm_C, q, v, vdot, context, cup)
+    kin = path_kinematics(plant, held.p_CoScm_C, q, v, vdot, context, cup)
     alpha, acc = np.split(_matvec(kin.J, vdot) + kin.bias, 2, axis=1)
     omega = _matvec(kin.J[:, :3], v)
     f = held.mass * (acc - kin.g_C)
@@ -247,7 +247,9 @@ def joint_torques(
     return tau
 
 
-class _Kinematics(NamedTuple):
+class PathKinematics(NamedTuple):
+    """Drake's kinematics of a point of C (and optionally the arm's dynamics)."""
+
     J: np.ndarray  # (N, 6, n) of Scm, kV, in W, expressed in C
     bias: np.ndarray  # (N, 6) A_bias(q, dq)
     g_C: np.ndarray  # (N, 3) gravity expressed in C
@@ -256,7 +258,7 @@ class _Kinematics(NamedTuple):
     tau_g: np.ndarray | None = None  # (N, n)
 
 
-def _path_kinematics(
+def path_kinematics(
     plant: MultibodyPlant,
     p_CoScm_C: np.ndarray,
     q: np.ndarray,
@@ -265,8 +267,13 @@ def _path_kinematics(
     context: Context | None,
     cup: CupFrame | None,
     dynamics: bool = False,
-) -> _Kinematics:
-    """Evaluate Drake at each (q, dq): the only per-point Python loop."""
+) -> PathKinematics:
+    """Evaluate Drake at each (q, dq): the only per-point Python loop.
+
+    Returns the Jacobian and bias acceleration of the point ``p_CoScm_C`` of
+    C (``kV``, in W, expressed in C), gravity in C and, with ``dynamics``,
+    the arm's mass matrix, bias term and gravity torques.
+    """
     n = plant.num_positions()
     if plant.num_velocities() != n or q.shape[1:] != (n,):
         raise InputError(
@@ -306,11 +313,11 @@ def _path_kinematics(
     else:
         index, g_along_axis = base
         g_C = g_along_axis * J[:, :3, index]
-    return _Kinematics(J, A_bias, g_C, M, Cv, tau_g)
+    return PathKinematics(J, A_bias, g_C, M, Cv, tau_g)
 
 
 def _wrench_coefficients(
-    held: HeldObject, kin: _Kinematics, dq: np.ndarray, ddq: np.ndarray
+    held: HeldObject, kin: PathKinematics, dq: np.ndarray, ddq: np.ndarray
 ) -> PathCoefficients:
     """Newton-Euler (module docstring) split into its u, x and constant terms.
 
@@ -371,8 +378,10 @@ def _as_url(model: str) -> str:
 __all__ = [
     "HeldObject",
     "PathCoefficients",
+    "PathKinematics",
     "joint_torques",
     "object_wrench",
+    "path_kinematics",
     "path_torque_coefficients",
     "path_wrench_coefficients",
 ]

@@ -77,4 +77,54 @@ def reference_object_wrench(
     return wrenches
 
 
-__all__ = ["reference_object_wrench"]
+def reference_object_wrenches(
+    plant: MultibodyPlant,
+    objects: list[HeldObject],
+    cup: CupFrame,
+    q: np.ndarray,
+    v: np.ndarray,
+    vdot: np.ndarray,
+    context: Context | None = None,
+) -> np.ndarray:
+    """The wrenches (K, N, 6) on each of K objects at N states.
+
+    The same route as :func:`reference_object_wrench` (Drake's body
+    accelerations, then Newton-Euler in W), the cup body's motion evaluated
+    once per state for all the objects.
+    """
+    q, v, vdot = (np.atleast_2d(np.asarray(a, dtype=float)) for a in (q, v, vdot))
+    context = context or plant.CreateDefaultContext()
+    body = cup.frame.body()
+    X_BC = cup.frame.GetFixedPoseInBodyFrame()
+    R_BC = X_BC.rotation().matrix()
+    count = len(q)
+    R_WB = np.empty((count, 3, 3))
+    alpha = np.empty((count, 3))
+    omega = np.empty((count, 3))
+    a_Bo = np.empty((count, 3))
+    for i in range(count):
+        plant.SetPositionsAndVelocities(context, np.concatenate([q[i], v[i]]))
+        A_WB = plant.CalcSpatialAccelerationsFromVdot(context, vdot[i])[body.index()]
+        V_WB = plant.EvalBodySpatialVelocityInWorld(context, body)
+        R_WB[i] = body.EvalPoseInWorld(context).rotation().matrix()
+        alpha[i], a_Bo[i] = A_WB.rotational(), A_WB.translational()
+        omega[i] = V_WB.rotational()
+    g_W = plant.gravity_field().gravity_vector()
+    R_WC = R_WB @ R_BC
+    out = np.empty((len(objects), count, 6))
+    for k, held in enumerate(objects):
+        p = R_WB @ X_BC.multiply(held.p_CoScm_C)  # (N, 3) Bo to Scm, in W
+        a_Scm = a_Bo + np.cross(alpha, p) + np.cross(omega, np.cross(omega, p))
+        I_W = R_WC @ held.I_Scm_C @ np.swapaxes(R_WC, 1, 2)
+        f_W = held.mass * (a_Scm - g_W)
+        tau_W = np.einsum("nij,nj->ni", I_W, alpha) + np.cross(
+            omega, np.einsum("nij,nj->ni", I_W, omega)
+        )
+        f_C = np.einsum("nji,nj->ni", R_WC, f_W)
+        tau_C = np.einsum("nji,nj->ni", R_WC, tau_W)
+        out[k, :, :3] = tau_C + np.cross(held.p_CoScm_C, f_C)
+        out[k, :, 3:] = f_C
+    return out
+
+
+__all__ = ["reference_object_wrench", "reference_object_wrenches"]

@@ -34,6 +34,7 @@ from rt_drake.errors import InputError, ScenarioError
 from rt_drake.object_model import model_file, read_model_inertia
 from rt_drake.scenario_vacuum import Vacuum, VacuumModel, check_renamed, check_vacuum
 from rt_drake.scenario_yaml import MAX_DEPTH, check_schema, locate, read_yaml
+from rt_drake.uncertainty import ObjectUncertainty
 
 #: Largest scenario file read, bytes (the shipped ones are about 3 kB).
 MAX_SCENARIO_BYTES = 2**20
@@ -74,6 +75,9 @@ class ObjectConfig:
         approach_offset: m; the approach pose is the grasp pose raised by it.
         grasp: X_OC, pose of the cup frame C in the object frame O while held
             (cup +z pointing into the object).
+        uncertainty: What is not known about its inertia (None: known
+            exactly): the MOVE is then retimed to hold every object of the
+            set (:class:`~rt_drake.uncertainty.ObjectUncertainty`).
     """
 
     name: str = ""
@@ -82,6 +86,7 @@ class ObjectConfig:
     goal: Transform = dataclasses.field(default_factory=Transform)
     approach_offset: float = 0.2
     grasp: Transform = dataclasses.field(default_factory=Transform)
+    uncertainty: ObjectUncertainty | None = None
 
 
 @dataclasses.dataclass
@@ -285,6 +290,20 @@ def load_scenario(path: str | Path) -> Scenario:
     return scenario
 
 
+def _check_uncertainty(path: Path, key: str, obj: ObjectConfig) -> None:
+    """The widths in range and the CoM box inside the object's box."""
+    from rt_drake.object_geometry import object_box  # parses the model: Drake
+
+    assert obj.uncertainty is not None
+    try:
+        obj.uncertainty.validate()
+        if any(obj.uncertainty.com):
+            p_OoScm_O, half_extents = object_box(obj)
+            obj.uncertainty.check_inside(p_OoScm_O, half_extents)
+    except InputError as error:
+        raise ScenarioError(f"{path}: key '{key}': {error}") from None
+
+
 def _check_semantics(path: Path, scenario: Scenario) -> None:
     if not scenario.objects:
         raise ScenarioError(
@@ -314,6 +333,8 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
                 raise ScenarioError(
                     f"{where}.{pose}': must be a fixed pose, not a random one"
                 )
+        if obj.uncertainty is not None:
+            _check_uncertainty(path, f"objects[{index}].uncertainty", obj)
     _check_robot(path, scenario.robot)
     transport = scenario.random_transport
     if transport is not None:

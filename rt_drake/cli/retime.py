@@ -5,7 +5,10 @@ waypoint, one column per joint, rad; ``#`` starts a comment) time-optimally
 under the scenario's joint limits and, unless ``--no-grasp-constraint``, the
 grasp stability of the named object held by the scenario's cup, or by its
 multi-cup tool (``tool:``; the exact set W_T, computed once and cached, with
-``robot.cup_frame`` as the tool frame T). Writes an
+``robot.cup_frame`` as the tool frame T): of every object of its uncertainty
+set (and every cup of the cup's friction and suction range) if the scenario
+gives one or the flags ``--mass-uncertainty``, ``--com-uncertainty``,
+``--inertia-uncertainty`` do (one cup only). Writes an
 ``.npz`` from which anyone can re-check the result (the format of
 ``rt_drake.save_trajectory``: samples every 1 ms of t, q, qd, qdd and the
 cup's pose X_WC, the object's inertia, the grasp constraint F, g, the cup,
@@ -17,6 +20,7 @@ atomically.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -49,10 +53,75 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="joint limits only (the object is still recorded)",
     )
     parser.add_argument(
+        "--mass-uncertainty",
+        type=float,
+        metavar="R",
+        help="relative half-width of the object's mass (overrides the scenario's)",
+    )
+    parser.add_argument(
+        "--com-uncertainty",
+        type=_three_floats,
+        metavar="DX,DY,DZ",
+        help="half-widths (m) of its centre of mass along the object's axes",
+    )
+    parser.add_argument(
+        "--inertia-uncertainty",
+        type=float,
+        metavar="R",
+        help="relative half-width of each of its principal moments of inertia",
+    )
+    parser.add_argument(
         "--gridpoints", type=int, default=100, help="TOPP-RA grid points (default 100)"
     )
     parser.add_argument("--out", type=Path, required=True, help="output .npz file")
     parser.set_defaults(run=run)
+
+
+def _three_floats(text: str) -> list[float]:
+    """``DX,DY,DZ``: three numbers separated by commas."""
+    import argparse as _argparse
+
+    parts = text.split(",")
+    try:
+        values = [float(p) for p in parts]
+    except ValueError:
+        raise _argparse.ArgumentTypeError(
+            f"expected three numbers DX,DY,DZ (m), got {text!r}"
+        ) from None
+    if len(values) != 3:
+        raise _argparse.ArgumentTypeError(
+            f"expected three numbers DX,DY,DZ (m), got {text!r}"
+        )
+    return values
+
+
+def object_uncertainty(args: argparse.Namespace, obj):  # noqa: ANN001, ANN201
+    """The object's uncertainty set: the scenario's, with the flags' widths.
+
+    Returns None when neither gives one. Bad widths raise InputError naming
+    the key and value; the CoM box must stay inside the object.
+    """
+    from rt_drake.object_geometry import object_box
+    from rt_drake.uncertainty import ObjectUncertainty
+
+    flags = {
+        "mass": args.mass_uncertainty,
+        "com": args.com_uncertainty,
+        "inertia": args.inertia_uncertainty,
+    }
+    if obj.uncertainty is None and all(v is None for v in flags.values()):
+        return None
+    base = obj.uncertainty or ObjectUncertainty()
+    fields = {
+        "mass": base.mass,
+        "com": list(base.com),
+        "inertia": base.inertia,
+        **{k: v for k, v in flags.items() if v is not None},
+    }
+    uncertainty = ObjectUncertainty(**fields)
+    if any(uncertainty.com):
+        uncertainty.check_inside(*object_box(obj))
+    return uncertainty
 
 
 def read_waypoints(path: Path, joints: int) -> np.ndarray:
@@ -138,12 +207,14 @@ def run(args: argparse.Namespace) -> int:
     except InputError as error:  # e.g. two equal rows: name the file
         raise InputError(f"{args.waypoints}: {error}") from None
     held = HeldObject.from_scenario_object(obj)
+    obj = dataclasses.replace(obj, uncertainty=object_uncertainty(args, obj))
+    uncertain = obj.uncertainty is not None and not obj.uncertainty.is_zero()
     cup_model: CupParameters | ToolParameters
     grasp: GraspConstraint | None = None
-    if scenario.tool is None:
-        cup_model = scenario.cup
+    if scenario.tool is None or uncertain:
+        cup_model = scenario.single_cup("an object's uncertainty set")
         if not args.no_grasp_constraint:
-            grasp = GraspConstraint.for_cup(held, cup_model)
+            grasp = GraspConstraint.for_scenario_object(obj, cup_model)
     else:
         cup_model = scenario.tool_parameters()
         if not args.no_grasp_constraint:
@@ -160,6 +231,11 @@ def run(args: argparse.Namespace) -> int:
     if isinstance(cup_model, ToolParameters):
         count = len(cup_model.cups)
         constraint += f", a tool of {count} cup{'s' if count != 1 else ''}"
+    if grasp is not None and grasp.is_robust:
+        constraint = (
+            f"robust grasp constraint: {grasp.guarantee()}; "
+            f"{result.grasp_rows} rows of {result.grasp_objects} vertex objects"
+        )
     # A binding constraint is at 0 to the LP's tolerance (about -1e-12): no "-0.000".
     margin = round(float(result.margin.min()), 3) + 0.0
     print(

@@ -148,6 +148,8 @@ def run(args: argparse.Namespace) -> int:
     replay = args.out / REPLAY_FILE
     write_text_atomically(replay, meshcat.StaticHtml())
     print(table_markdown(report))
+    for entry in report["objects"]:
+        print(f"MOVE {entry['name']} holds {entry['guarantee']}")
     print(f"{summary_line(report)}; simulated in {wall_s:.1f} s wall")
     print(f"wrote {json_path}, {md_path}, {replay}")
     if args.meshcat:

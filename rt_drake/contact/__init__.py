@@ -15,6 +15,8 @@ origin, expressed in C. The grasp is stable when ``F w <= g``.
 - :func:`is_realizable` (H-rep), :func:`is_realizable_lp` (independent LP,
   for a cup or a tool).
 - :func:`guided_approximation`: the paper's inner approximation.
+- :func:`worst_cup_polytope`: the wrenches every cup of a friction and
+  suction range can exert (``friction_min``, ``suction_force_min``).
 
 Only :mod:`rt_drake.contact.cup` and :mod:`rt_drake.contact.tool` (numpy)
 are imported with the package, so a scenario can name ``CupParameters`` and
@@ -48,6 +50,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers
         tool_symmetry,
         tool_wrench_polytope,
     )
+    from rt_drake.contact.worst_cup import worst_cup_polytope
     from rt_drake.contact.wrench_polytope import (
         WrenchPolytope,
         contact_wrench_polytope,
@@ -76,6 +79,7 @@ _LAZY = {
     "tool_summands": "tool_polytope",
     "tool_symmetry": "tool_polytope",
     "tool_wrench_polytope": "tool_polytope",
+    "worst_cup_polytope": "worst_cup",
 }
 
 __all__ = [
@@ -104,6 +108,7 @@ __all__ = [
     "tool_symmetry",
     "tool_wrench_polytope",
     "with_suction_force",
+    "worst_cup_polytope",
 ]
 
 

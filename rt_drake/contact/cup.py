@@ -62,6 +62,14 @@ class CupParameters:
         sides: Number k of sides of the linearised friction cone (>= 3).
         suction_force: Suction force P A pulling the object onto the cup, N.
         max_normal_force: Bound f_max on the normal force of each point, N.
+        friction_min: The lowest friction the cup may have (dust, wear), in
+            [0, friction]; None: friction is known.
+        suction_force_min: The lowest suction force (leaks), N, in (0,
+            suction_force]; None: suction is known.
+
+    The last two describe what is not known about the cup; they are not
+    parameters of its wrench set (``as_dict`` leaves them out) but of the
+    range of cups a robust grasp must work with (:meth:`worst_case`).
     """
 
     radius: float = 0.0125
@@ -70,6 +78,8 @@ class CupParameters:
     sides: int = 4
     suction_force: float = 20.0
     max_normal_force: float = 33.3
+    friction_min: float | None = None
+    suction_force_min: float | None = None
 
     def __post_init__(self) -> None:
         self.validate()
@@ -97,6 +107,28 @@ class CupParameters:
                     f"cup {name} must be in [{low:g}, {high:g}]{_UNITS[name]}, "
                     f"got {value!r}"
                 )
+        for name, nominal in (
+            ("friction_min", "friction"),
+            ("suction_force_min", "suction_force"),
+        ):
+            value = getattr(self, name)
+            if value is None:
+                continue
+            if isinstance(value, bool) or not isinstance(
+                value, (int, float, np.integer, np.floating)
+            ):
+                raise InputError(f"cup {name} must be a number, got {value!r}")
+            low = PARAMETER_RANGES[nominal][0]
+            if not math.isfinite(value) or value < low:
+                raise InputError(
+                    f"cup {name} must be finite and >= {low:g}{_UNITS[nominal]}, "
+                    f"got {value!r}"
+                )
+            if value > getattr(self, nominal):
+                raise InputError(
+                    f"cup {name} = {value!r} exceeds {nominal} = "
+                    f"{getattr(self, nominal)!r}"
+                )
 
     @classmethod
     def from_vacuum(cls, pressure_pa: float, area_m2: float, **fields: Any) -> Self:
@@ -115,11 +147,48 @@ class CupParameters:
         return cls(suction_force=float(pressure_pa) * float(area_m2), **fields)
 
     def as_dict(self) -> dict[str, float | int]:
-        """Return the fields as plain Python numbers, in declaration order."""
+        """Return the model's fields as plain Python numbers, in declaration order.
+
+        The fields that define the wrench set (and its cache key): not
+        ``friction_min`` and ``suction_force_min``.
+        """
         return {
             f.name: (int if f.type is int else float)(getattr(self, f.name))
             for f in dataclasses.fields(self)
+            if f.name not in _RANGE_FIELDS
         }
+
+    def is_uncertain(self) -> bool:
+        """Whether friction or suction is known only down to a minimum."""
+        return (
+            self.friction_min is not None and self.friction_min < self.friction
+        ) or (
+            self.suction_force_min is not None
+            and self.suction_force_min < self.suction_force
+        )
+
+    def worst_case(self) -> Self:
+        """The cup at ``friction_min`` and ``suction_force_min`` (no ranges).
+
+        W_c grows with the friction (every friction polygon contains the
+        polygons of lower friction at the same normal force): its wrench set
+        is contained in that of every cup of the range. Suction shifts W_c
+        along the cup axis instead (see :mod:`rt_drake.contact.worst_cup`).
+        """
+        fields = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        fields.update(
+            friction=self.friction if self.friction_min is None else self.friction_min,
+            suction_force=self.suction_force
+            if self.suction_force_min is None
+            else self.suction_force_min,
+            friction_min=None,
+            suction_force_min=None,
+        )
+        return type(self)(**fields)
+
+
+#: Fields of CupParameters that describe a range of cups, not one cup.
+_RANGE_FIELDS = ("friction_min", "suction_force_min")
 
 
 _UNITS = {

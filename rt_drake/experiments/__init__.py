@@ -4,6 +4,9 @@
 - :mod:`.transport`: Table I, random transports with and without the grasp
   constraint; :mod:`.optimized_transport`: the optimised MOVE of each
   (issue 13); :mod:`.transport_report` and :mod:`.plots` write its report.
+- :mod:`.robust_transport`: Table I with objects known only to an
+  uncertainty set, nominal and robust plans played with a true object;
+  :mod:`.robust_report` writes its report.
 - :mod:`.cycle_report`: Table II, the cycle's timing breakdown.
 """
 
@@ -13,6 +16,15 @@ from rt_drake.experiments.cycle_report import (
     summary_line,
     table_markdown,
     write_report,
+)
+from rt_drake.experiments.robust_report import (
+    ROBUST_FILES,
+    robust_table,
+    write_robust_report,
+)
+from rt_drake.experiments.robust_transport import (
+    robust_trial,
+    run_robust_transport_experiment,
 )
 from rt_drake.experiments.rollout import (
     SLIP_ROTATION,
@@ -36,6 +48,7 @@ from rt_drake.experiments.transport_report import (
 
 __all__ = [
     "REPORT_FILES",
+    "ROBUST_FILES",
     "SLIP_ROTATION",
     "SLIP_TRANSLATION",
     "SPEED_FACTORS",
@@ -44,6 +57,9 @@ __all__ = [
     "critical_speed",
     "cycle_report",
     "optimized_summary",
+    "robust_table",
+    "robust_trial",
+    "run_robust_transport_experiment",
     "run_transport_experiment",
     "simulate_move",
     "summarize",
@@ -52,5 +68,6 @@ __all__ = [
     "transport_table",
     "transport_trial",
     "write_report",
+    "write_robust_report",
     "write_transport_report",
 ]

@@ -108,6 +108,44 @@ def plot_durations(trials: list[dict[str, Any]], path: Path) -> Path:
     return _save(fig, path)
 
 
+def plot_robustness(trials: list[dict[str, Any]], path: Path) -> Path:
+    """The price of robustness (durations) against its gain (slip, success).
+
+    Top: each path's MOVE duration, nominal and robust plan (x: the true
+    object slipped). Bottom: how far the true object slipped on the cup.
+    """
+    import numpy as np
+
+    plt = _pyplot()
+    index = np.arange(len(trials))
+    fig, (top, bottom) = plt.subplots(
+        2, 1, figsize=(max(6, 0.45 * len(trials) + 2), 6), sharex=True
+    )
+    width = 0.4
+    for offset, key, color, label in (
+        (-width / 2, "nominal", "tab:red", "nominal object's plan"),
+        (width / 2, "robust", "tab:green", "robust plan (every object of the set)"),
+    ):
+        durations = [t[f"duration_{key}_s"] for t in trials]
+        top.bar(index + offset, durations, width, color=color, label=label)
+        slips = [t[f"slip_{key}"]["max_translation_mm"] for t in trials]
+        bottom.bar(index + offset, slips, width, color=color, label=label)
+        for i, t in enumerate(trials):
+            if not t[f"success_{key}"]:
+                top.plot(i + offset, durations[i] + 0.03, "kx")
+    bottom.axhline(5.0, color="k", linewidth=0.8, linestyle="--")
+    bottom.set_yscale("log")
+    longest = max(max(t["duration_nominal_s"], t["duration_robust_s"]) for t in trials)
+    top.set_ylim(0, 1.4 * longest)
+    top.set_ylabel("MOVE duration (s)")
+    top.set_title("price of robustness (duration) and its gain (x: slipped)")
+    top.legend(loc="upper left", ncol=2)
+    bottom.set_ylabel("true object's slip (mm; - - 5 mm)")
+    bottom.set_xlabel("path")
+    bottom.set_xticks(index)
+    return _save(fig, path)
+
+
 def plot_optimized(trial: dict[str, Any], path: Path) -> Path:
     """The spline MOVE and the optimised MOVE of a trial, side by side.
 
@@ -144,4 +182,10 @@ def plot_optimized(trial: dict[str, Any], path: Path) -> Path:
     return _save(fig, path)
 
 
-__all__ = ["plot_durations", "plot_margins", "plot_optimized", "plot_profiles"]
+__all__ = [
+    "plot_durations",
+    "plot_margins",
+    "plot_optimized",
+    "plot_profiles",
+    "plot_robustness",
+]

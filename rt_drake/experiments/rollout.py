@@ -16,6 +16,7 @@ from collections.abc import Sequence
 
 import numpy as np
 from pydrake.geometry import Meshcat
+from pydrake.multibody.tree import SpatialInertia
 from pydrake.trajectories import PiecewisePolynomial, Trajectory
 
 from rt_drake.retiming import TimeScaled
@@ -92,15 +93,21 @@ def simulate_move(
     move: Trajectory,
     speed: float = 1.0,
     meshcat: Meshcat | None = None,
+    object_inertias: dict[str, SpatialInertia] | None = None,
 ) -> Rollout:
     """Play ``move`` (``speed`` times faster) in the cycle's physics; measure slip.
 
     With ``meshcat``, the run is recorded there for an offline replay
-    (``meshcat.StaticHtml()``).
+    (``meshcat.StaticHtml()``). ``object_inertias``: the objects' true
+    inertias, if not their models' (:func:`~rt_drake.simulation.run_cycle`).
     """
     trajectory = move if speed == 1.0 else TimeScaled(move, speed)
     result = run_cycle(
-        scenario, Replay(q_grasp, trajectory), meshcat=meshcat, max_sim_time=30.0
+        scenario,
+        Replay(q_grasp, trajectory),
+        meshcat=meshcat,
+        max_sim_time=30.0,
+        object_inertias=object_inertias,
     )
     (record,) = result.records
     return Rollout(record.max_slip_translation, record.max_slip_rotation)

@@ -8,7 +8,11 @@ internal:
 - :mod:`.path`: the joint path ``q(s)`` in the planner's spline convention.
 - :mod:`.at_rest`: the object and the arm must be holdable at rest.
 - :mod:`.rows`: which grasp rows the stage LPs get, and the exactness check
-  (compiled).
+  (compiled); :mod:`.grasp_rows` applies them for one object.
+- :mod:`.robust_grasp`: the grasp of a set of objects (robust to what the
+  robot does not know): (row, vertex) pairs built as they bind, with
+  :mod:`.robust_rows` (the worst vertex of every row, compiled),
+  :mod:`.set_tables` and :mod:`.set_pairs`.
 - :mod:`.passes`: TOPP-RA's passes on precomputed constraints.
 - :mod:`.seidel`: toppra's seidel LP and the passes, compiled with numba.
 - :mod:`.warm`: compiles the kernels before anything is timed.

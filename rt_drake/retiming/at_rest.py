@@ -9,8 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from rt_drake.inertial_set import SetVertex
 from rt_drake.retiming.errors import GraspUnstableAtRestError, TorqueLimitAtRestError
-from rt_drake.retiming.limits import GraspConstraint
+from rt_drake.retiming.limits import GraspConstraint, JointLimits
 
 
 def check_grasp_at_rest(
@@ -38,6 +39,59 @@ def check_grasp_at_rest(
     )
 
 
+def set_grasp_at_rest(
+    s: float, c: np.ndarray, worst: SetVertex, grasp: GraspConstraint
+) -> None:
+    """Raise: the worst object of the set slips at rest at ``s``.
+
+    Args:
+        s: Where.
+        c: (6,) the worst object's wrench at rest there.
+        worst: The worst object of the set (a vertex of its outer set).
+        grasp: The constraint (for the message).
+    """
+    excess = float(np.max(grasp.F @ c - grasp.g))
+    tilt = _tilt(-c[3:] / worst.mass)
+    p_mm = ", ".join(f"{1e3 * v:.1f}" for v in worst.p_CoScm_C)
+    raise GraspUnstableAtRestError(
+        f"object slips even at rest at s = {s:.3f}: gravity alone exceeds the "
+        f"grasp constraint for the worst object of the set ({worst.mass:.3g} kg, "
+        f"centre of mass at ({p_mm}) mm in the cup frame; {grasp.describe()}), "
+        f"cup axis {tilt:.0f} deg from pointing down; worst row exceeded by "
+        f"{excess:.3g} N or N m",
+        s=float(s),
+    )
+
+
+def set_torque_at_rest(
+    s: float, row: int, ratio: float, worst: SetVertex, limits: JointLimits
+) -> None:
+    """Raise: holding the arm with the worst object exceeds a torque limit.
+
+    Args:
+        s: Where.
+        row: The torque row (j: +tau_j, n + j: -tau_j).
+        ratio: ``|tau_j| / tau_max_j`` there.
+        worst: The worst object of the set.
+        limits: The joint limits.
+    """
+    assert limits.torque is not None
+    j = row % len(limits.torque)
+    raise TorqueLimitAtRestError(
+        f"holding the arm at rest at s = {s:.3f} with the worst object of the set "
+        f"({worst.mass:.3g} kg) needs {ratio * limits.torque[j]:.3g} N m at joint "
+        f"{j + 1}, above its limit {limits.torque[j]:.3g} N m",
+        s=float(s),
+    )
+
+
+def _tilt(g_C: np.ndarray) -> float:
+    """Angle (deg) between the cup's +z and gravity."""
+    return float(
+        np.degrees(np.arccos(np.clip(g_C[2] / np.linalg.norm(g_C), -1.0, 1.0)))
+    )
+
+
 def check_torque_at_rest(
     s: np.ndarray, tau_rest: np.ndarray, limit: np.ndarray
 ) -> None:
@@ -59,4 +113,9 @@ def check_torque_at_rest(
     )
 
 
-__all__ = ["check_grasp_at_rest", "check_torque_at_rest"]
+__all__ = [
+    "check_grasp_at_rest",
+    "check_torque_at_rest",
+    "set_grasp_at_rest",
+    "set_torque_at_rest",
+]

@@ -259,6 +259,11 @@ def joint_cuts(
     )
 
 
+def subpoint_x(segments: Segments, x: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """(N, K) ``x = s'^2`` at the sub-points: ``x_i + 2 theta ds_i u_i`` (>= 0)."""
+    return np.maximum(x[:-1, None] + segments.step * u[:, None], 0.0)
+
+
 def refinement_points(
     segments: Segments,
     samples: PathSamples,
@@ -268,6 +273,7 @@ def refinement_points(
     normals: np.ndarray | None,
     row_max: np.ndarray | None,
     tolerance: float,
+    grasp_ratio: np.ndarray | None = None,
 ) -> np.ndarray:
     """Grid points to add where torque or grasp is exceeded in a segment.
 
@@ -282,20 +288,30 @@ def refinement_points(
             wrenches the stage LPs enforced (from the exactness check; exact
             where above ``1 - ROW_SCREEN``), or None.
         tolerance: Relative excess allowed.
+        grasp_ratio: For a set of objects, (N, K) its worst object's largest
+            ``F_k w / g_k`` and torque ratio at the sub-points (from
+            :meth:`.robust_grasp.SetRows.between`; the samples' torques are
+            then the arm's alone and not checked here), or None.
 
     Returns:
         Sorted new s values (empty: nothing exceeded).
     """
     checks: list[tuple[PathCoefficients, np.ndarray, bool]] = []
-    if samples.torque is not None and limits.torque is not None:
+    if (
+        samples.torque is not None
+        and limits.torque is not None
+        and samples.torque_set is None  # a set's torques come with its grasp
+    ):
         checks.append((samples.torque, np.diag(1.0 / limits.torque), True))
     if samples.wrench is not None and normals is not None and row_max is not None:
         rows = np.flatnonzero(row_max > 1.0 - ROW_SCREEN)
         if rows.size:
             checks.append((samples.wrench, normals[:, rows], False))
-    if not checks:
+    if not checks and grasp_ratio is None:
         return np.zeros(0)
     excess = np.full(len(u), -np.inf)
+    if grasp_ratio is not None:
+        excess = grasp_ratio.max(axis=1) - 1.0
     part = np.empty(len(u))
     x, u = kernel_array(x), kernel_array(u)
     for (a, b, c), rows_map, absolute in checks:
@@ -390,4 +406,5 @@ __all__ = [
     "interior_rows",
     "joint_cuts",
     "refinement_points",
+    "subpoint_x",
 ]

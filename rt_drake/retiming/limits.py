@@ -1,4 +1,11 @@
-"""What the retimer constrains: joint limits and the grasp of a held object."""
+"""What the retimer constrains: joint limits and the grasp of a held object.
+
+A grasp constraint holds one object (:meth:`GraspConstraint.for_cup`), or
+every object of a set: an uncertainty set around a nominal object with the
+worst friction and suction of the cup (:meth:`GraspConstraint.robust`,
+:mod:`rt_drake.inertial_set`, :mod:`rt_drake.contact.worst_cup`), or a finite
+list of objects (:meth:`GraspConstraint.for_objects`).
+"""
 
 from __future__ import annotations
 
@@ -6,15 +13,20 @@ import dataclasses
 from collections.abc import Sequence
 
 import numpy as np
+from pydrake.common.schema import Transform
+from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 
 from rt_drake.contact import CupParameters, ToolParameters, cached_wrench_polytope
 from rt_drake.contact.tool_polytope import DEFAULT_MAX_FACETS
+from rt_drake.contact.worst_cup import worst_cup_polytope
 from rt_drake.contact.wrench_polytope import check_h_representation
 from rt_drake.dynamics import HeldObject
 from rt_drake.errors import InputError
+from rt_drake.inertial_set import ObjectSet, object_list, uncertain_object
 from rt_drake.retiming.errors import RetimeInputError
-from rt_drake.scenario import RobotConfig
+from rt_drake.scenario import ObjectConfig, RobotConfig
+from rt_drake.uncertainty import ObjectUncertainty
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -123,6 +135,15 @@ class JointLimits:
         return cls(chosen["velocity"], chosen["acceleration"], chosen.get("torque"))
 
 
+def _check_single_cup(cup: object, method: str) -> None:
+    """Sets of objects are held by one cup (not yet by a multi-cup tool)."""
+    if not isinstance(cup, CupParameters):
+        raise RetimeInputError(
+            f"GraspConstraint.{method} needs one cup (CupParameters), got "
+            f"{type(cup).__name__}"
+        )
+
+
 def _effort_limits(plant: MultibodyPlant) -> np.ndarray:
     """Per velocity: the effort limit of the joint's actuator (inf if none)."""
     limits = np.full(plant.num_velocities(), np.inf)
@@ -157,16 +178,22 @@ class GraspConstraint:
     the tool's set W_T about T's origin, in T (:meth:`for_tool`).
 
     Attributes:
-        held: Inertia of the object in C (or T).
+        held: Inertia of the object in C or T (the nominal one of a set).
         F: (R, 6) rows (unit norm from :mod:`rt_drake.contact`).
         g: (R,) offsets.
         cup: The cup or tool the polytope belongs to (for messages), if known.
+        objects: The set of objects to hold (None: ``held`` alone); see
+            :attr:`is_robust` (one cup only).
+        worst_cup: Whether F, g hold for every cup of ``cup``'s friction and
+            suction range (:func:`~rt_drake.contact.worst_cup_polytope`).
     """
 
     held: HeldObject
     F: np.ndarray
     g: np.ndarray
     cup: CupParameters | ToolParameters | None = None
+    objects: ObjectSet | None = None
+    worst_cup: bool = False
 
     def __post_init__(self) -> None:
         F = np.array(self.F, dtype=float)
@@ -189,6 +216,105 @@ class GraspConstraint:
         """The exact polytope of ``cup`` (cached on disk by rt_drake.contact)."""
         polytope = cached_wrench_polytope(cup)
         return cls(held=held, F=polytope.F, g=polytope.g, cup=cup)
+
+    @classmethod
+    def robust(
+        cls,
+        held: HeldObject,
+        uncertainty: ObjectUncertainty,
+        cup: CupParameters,
+        R_CO: np.ndarray | None = None,
+    ) -> GraspConstraint:
+        """Hold every object of ``uncertainty`` around ``held`` with every cup.
+
+        The wrench set is the one every cup of ``cup``'s friction and suction
+        range can exert (:func:`~rt_drake.contact.worst_cup_polytope`); the
+        objects are the outer set Q of :func:`~rt_drake.inertial_set.
+        uncertain_object`, which contains every admissible object. A
+        zero-width set of a known cup is exactly :meth:`for_cup`.
+
+        Args:
+            held: The nominal object in C.
+            uncertainty: Half-widths of mass, CoM (along the object's axes)
+                and principal moments.
+            cup: The cup, with optional ``friction_min``, ``suction_force_min``.
+            R_CO: (3, 3) the object's axes in C (default identity).
+        """
+        _check_single_cup(cup, "robust")
+        F, g = worst_cup_polytope(cup)
+        objects = uncertain_object(held, uncertainty, R_CO)
+        return cls(
+            held=held,
+            F=F,
+            g=g,
+            cup=cup,
+            objects=objects,
+            worst_cup=cup.is_uncertain(),
+        )
+
+    @classmethod
+    def for_objects(
+        cls, objects: list[HeldObject], cup: CupParameters
+    ) -> GraspConstraint:
+        """Hold each object of a list (the first is the nominal one).
+
+        Retiming under it stacks every object's constraint: with a dense
+        sample of an uncertainty set, its duration bounds the robust optimum
+        from below.
+        """
+        _check_single_cup(cup, "for_objects")
+        F, g = worst_cup_polytope(cup)
+        return cls(
+            held=objects[0],
+            F=F,
+            g=g,
+            cup=cup,
+            objects=object_list(objects),
+            worst_cup=cup.is_uncertain(),
+        )
+
+    @classmethod
+    def for_scenario_object(
+        cls,
+        obj: ObjectConfig,
+        cup: CupParameters,
+        X_OC: RigidTransform | None = None,
+        robust: bool = True,
+    ) -> GraspConstraint:
+        """The grasp of a scenario object held at ``X_OC`` (default its grasp).
+
+        Robust (:meth:`robust`) when ``robust`` and the object has an
+        uncertainty set or the cup a friction or suction range; else
+        :meth:`for_cup` (the nominal object and cup).
+        """
+        if X_OC is not None:
+            obj = dataclasses.replace(obj, grasp=Transform(X_OC))
+        held = HeldObject.from_scenario_object(obj)
+        uncertainty = obj.uncertainty or ObjectUncertainty()
+        if robust and (not uncertainty.is_zero() or cup.is_uncertain()):
+            X_CO = obj.grasp.GetDeterministicValue().inverse()
+            return cls.robust(held, uncertainty, cup, X_CO.rotation().matrix())
+        return cls.for_cup(held, cup)
+
+    @property
+    def is_robust(self) -> bool:
+        """Whether the constraint holds a set of objects, not one object."""
+        return self.objects is not None and not self.objects.is_single()
+
+    def guarantee(self) -> str:
+        """What a trajectory retimed under this constraint holds, in words."""
+        if self.is_robust:
+            assert self.objects is not None
+            what = f"every object of the set ({self.objects.label})"
+        else:
+            what = f"the nominal object ({self.held.mass:.3g} kg)"
+        if self.worst_cup and isinstance(self.cup, CupParameters):
+            cup = self.cup.worst_case()
+            what += (
+                f", friction down to {cup.friction:.3g} and suction down to "
+                f"{cup.suction_force:.3g} N"
+            )
+        return what
 
     @classmethod
     def for_tool(
@@ -246,11 +372,15 @@ class GraspConstraint:
     def describe(self) -> str:
         """E.g. ``object 0.551 kg, suction 20 N`` (a tool: ``2 cups, 20 + 20 N``)."""
         text = f"object {self.held.mass:.3g} kg"
+        if self.is_robust:
+            text = f"every object of the set around {text}"
         if isinstance(self.cup, ToolParameters):
             forces = " + ".join(f"{m.cup.suction_force:.3g}" for m in self.cup.cups)
             text += f", {len(self.cup.cups)} cups, suction {forces} N"
         elif self.cup is not None:
             text += f", suction {self.cup.suction_force:.3g} N"
+            if self.cup.suction_force_min is not None:
+                text += f" (at least {self.cup.suction_force_min:.3g} N)"
         return text
 
 

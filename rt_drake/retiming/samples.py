@@ -7,6 +7,12 @@ torques ``tau = a u + b x + c`` (if torques are limited) and of the object
 wrench ``w = a u + b x + c`` (if an object is held). Drake is the expensive
 part (about 20 us per point), so a refined grid evaluates only its new
 points (:func:`with_points`).
+
+For a set of objects (a robust grasp, :mod:`rt_drake.inertial_set`) the
+wrench is linear in the inertial parameters (:mod:`rt_drake.regressor`):
+the samples then hold the coefficients of the set's P parameter columns
+(``wrench_set``, each (G, P, 6); ``torque_set``, each (G, P, n), the held
+object's share of the joint torques) and ``torque`` is the arm's own.
 """
 
 from __future__ import annotations
@@ -24,6 +30,7 @@ from rt_drake.dynamics import (
     path_torque_coefficients,
     path_wrench_coefficients,
 )
+from rt_drake.regressor import path_wrench_regressor, torque_regressor
 from rt_drake.retiming.joint_path import JointPath
 
 
@@ -34,8 +41,13 @@ class PathSamples(NamedTuple):
         s: (G,) the grid.
         q, dq, ddq: (G, n) the path and its first two derivatives in s.
         x_cap: (G,) the joint-velocity bound on ``s'^2`` (inf where q' = 0).
-        torque: torque coefficients (each (G, n)), or None.
+        torque: torque coefficients (each (G, n)), or None; with a set of
+            objects, the arm's alone.
         wrench: object-wrench coefficients (each (G, 6)), or None.
+        wrench_set: with a set of objects, the wrench coefficients of its
+            parameter columns (each (G, P, 6)), else None.
+        torque_set: with a set of objects and torque limits, the torques
+            of its parameter columns (each (G, P, n)), else None.
     """
 
     s: np.ndarray
@@ -45,6 +57,8 @@ class PathSamples(NamedTuple):
     x_cap: np.ndarray
     torque: PathCoefficients | None
     wrench: PathCoefficients | None
+    wrench_set: PathCoefficients | None = None
+    torque_set: PathCoefficients | None = None
 
 
 def sample_path(
@@ -56,6 +70,7 @@ def sample_path(
     held: HeldObject | None,
     context: Context,
     cup: CupFrame,
+    columns: np.ndarray | None = None,
 ) -> PathSamples:
     """Evaluate the path and the coefficients at the grid ``s``.
 
@@ -68,10 +83,21 @@ def sample_path(
         held: The held object, for the wrench (and the torques' load).
         context: Scratch context of ``plant``.
         cup: The cup frame C.
+        columns: (P, 10) parameter columns of a set of objects (then
+            ``held`` is ignored), or None.
     """
     q, dq, ddq = spline(s), spline(s, 1), spline(s, 2)
     with np.errstate(divide="ignore", over="ignore"):  # q' = 0: no cap
         x_cap = np.min(velocity_limit**2 / dq**2, axis=1)
+    if columns is not None:
+        Y, kin = path_wrench_regressor(plant, q, dq, ddq, context, cup, torque)
+        wrench_set = PathCoefficients(*Y.coefficients(columns))
+        arm = torque_set = None
+        if torque:
+            arm_abc, TY = torque_regressor(kin, dq, ddq, Y)
+            arm = PathCoefficients(*arm_abc)
+            torque_set = PathCoefficients(*TY.coefficients(columns))
+        return PathSamples(s, q, dq, ddq, x_cap, arm, None, wrench_set, torque_set)
     tau = (
         path_torque_coefficients(plant, q, dq, ddq, held, context, cup)
         if torque
@@ -109,6 +135,8 @@ def with_points(samples: PathSamples, new: PathSamples) -> PathSamples:
         merged(samples.x_cap, new.x_cap),
         merged_coefficients(samples.torque, new.torque),
         merged_coefficients(samples.wrench, new.wrench),
+        merged_coefficients(samples.wrench_set, new.wrench_set),
+        merged_coefficients(samples.torque_set, new.torque_set),
     )
 
 

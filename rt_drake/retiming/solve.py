@@ -23,9 +23,19 @@ for the full constraint and, as TOPP-RA's pointwise-maximal profile of a
 relaxation of it, the very profile TOPP-RA computes with all rows (the tests
 compare with toppra on all rows).
 
+A grasp of a set of objects (:meth:`GraspConstraint.robust`: every object of
+an uncertainty set, every cup of a friction and suction range) takes the same
+steps with (row, vertex) pairs of the set's outer parameter set instead of
+rows (:mod:`.robust_grasp`): the exactness check evaluates every row's worst
+vertex in closed form, and between grid points the worst object is held by
+cuts at the sub-points (then grid points, as for one object). A set of zero
+width is one object and takes the single-object code (:mod:`.grasp_rows`),
+unchanged.
+
 The robot must be able to stop anywhere on the path: the object must be held
 by gravity's wrench alone (``F c(s) < g``) and the arm's gravity torques must
-be within limits at every grid point, else a typed error says where.
+be within limits at every grid point, else a typed error says where (for a
+set, naming its worst object).
 """
 
 from __future__ import annotations
@@ -41,12 +51,9 @@ from toppra.constraint import LinearConstraint
 
 from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import PathCoefficients
-from rt_drake.retiming import rows as R
-from rt_drake.retiming.at_rest import check_grasp_at_rest, check_torque_at_rest
+from rt_drake.retiming.at_rest import check_torque_at_rest
 from rt_drake.retiming.between import (
-    ROW_SCREEN,
     Segments,
-    grasp_midpoint_rows,
     interior_rows,
     joint_cuts,
     refinement_points,
@@ -57,6 +64,7 @@ from rt_drake.retiming.errors import (
     RetimeInputError,
     RetimeStatus,
 )
+from rt_drake.retiming.grasp_rows import ROW_TOLERANCE, ObjectRows
 from rt_drake.retiming.grid import initial_grid
 from rt_drake.retiming.joint_path import JointPath, ToppraPath, as_joint_path
 from rt_drake.retiming.limits import GraspConstraint, JointLimits
@@ -67,14 +75,13 @@ from rt_drake.retiming.passes import (
     reachability,
     stage_rows,
 )
-from rt_drake.retiming.row_groups import RowGroups
+from rt_drake.retiming.robust_grasp import SetRows
 from rt_drake.retiming.samples import PathSamples, sample_path
 from rt_drake.retiming.samples import with_points as merge_samples
 from rt_drake.retiming.seidel import kernel_array
+from rt_drake.retiming.set_tables import parameter_columns
 from rt_drake.retiming.timed_path import TimedPath
 
-#: Grasp rows violated by more than this (N or N m) are added and re-solved.
-ROW_TOLERANCE = 1e-9
 #: Relative excess over a limit between grid points that makes the retimer
 #: add a grid point there (the contract, checked at 1 kHz, is 1e-3).
 BETWEEN_TOLERANCE = 5e-4
@@ -104,10 +111,15 @@ class RetimeResult:
             "torque", "grasp"), for those in force.
         status: Always ``RetimeStatus.OK`` (failures raise ``RetimeError``).
         grasp_rows: Rows of the grasp polytope the stage LPs used (of
-            ``len(grasp.g)``).
-        repairs: Times the exactness check added rows and solved again.
+            ``len(grasp.g)``); for a set of objects, (row, vertex) pairs.
+        repairs: Times the exactness check added rows and solved again (in
+            the last solve).
         refinements: Times points were added to the grid where the torque or
             grasp was exceeded between grid points.
+        grasp_objects: Objects whose rows the stage LPs used: 1 for one
+            object, the vertex objects of a set (0 without a grasp).
+        cuts: Rounds of cuts between grid points (joint limits; for a set of
+            objects also its grasp and torques).
     """
 
     trajectory: TimedPath
@@ -121,6 +133,8 @@ class RetimeResult:
     grasp_rows: int
     repairs: int
     refinements: int = 0
+    grasp_objects: int = 1
+    cuts: int = 0
 
 
 def retime(
@@ -176,55 +190,92 @@ def retime(
     context = context or plant.CreateDefaultContext()
     cup = cup or CupFrame.of(plant)
     knots = spline.breaks
-    held = grasp.held if grasp is not None else None
     torque = limits.torque is not None
+    family: ObjectRows | SetRows | None = None
+    held = columns = None
+    if grasp is not None and grasp.is_robust:
+        assert grasp.objects is not None
+        family = SetRows(grasp, limits)
+        columns = parameter_columns(grasp.objects)[0]
+    elif grasp is not None:
+        family = ObjectRows(grasp)
+        held = grasp.held
 
     def sample(s: np.ndarray) -> PathSamples:
         return sample_path(
-            plant, spline, s, limits.velocity, torque, held, context, cup
+            plant, spline, s, limits.velocity, torque, held, context, cup, columns
         )
+
+    def hold_at_rest(samples: PathSamples) -> None:
+        if family is None or not family.robust:
+            _check_torque(samples, limits)
+        if family is not None:
+            family.add(samples)
 
     samples = sample(initial_grid(gridpoints, knots))
     check_position_limits(plant, samples, spline)
-    normals = None if grasp is None else R.normalised_rows(grasp.F, grasp.g)
-    rows = _checked_rows(samples, limits, grasp, normals)
+    hold_at_rest(samples)
     # The compiled passes do not need the path; toppra's TOPPRA class does.
     toppra_spline = ToppraPath(spline) if engine == "toppra" else None
-    refinements = cut_rounds = 0
+    refinements = cut_rounds = set_cut_rounds = total_cuts = 0
     cuts: StageRows | None = None
-    groups: RowGroups | None = None  # the grasp rows grouped, at the first check
     segments = Segments(samples, knots, spline)
     joints = _joint_constraints(samples, segments, limits)
     while True:
         fixed = joints if cuts is None else [*joints, cuts]
         profile = _solve_exact(
-            samples, segments, fixed, grasp, normals, rows, toppra_spline, sd_start,
-            sd_end, engine, groups,
-        )  # fmt: skip
-        groups = profile.groups
+            samples, segments, fixed, family, toppra_spline, sd_start, sd_end, engine
+        )
         x, u = profile.x, profile.u
+        between = normals = row_max = None
+        if isinstance(family, ObjectRows):  # one object: grid points, no cuts
+            normals, row_max = family.normals, profile.screen
+        elif family is not None and profile.screen is not None:
+            tolerance = BETWEEN_TOLERANCE if set_cut_rounds < MAX_CUT_ROUNDS else None
+            between, cut = family.between(
+                samples, segments, x, u, profile.screen, tolerance
+            )
+            if cut:  # a set of objects: held at the sub-points, solve again
+                set_cut_rounds += 1
+                total_cuts += 1
+                continue
         points = refinement_points(
-            segments, samples, x, u, limits, normals, profile.row_max,
-            BETWEEN_TOLERANCE,
+            segments, samples, x, u, limits, normals, row_max, BETWEEN_TOLERANCE,
+            between,
         )  # fmt: skip
         if points.size and refinements < MAX_REFINEMENTS:
             added = sample(points)
-            rows = np.union1d(rows, _checked_rows(added, limits, grasp, normals))
+            hold_at_rest(added)
             samples = merge_samples(samples, added)
             segments = Segments(samples, knots, spline)
             joints = _joint_constraints(samples, segments, limits)
             refinements += 1
             cuts = None  # made for the old segments
+            set_cut_rounds = 0
             continue
         new_cuts = joint_cuts(segments, x, u, limits, BETWEEN_TOLERANCE)
         if new_cuts is None or cut_rounds == MAX_CUT_ROUNDS:
             break
         cuts = new_cuts if cuts is None else _stacked(cuts, new_cuts)
         cut_rounds += 1
+        total_cuts += 1
     s = samples.s
     trajectory = TimedPath(spline, s, profile.x, start_time)
     u = (profile.x[1:] - profile.x[:-1]) / (2.0 * np.diff(s))
-    margins = _margins(limits, samples.dq, samples.ddq, profile.x, u, samples.torque)
+    robust = isinstance(family, SetRows)
+    margins = _margins(
+        limits,
+        samples.dq,
+        samples.ddq,
+        profile.x,
+        u,
+        None if robust else samples.torque,
+    )
+    if robust:
+        assert isinstance(family, SetRows)
+        torque_margin = family.torque_margin(samples, profile.x, u)
+        if torque_margin is not None:
+            margins["torque"] = torque_margin
     if profile.ratio is not None:
         margins["grasp"] = 1.0 - profile.ratio
     return RetimeResult(
@@ -236,9 +287,11 @@ def retime(
         margin=np.min(np.vstack(list(margins.values())), axis=0),
         margins=margins,
         status=RetimeStatus.OK,
-        grasp_rows=len(profile.rows),
-        repairs=profile.repairs,
+        grasp_rows=0 if family is None else family.row_count,
+        repairs=0 if family is None else family.repairs,
         refinements=refinements,
+        grasp_objects=0 if family is None else family.object_count,
+        cuts=total_cuts,
     )
 
 
@@ -303,46 +356,29 @@ def _stacked(first: StageRows, second: StageRows) -> StageRows:
     )
 
 
-def _checked_rows(
-    samples: PathSamples,
-    limits: JointLimits,
-    grasp: GraspConstraint | None,
-    normals: np.ndarray | None,
-) -> np.ndarray:
-    """Check holding still at the samples; return the grasp rows they select."""
+def _check_torque(samples: PathSamples, limits: JointLimits) -> None:
+    """Check that the arm (and one held object) can be held at the samples."""
     if samples.torque is not None and limits.torque is not None:
         check_torque_at_rest(samples.s, samples.torque.c, limits.torque)
-    if grasp is None or samples.wrench is None or normals is None:
-        return np.zeros(0, dtype=int)
-    rest, rows = R.rest_and_candidates(*samples.wrench, normals, samples.x_cap)
-    check_grasp_at_rest(samples.s, rest, samples.wrench.c, grasp)
-    return rows
 
 
 class _Profile(NamedTuple):
-    """The passes' profile with the grasp rows it needed.
+    """The passes' profile, checked against every grasp row.
 
     Attributes:
         x: (N+1,) ``s'^2`` at the grid points; u: (N,) ``s''`` per segment.
-        rows: The grasp rows the stage LPs used; repairs: how often the
-            exactness check added rows.
         ratio: With a grasp, ``max_k F_k w / g_k`` (N+1,) at each grid point
             (the acceleration of the segment that starts there; the last
-            point takes the last one); else None.
-        row_max: With a grasp, ``max_i F_k w_i / g_k`` (R,) of every row over
-            the wrenches enforced where above ``1 - ROW_SCREEN`` (at most
-            that for the others); else None.
-        groups: The grasp rows grouped for the exactness check (reused by
-            the next solve), or None.
+            point takes the last one; for a set, the worst object's); else
+            None.
+        screen: With a grasp, what tells the grasp rows where to look between
+            grid points (:class:`~.grasp_rows.Check`); else None.
     """
 
     x: np.ndarray
     u: np.ndarray
-    rows: np.ndarray
-    repairs: int
     ratio: np.ndarray | None
-    row_max: np.ndarray | None
-    groups: RowGroups | None = None
+    screen: np.ndarray | None
 
 
 def _joint_constraints(
@@ -363,7 +399,11 @@ def _joint_constraints(
         ),
         interior_rows(segments, limits),
     ]
-    if samples.torque is not None and limits.torque is not None:
+    if (
+        samples.torque is not None
+        and limits.torque is not None
+        and samples.torque_set is None  # a set's torques: with its grasp rows
+    ):
         constraints.append(
             AffineConstraint(*samples.torque, box, np.tile(limits.torque, 2))
         )
@@ -374,36 +414,32 @@ def _solve_exact(
     samples: PathSamples,
     segments: Segments,
     fixed: list[LinearConstraint],
-    grasp: GraspConstraint | None,
-    normals: np.ndarray | None,
-    rows: np.ndarray,
+    family: ObjectRows | SetRows | None,
     spline: toppra.SplineInterpolator | None,
     sd_start: float,
     sd_end: float,
     engine: str,
-    groups: RowGroups | None = None,
 ) -> _Profile:
-    """TOPP-RA with the selected grasp rows, adding missed rows until none.
+    """TOPP-RA with the grasp rows selected, adding missed rows until none.
 
     ``fixed``: every other constraint (:func:`_joint_constraints`, cuts);
-    the compiled engine projects them once for all the solves.
+    ``family``: the grasp rows (:mod:`.grasp_rows`, :mod:`.robust_grasp`).
+    With a grasp the compiled engine projects ``fixed`` once for all the
+    solves.
     """
     s = samples.s
-    repairs = 0
     base = None
-    if engine == "compiled" and grasp is not None:
-        base = stage_rows(fixed, np.diff(s))
+    if family is not None:
+        family.begin()
+        if engine == "compiled":
+            base = stage_rows(fixed, np.diff(s))
     while True:
         constraints = [] if base is not None else list(fixed)
-        if grasp is not None and samples.wrench is not None:
-            F, g = grasp.F[rows], grasp.g[rows]
-            constraints.append(AffineConstraint(*samples.wrench, F, g))
-            constraints.append(grasp_midpoint_rows(segments, samples.wrench, F, g))
+        if family is not None:
+            constraints += family.constraints(samples, segments)
         solution = reachability(constraints, spline, s, sd_start, sd_end, engine, base)
         if solution.x is None or solution.u is None:
-            if grasp is not None and len(rows) < len(grasp.g):
-                rows = np.arange(len(grasp.g))  # confirm with every row
-                repairs += 1
+            if family is not None and family.widen():
                 continue
             where = float(s[solution.failed_stage or 0])
             raise PathNotControllableError(
@@ -412,21 +448,11 @@ def _solve_exact(
                 "limits",
                 s=where,
             )
-        if grasp is None or samples.wrench is None or normals is None:
-            return _Profile(solution.x, solution.u, rows, repairs, None, None)
-        enforced = segments.enforced_wrenches(samples.wrench, solution.x, solution.u)
-        if groups is None:
-            groups = R.wrench_groups(enforced, normals, grasp.g)
-        ratio, violated, row_max = R.wrench_ratios(
-            enforced, normals, grasp.g, ROW_TOLERANCE, 1.0 - ROW_SCREEN, groups
-        )
-        missed = np.setdiff1d(violated, rows) if violated.size else violated
-        if not missed.size:
-            return _Profile(
-                solution.x, solution.u, rows, repairs, ratio[: len(s)], row_max, groups
-            )
-        rows = np.union1d(rows, missed)
-        repairs += 1
+        if family is None:
+            return _Profile(solution.x, solution.u, None, None)
+        check = family.check(samples, segments, solution.x, solution.u)
+        if not check.added:
+            return _Profile(solution.x, solution.u, check.ratio, check.screen)
 
 
 def _check_arguments(sd_start: float, sd_end: float, start_time: float) -> None:

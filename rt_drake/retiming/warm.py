@@ -20,6 +20,7 @@ from rt_drake.retiming.between_kernels import position_excess
 from rt_drake.retiming.joint_path import as_joint_path
 from rt_drake.retiming.limits import JointLimits
 from rt_drake.retiming.passes import AffineConstraint, XBound, reachability
+from rt_drake.retiming.robust_rows import Layout, worst_rows
 from rt_drake.retiming.samples import PathSamples
 
 
@@ -37,6 +38,14 @@ def warm_up() -> None:
     wrench = np.full((3, 6), 0.1)
     rows.rest_and_candidates(wrench, wrench, 0.0 * wrench, normals, grid + 1.0)
     rows.wrench_ratios(wrench, normals, np.ones(12), 1e-9)
+    # A set of objects (robust grasp): one box of four columns, and one for
+    # torques (another row dimension).
+    layout = Layout(np.array([[0, 1, 2, 2, 3, 4]]), np.array([[1.0, 2.0]]))
+    for dims in (6, 5):
+        part = np.full((3, 4, dims), 0.1)
+        worst_rows(
+            (part, part, part), np.arange(3), grid, grid, np.ones((dims, 2)), layout
+        )
     # Between grid points: one joint, torques and a wrench.
     path = np.column_stack([grid**2])
     coefficients = PathCoefficients(wrench, wrench, 0.0 * wrench)

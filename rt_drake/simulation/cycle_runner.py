@@ -3,7 +3,9 @@
 ``run_cycle(scenario, motions)`` builds the Diagram (the station of
 :mod:`.station` driven by a :class:`~.sequencer.Sequencer`), simulates until
 every object is placed, and returns what the sequencer measured. With a
-Meshcat, the run is recorded for offline replay.
+Meshcat, the run is recorded for offline replay. ``object_inertias``
+replaces the inertia of objects in the simulated plant (a parameter of its
+context): the object the robot holds may differ from the one it planned for.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ from collections.abc import Callable
 
 import numpy as np
 from pydrake.geometry import Meshcat
+from pydrake.multibody.tree import SpatialInertia
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, EventStatus
 
@@ -106,11 +109,22 @@ def run_cycle(
     max_sim_time: float = 120.0,
     pipelined: bool = True,
     progress: Callable[[int, Phase], None] | None = None,
+    object_inertias: dict[str, SpatialInertia] | None = None,
 ) -> CycleResult:
     """Simulate the whole cycle; raise CycleTimeout past ``max_sim_time`` s.
 
-    ``pipelined``: plan each motion ahead (:mod:`.sequencer`). ``progress``
-    is called with (object index, phase) whenever the phase changes.
+    Args:
+        scenario: The cell and its objects.
+        motions: Plans and retimes each phase.
+        meshcat: Records the run for replay, if given.
+        options: Simulation settings.
+        max_sim_time: s of simulated time at most.
+        pipelined: Plan each motion ahead (:mod:`.sequencer`).
+        progress: Called with (object index, phase) whenever the phase
+            changes.
+        object_inertias: Per object name, its true spatial inertia ``M_OOo_O``
+            (about its body origin, in its body frame), in place of its
+            model's.
     """
     diagram, station, sequencer = build_cycle(
         scenario, motions, meshcat, options, pipelined
@@ -122,6 +136,9 @@ def run_cycle(
     plant.SetPositions(
         plant_context, station.models.robot, home_configuration(plant, scenario)
     )
+    for name, M_OOo_O in (object_inertias or {}).items():
+        body = plant.GetBodyByName(OBJECT_BODY, station.models.objects[name])
+        body.SetSpatialInertiaInBodyFrame(plant_context, M_OOo_O)
     sequencer_context = sequencer.GetMyContextFromRoot(context)
     worst = [0.0]
     seen: list[tuple[int, Phase]] = []

@@ -79,6 +79,8 @@ class Motion:
         retimed: the retiming of that path (its trajectory is ``trajectory``
             unless the source plays it faster).
         grasp: the grasp constraint it was retimed under, if any.
+        guarantee: for a MOVE, what holds the object, in words (the nominal
+            object, every object of its uncertainty set, or none); "" else.
         parts: for a motion over several phases (the pick: APPROACH then
             REACH), each phase's end and plan times, in order; empty for a
             motion of one phase.
@@ -89,6 +91,7 @@ class Motion:
     planned: PlannedPath | None = None
     retimed: RetimeResult | None = None
     grasp: GraspConstraint | None = None
+    guarantee: str = ""
     parts: tuple[PhasePart, ...] = ()
 
     def phase_end(self, phase: Phase) -> float:

@@ -16,6 +16,12 @@ a ``first_order`` vacuum the MOVE is retimed for the force guaranteed when
 "part present" fires, ``part_present_fraction P A``: the same polytope
 translated (:func:`~rt_drake.contact.with_suction_force`).
 
+An object with an uncertainty set (scenario key ``uncertainty``), or a cup
+with a friction or suction range, is held robustly: every object of the set,
+with every cup of the range (:meth:`~rt_drake.retiming.GraspConstraint.robust`);
+with a ``first_order`` vacuum the suction range then reaches down to
+``part_present_fraction`` of its lowest P A.
+
 The pick (:meth:`OnlineMotions.pick`) is one motion through the approach
 pose (:mod:`rt_drake.planning.pick`), retimed rest to rest; APPROACH ends
 when it passes the approach pose.
@@ -33,14 +39,17 @@ from pydrake.math import RigidTransform
 from pydrake.trajectories import Trajectory
 
 from rt_drake.contact import (
+    CupParameters,
     ToolParameters,
     WrenchPolytope,
     cached_wrench_polytope,
     with_suction_force,
+    worst_cup_polytope,
 )
 from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import HeldObject, path_wrench_coefficients
 from rt_drake.errors import InputError
+from rt_drake.inertial_set import uncertain_object
 from rt_drake.phase import Phase
 from rt_drake.planning import CyclePlanner, GeometricPath, PlannedPath
 from rt_drake.planning.shape import MoveOptimizer, MoveOptimizerOptions
@@ -56,6 +65,10 @@ from rt_drake.retiming import (
 )
 from rt_drake.scenario import ObjectConfig, Scenario
 from rt_drake.simulation.motion import Motion, PhasePart, PlanTimes
+from rt_drake.uncertainty import ObjectUncertainty
+
+#: The guarantee of a MOVE retimed without the grasp constraint.
+NO_GUARANTEE = "none: joint limits only"
 
 
 def held_object(obj: ObjectConfig, X_OC: RigidTransform) -> HeldObject:
@@ -107,6 +120,9 @@ class OnlineMotions:
             (1: as retimed; > 1 leaves the constraint, for slip experiments).
         gridpoints: TOPP-RA grid size.
         seed: planner seed.
+        robust: hold every object of an object's uncertainty set (and every
+            cup of the cup's range) when the scenario gives one; False: the
+            nominal object and cup only.
         optimize: shape each MOVE for speed (None: the scenario's
             ``planning.optimize_move``); needs the grasp constraint.
     """
@@ -118,6 +134,7 @@ class OnlineMotions:
         move_speed: float = 1.0,
         gridpoints: int = 100,
         seed: int = 0,
+        robust: bool = True,
         optimize: bool | None = None,
     ) -> None:
         if not move_speed > 0:
@@ -133,6 +150,16 @@ class OnlineMotions:
         self._polytope = None
         if grasp_constraint:
             self._polytope = move_polytope(scenario)
+        self._robust = robust
+        # One cup with a friction or suction range: its worst-case rows, once.
+        self._worst_cup = None
+        if (
+            grasp_constraint
+            and robust
+            and scenario.tool is None
+            and scenario.cup.is_uncertain()
+        ):
+            self._worst_cup = worst_cup_polytope(move_cup(scenario))
         warm_up()  # compile the retimer here, not in the first timed MOVE
         if optimize is None:
             optimize = scenario.planning.optimize_move
@@ -170,6 +197,38 @@ class OnlineMotions:
             gridpoints=self._gridpoints,
             context=self._context,
             cup=self._cup,
+        )
+
+    def grasp_for(
+        self, obj: ObjectConfig, X_OC: RigidTransform, robust: bool | None = None
+    ) -> GraspConstraint:
+        """The grasp constraint of ``obj`` held at ``X_OC``.
+
+        Robust (every object of its uncertainty set, every cup of the cup's
+        range) when ``robust`` (default: as constructed) and the scenario
+        gives a set or a range; else the nominal object and cup.
+        """
+        robust = self._robust if robust is None else robust
+        held = held_object(obj, X_OC)
+        uncertainty = obj.uncertainty or ObjectUncertainty()
+        uncertain_cup = (
+            self._scenario.tool is None and self._scenario.cup.is_uncertain()
+        )
+        if not robust or (uncertainty.is_zero() and not uncertain_cup):
+            polytope = self._polytope or move_polytope(self._scenario)
+            return GraspConstraint(
+                held=held, F=polytope.F, g=polytope.g, cup=polytope.cup
+            )
+        cup = move_cup(self._scenario)
+        F, g = self._worst_cup or worst_cup_polytope(cup)
+        R_CO = X_OC.inverse().rotation().matrix()
+        return GraspConstraint(
+            held=held,
+            F=F,
+            g=g,
+            cup=cup,
+            objects=uncertain_object(held, uncertainty, R_CO),
+            worst_cup=cup.is_uncertain(),
         )
 
     def velocity_bound(self, path: GeometricPath, s: np.ndarray) -> np.ndarray:
@@ -283,12 +342,7 @@ class OnlineMotions:
         planned_s = time.perf_counter() - start
         grasp = None
         if carrying and self._polytope is not None:
-            grasp = GraspConstraint(
-                held=held_object(obj, planned.X_OC),
-                F=self._polytope.F,
-                g=self._polytope.g,
-                cup=self._polytope.cup,
-            )
+            grasp = self.grasp_for(obj, planned.X_OC)
         if grasp is not None and self._optimizer is not None:
             # the optimiser's search counts as planning, its final retime as retiming
             optimized = self._optimizer.optimize(self._planner, planned, grasp)
@@ -302,15 +356,37 @@ class OnlineMotions:
             result = self.retime_path(planned.path, grasp)
             retime_s = time.perf_counter() - start
         trajectory: Trajectory = result.trajectory
+        guarantee = ""
+        if carrying:
+            guarantee = NO_GUARANTEE if grasp is None else grasp.guarantee()
         if carrying and self._speed != 1.0:
             trajectory = TimeScaled(trajectory, self._speed)
+            guarantee = f"none: played {self._speed:g}x faster than retimed"
         return Motion(
             trajectory,
             PlanTimes(plan_s=planned_s, retime_s=retime_s),
             planned=planned,
             retimed=result,
             grasp=grasp,
+            guarantee=guarantee,
         )
+
+
+def move_cup(scenario: Scenario) -> CupParameters:
+    """The scenario's (single) cup with the suction range a MOVE may rely on.
+
+    With a ``first_order`` vacuum the MOVE starts when "part present" fires,
+    at ``part_present_fraction`` of the suction, and the force then builds
+    up: the range reaches down to that fraction of its lowest P A.
+    """
+    cup = scenario.single_cup("a robust grasp (an uncertainty set)")
+    fraction = scenario.vacuum.move_force_fraction
+    if fraction == 1.0:
+        return cup
+    lowest = (
+        cup.suction_force if cup.suction_force_min is None else cup.suction_force_min
+    )
+    return dataclasses.replace(cup, suction_force_min=fraction * lowest)
 
 
 def time_at(result: RetimeResult, s: float) -> float:
@@ -329,4 +405,11 @@ def time_at(result: RetimeResult, s: float) -> float:
     return float(result.trajectory.start_time() + dt[:i].sum() + tau)
 
 
-__all__ = ["OnlineMotions", "held_object", "move_polytope", "time_at"]
+__all__ = [
+    "NO_GUARANTEE",
+    "OnlineMotions",
+    "held_object",
+    "move_cup",
+    "move_polytope",
+    "time_at",
+]

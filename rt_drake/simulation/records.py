@@ -28,6 +28,7 @@ class ObjectRecord:
         placement_translation, placement_rotation: m and rad, the object's
             distance from its goal pose during DETACH.
         move_suction_force: N, the vacuum's force when the MOVE started.
+        guarantee: What the MOVE's retiming held (``Motion.guarantee``).
     """
 
     name: str
@@ -39,6 +40,7 @@ class ObjectRecord:
     placement_translation: float = float("nan")
     placement_rotation: float = float("nan")
     move_suction_force: float = float("nan")
+    guarantee: str = ""
 
     @property
     def plan_on_critical_path_s(self) -> float:

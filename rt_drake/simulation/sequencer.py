@@ -280,7 +280,9 @@ class Sequencer(LeafSystem):
             force = float(self._force_port.Eval(context)[0])
             state = _with_record(
                 dataclasses.replace(state, X_CO_attached=self._X_CO(context, index)),
-                dataclasses.replace(record, move_suction_force=force),
+                dataclasses.replace(
+                    record, move_suction_force=force, guarantee=motion.guarantee
+                ),
             )
         if self._pipelined:  # plan the next motion while this one runs
             nxt = Phase.MOVE if phase is Phase.APPROACH else Phase.APPROACH

@@ -84,6 +84,10 @@ def test_a_budget_that_is_not_a_positive_time_is_refused(capsys, value):
         (["run", "--seed", "-1"], ["--seed", "-1"]),
         (["experiment", "transport", "--n", "1000000", "--out", "o"], ["--n"]),
         (["experiment", "transport", "--workers", "500", "--out", "o"], ["--workers"]),
+        (
+            ["experiment", "transport", "--robust", "--optimize", "--out", "o"],
+            ["--robust", "--optimize"],
+        ),
     ],
 )
 def test_flags_asking_for_endless_work_are_refused(capsys, argv, words):

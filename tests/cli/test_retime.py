@@ -108,6 +108,37 @@ def test_unknown_object(csv, tmp_path):
         )
 
 
+def test_uncertainty_flags_retime_for_every_object_of_the_set(csv, tmp_path, capsys):
+    nominal, robust = tmp_path / "n.npz", tmp_path / "r.npz"
+    base = ["--waypoints", str(csv), "--object", "notebook"]
+    _run(*base, "--out", str(nominal))
+    flags = ["--mass-uncertainty", "0.2", "--com-uncertainty", "0.01,0.01,0.005"]
+    _run(*base, *flags, "--inertia-uncertainty", "0.2", "--out", str(robust))
+    out = capsys.readouterr().out
+    assert "robust grasp constraint: every object of the set (mass +-20 %" in out
+    assert float(np.load(robust)["duration"]) > float(np.load(nominal)["duration"])
+
+
+@pytest.mark.parametrize(
+    ("flags", "message"),
+    [
+        (["--mass-uncertainty", "1.0"], r"uncertainty.mass must be in \[0, 1\).*1.0"),
+        (["--inertia-uncertainty", "-0.1"], r"uncertainty.inertia .*-0.1"),
+        (["--com-uncertainty", "0.01,-0.01,0"], r"uncertainty.com .*-0.01"),
+        (["--com-uncertainty", "0,0,0.02"], r"com\[2\] = 0.02 m .*outside the object"),
+    ],
+)
+def test_bad_uncertainty_flags_are_one_line_errors(csv, tmp_path, flags, message):
+    with pytest.raises(RtDrakeError, match=message) as error:
+        _run(
+            *["--waypoints", str(csv), "--object", "notebook"],
+            *flags,
+            "--out",
+            str(tmp_path / "o.npz"),
+        )
+    assert "\n" not in str(error.value)
+
+
 def test_retimes_under_a_multi_cup_tool(tmp_path, capsys):
     """A scenario ``tool:`` of two coarse cups: the motion stays in W_T.
 

@@ -42,6 +42,7 @@ def test_report_has_every_field(constrained_run):
         entry["plan_on_critical_path_s"] + sum(entry["exec_s"].values())
     )
     assert entry["exec_s"]["attach"] == pytest.approx(1.0, abs=0.01)
+    assert entry["guarantee"] == "the nominal object (0.551 kg)"
     assert report["plan_on_critical_path_s"] == entry["plan_on_critical_path_s"]
     assert report["picks_per_hour"] == pytest.approx(3600.0 / report["total_s"])
     # The simulation waited for the plan on the critical path: it adds up.
@@ -80,6 +81,16 @@ def test_without_the_grasp_constraint_the_object_slips(tmp_path):
     )
     (entry,) = json.loads((tmp_path / "report.json").read_text())["objects"]
     assert entry["slip"]["max_translation_mm"] > 5.0
+    assert entry["guarantee"] == "none: joint limits only"
+
+
+def test_an_uncertain_object_is_moved_robustly_and_the_report_says_so(tmp_path, capsys):
+    assert main(["run", "random_transport_uncertain", "--out", str(tmp_path)]) == 0
+    (entry,) = json.loads((tmp_path / "report.json").read_text())["objects"]
+    assert entry["guarantee"].startswith("every object of the set (mass +-20 %")
+    assert entry["slip"]["max_translation_mm"] < 2.0
+    assert "every object of the set" in (tmp_path / "report.md").read_text()
+    assert "MOVE notebook holds every object of the set" in capsys.readouterr().out
 
 
 @pytest.mark.parametrize(

@@ -1,0 +1,91 @@
+"""Robust plans hold the objects the robot does not know; nominal plans do not.
+
+Physics: the same planned MOVE, retimed for the nominal notebook and for
+every notebook of its uncertainty set, played with a true notebook from the
+set's hardest corners (its inertia set in the simulated plant).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+import numpy as np
+import pytest
+from pydrake.common.schema import Transform
+
+from rt_drake.cli import main
+from rt_drake.experiments.rollout import rollout_scenario, simulate_move
+from rt_drake.object_samples import ObjectInertia, hardest_corner
+from rt_drake.planning import sample_transports
+from rt_drake.resources import scenarios_dir
+from rt_drake.scenario import load_scenario
+from rt_drake.simulation import OnlineMotions
+
+#: Whole-cycle simulations: tens of seconds (still run by CI).
+pytestmark = pytest.mark.slow
+
+UNCERTAIN = scenarios_dir() / "random_transport_uncertain.yaml"
+
+
+def test_nominal_plan_slips_with_a_perturbed_object_and_the_robust_plan_holds():
+    scenario = load_scenario(UNCERTAIN)
+    obj = scenario.object("notebook")
+    ((X_start, X_goal),) = sample_transports(scenario, 1, 0)
+    trial = dataclasses.replace(
+        scenario,
+        objects=[
+            dataclasses.replace(obj, start=Transform(X_start), goal=Transform(X_goal))
+        ],
+    )
+    motions = OnlineMotions(trial, seed=0, robust=False)
+    carried = trial.objects[0]
+    reach = motions.reach(motions.approach(motions.q_home, carried).q_end, carried)
+    nominal = motions.move(reach.q_end, carried, reach)
+    assert nominal.planned is not None and nominal.retimed is not None
+    robust_grasp = motions.grasp_for(carried, nominal.planned.X_OC, robust=True)
+    assert robust_grasp.is_robust and nominal.grasp is not None
+    assert not nominal.grasp.is_robust
+    robust = motions.retime_path(nominal.planned.path, robust_grasp)
+    assert robust.duration > nominal.retimed.duration
+
+    assert obj.uncertainty is not None
+    true = hardest_corner(
+        ObjectInertia.of_model(obj), obj.uncertainty, np.random.default_rng(0)
+    )
+    assert true.mass == pytest.approx(1.2 * 0.551)
+    inertias = {obj.name: true.spatial_inertia()}
+    world = rollout_scenario(trial, reach.q_end)
+    # The nominal plan holds the nominal notebook (Table I) ...
+    assert simulate_move(world, reach.q_end, nominal.trajectory).success
+    # ... but not the true one, which the robust plan holds.
+    assert not simulate_move(
+        world, reach.q_end, nominal.trajectory, object_inertias=inertias
+    ).success
+    held = simulate_move(
+        world, reach.q_end, robust.trajectory, object_inertias=inertias
+    )
+    assert held.success
+
+
+def test_robust_experiment_writes_both_plans_per_trial(tmp_path):
+    out = tmp_path / "robust"
+    argv = ["experiment", "transport", "--scenario", str(UNCERTAIN), "--robust"]
+    assert main([*argv, "--n", "1", "--out", str(out)]) == 0
+    results = json.loads((out / "results.json").read_text())
+    (t,) = results["trials"]
+    assert set(t["true_object"]) == {"mass", "com", "inertia"}
+    assert t["true_object"]["mass"] == pytest.approx(1.2 * 0.551)
+    assert not t["success_nominal"] and t["success_robust"]
+    assert t["duration_robust_s"] > t["duration_nominal_s"]
+    assert 1.0 <= t["tightness"] <= 1.03
+    assert results["summary"]["success_robust"] == 1
+    assert (out / "robustness.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "| 0 | 0.661 |" in (out / "report.md").read_text()
+
+
+def test_robust_experiment_needs_an_uncertainty_set(tmp_path, capsys):
+    argv = ["experiment", "transport", "--robust", "--n", "1", "--out", str(tmp_path)]
+    assert main(argv) == 2
+    error = capsys.readouterr().err.strip()
+    assert "\n" not in error and "no uncertainty set" in error
