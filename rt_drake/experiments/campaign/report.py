@@ -15,8 +15,13 @@ Per object and cup (:class:`GroupSummary`):
   duration to the spline MOVE's (``detail.ratio_to_spline``; median, min,
   max), how many held, and the optimisation's CPU time (median, s).
 
-``summary.json`` also has these ``optimized`` numbers over the whole
-campaign.
+- the ``robust`` rows that ran: how many held (robust MOVE, true object,
+  worst cup), how many of the nominal MOVEs held in the same physics
+  (``detail.nominal_on_true``), and the price robust / nominal duration
+  (``detail.price``; median, min, max).
+
+``summary.json`` also has these ``optimized`` and ``robust`` numbers over
+the whole campaign.
 
 :func:`write_campaign_report` writes ``summary.md``, ``summary.csv``,
 ``summary.json`` and the plots ``success_rates.png``,
@@ -65,6 +70,8 @@ class GroupSummary:
     held_through_sweep: int
     optimized_ratios: list[float] = dataclasses.field(default_factory=list)
     optimize_cpu_s: list[float] = dataclasses.field(default_factory=list)
+    robust_prices: list[float] = dataclasses.field(default_factory=list)
+    nominal_held_on_true: int = 0
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready numbers, with the derived statistics."""
@@ -93,7 +100,26 @@ class GroupSummary:
                 self.optimized_ratios,
                 self.optimize_cpu_s,
             ),
+            "robust": robust_summary(
+                self.variants.get(Variant.ROBUST.value),
+                self.robust_prices,
+                self.nominal_held_on_true,
+            ),
         }
+
+
+def robust_summary(
+    counts: VariantCounts | None, prices: list[float], nominal_held: int
+) -> dict[str, Any]:
+    """The ``robust`` rows: ran, held, nominal MOVEs held, robust / nominal."""
+    return {
+        "ran": 0 if counts is None else counts.ran,
+        "held": 0 if counts is None else counts.held,
+        "nominal_held": nominal_held,
+        "price_median": statistics.median(prices) if prices else None,
+        "price_min": min(prices, default=None),
+        "price_max": max(prices, default=None),
+    }
 
 
 def optimized_summary(
@@ -156,6 +182,11 @@ def _summarize(obj: str, cup: str, rows: list[dict[str, Any]]) -> GroupSummary:
         for row in by_variant[Variant.OPTIMIZED.value]
         if row["status"] == "ok"
     ]
+    robust = [
+        json.loads(row["detail"])
+        for row in by_variant[Variant.ROBUST.value]
+        if row["status"] == "ok"
+    ]
     return GroupSummary(
         object=obj,
         cup=cup,
@@ -167,6 +198,8 @@ def _summarize(obj: str, cup: str, rows: list[dict[str, Any]]) -> GroupSummary:
         held_through_sweep=sum(r["critical_speed"] is None for r in sweeps),
         optimized_ratios=[d["ratio_to_spline"] for d in optimized],
         optimize_cpu_s=[d["optimize_cpu_s"] for d in optimized],
+        robust_prices=[d["price"] for d in robust],
+        nominal_held_on_true=sum(bool(d["nominal_on_true"]["success"]) for d in robust),
     )
 
 
@@ -196,8 +229,9 @@ def summary_table(groups: list[GroupSummary]) -> str:
     lines = [
         "| object | cup | held with constraint | held without | infeasible | "
         "failed | time ext. % mean (min to max) | critical speed median (min) | "
-        "sweeps that never slipped | held optimized | optimized / spline median |",
-        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        "sweeps that never slipped | held optimized | optimized / spline median | "
+        "held robust (nominal) | robust / nominal median |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for group in groups:
         d = group.as_dict()
@@ -207,6 +241,10 @@ def summary_table(groups: list[GroupSummary]) -> str:
         if ext["n"]:
             extension = f"{ext['mean']:.2f} ({ext['min']:.2f} to {ext['max']:.2f})"
         ratio = d["optimized"]["ratio_median"]
+        robust, price = d["robust"], d["robust"]["price_median"]
+        held_robust = "-"
+        if Variant.ROBUST.value in group.variants:
+            held_robust = f"{robust['held']}/{robust['ran']} ({robust['nominal_held']})"
         critical = "-"
         if crit["n"]:
             critical = f"{crit['median']:.1f}x ({crit['min']:.1f}x)"
@@ -216,7 +254,8 @@ def summary_table(groups: list[GroupSummary]) -> str:
             f"{sum(c.infeasible for c in counts)} | {sum(c.failed for c in counts)} | "
             f"{extension} | {critical} | {_held_sweep(group)} | "
             f"{_held(group, Variant.OPTIMIZED)} | "
-            f"{'-' if ratio is None else f'{ratio:.3f}'} |"
+            f"{'-' if ratio is None else f'{ratio:.3f}'} | {held_robust} | "
+            f"{'-' if price is None else f'{price:.3f}'} |"
         )
     return "\n".join(lines)
 
@@ -245,6 +284,11 @@ def write_campaign_report(database: str | Path, out: str | Path) -> list[Path]:
             _total_counts(groups, Variant.OPTIMIZED),
             [r for group in groups for r in group.optimized_ratios],
             [c for group in groups for c in group.optimize_cpu_s],
+        ),
+        "robust": robust_summary(
+            _total_counts(groups, Variant.ROBUST),
+            [p for group in groups for p in group.robust_prices],
+            sum(group.nominal_held_on_true for group in groups),
         ),
     }
     paths = [out / "summary.json", out / "summary.md", out / "summary.csv"]
@@ -282,7 +326,7 @@ def _write_csv(path: Path, groups: list[GroupSummary]) -> None:
             ["object", "cup", "variant", "rows", "ran", "held", "success_rate"]
             + ["infeasible", "failed", "time_extension_mean_pct"]
             + ["critical_speed_median", "critical_speed_min"]
-            + ["optimized_ratio_median"]
+            + ["optimized_ratio_median", "robust_price_median"]
         )
         for group in groups:
             d = group.as_dict()
@@ -292,7 +336,7 @@ def _write_csv(path: Path, groups: list[GroupSummary]) -> None:
                     + [c.success_rate, c.infeasible, c.failed]
                     + [d["time_extension_pct"]["mean"]]
                     + [d["critical_speed"]["median"], d["critical_speed"]["min"]]
-                    + [d["optimized"]["ratio_median"]]
+                    + [d["optimized"]["ratio_median"], d["robust"]["price_median"]]
                 )
 
 
@@ -300,6 +344,7 @@ __all__ = [
     "GroupSummary",
     "VariantCounts",
     "optimized_summary",
+    "robust_summary",
     "read_rows",
     "summarize_rows",
     "summary_table",

@@ -36,12 +36,17 @@ class Variant(enum.Enum):
       to the same goal (:class:`~rt_drake.planning.shape.MoveOptimizer`),
       retimed under the exact grasp constraint, played at speed 1; its
       ratio to the spline path's duration is in the row's detail.
+    - ``robust``: the spline MOVE retimed to hold every object of the
+      object's uncertainty set with every cup of the cup's range, played
+      with a hard true object of the set and the worst cup; the price
+      (robust / nominal duration) is in the row's detail.
     """
 
     CONSTRAINED = "constrained"
     UNCONSTRAINED = "unconstrained"
     SPEED_SWEEP = "speed_sweep"
     OPTIMIZED = "optimized"
+    ROBUST = "robust"
 
     @classmethod
     def parse(cls, text: str) -> Variant:

@@ -9,10 +9,14 @@ rows of one trial compare the same path.
 
 The ``optimized`` row optimises the trial's spline MOVE with the transport
 experiment's :func:`~rt_drake.experiments.optimized_transport.optimize_spline`
-and plays the result at speed 1.
+and plays the result at speed 1. Every variant but ``robust`` plans and
+retimes for the nominal object and cup; the ``robust`` row retimes the same
+spline path for the object's uncertainty set and the cup's range and plays
+it as the robust transport experiment does
+(:func:`~rt_drake.experiments.robust_transport.true_object_world`).
 
-To add a comparison (e.g. ``robust`` for uncertainty sets): add a member to
-:class:`Variant`, write its function here, and add it to :data:`VARIANTS`.
+To add a comparison: add a member to :class:`Variant`, write its function
+here, and add it to :data:`VARIANTS`.
 """
 
 from __future__ import annotations
@@ -25,10 +29,11 @@ from types import MappingProxyType
 
 import numpy as np
 
-from rt_drake.errors import RtDrakeError
+from rt_drake.errors import RtDrakeError, ScenarioError
 from rt_drake.experiments.campaign.campaign import Combination
 from rt_drake.experiments.campaign.rows import RowResult, Status, Variant
 from rt_drake.experiments.optimized_transport import optimize_spline
+from rt_drake.experiments.robust_transport import true_object_world
 from rt_drake.experiments.rollout import (
     SPEED_FACTORS,
     Rollout,
@@ -38,6 +43,7 @@ from rt_drake.experiments.rollout import (
 )
 from rt_drake.scenario import Scenario
 from rt_drake.simulation import Motion, OnlineMotions
+from rt_drake.uncertainty import ObjectUncertainty
 
 #: A variant: one row's results from its combination.
 VariantFunction = Callable[[Combination], RowResult]
@@ -75,6 +81,9 @@ class PlannedMove:
 def plan_move(combination: Combination, grasp_constraint: bool) -> PlannedMove:
     """Plan the trial's APPROACH, REACH and MOVE; retime the MOVE.
 
+    For the nominal object and cup (the uncertainty set and cup range, if
+    any, left to the ``robust`` variant).
+
     Raises:
         PlanningError: no collision-free path.
         RetimeError: e.g. the object slips off the cup even at rest.
@@ -84,6 +93,7 @@ def plan_move(combination: Combination, grasp_constraint: bool) -> PlannedMove:
         combination.scenario,
         grasp_constraint=grasp_constraint,
         seed=combination.planner_seed,
+        robust=False,
     )
     (obj,) = combination.scenario.objects
     approach = motions.approach(motions.q_home, obj)
@@ -209,6 +219,63 @@ def optimized(combination: Combination) -> RowResult:
     )
 
 
+def robust(combination: Combination) -> RowResult:
+    """The spline MOVE retimed for the uncertainty set, played with a true object.
+
+    The trial's spline MOVE (the ``constrained`` row's path) retimed to hold
+    every object of the object's uncertainty set with every cup of the cup's
+    range (:meth:`~rt_drake.simulation.OnlineMotions.grasp_for`), and played
+    at speed 1 with a hard true object of the set and the worst cup
+    (:func:`~rt_drake.experiments.robust_transport.true_object_world`,
+    seeded by the row's seed and trial). ``duration_s`` is the robust
+    MOVE's; ``detail`` adds ``nominal_duration_s`` (the ``constrained``
+    row's), ``price`` = robust / nominal, ``robust_retime_s``, the true
+    object, and ``nominal_on_true``: the nominal MOVE played with the same
+    true object and cup (held, slip).
+
+    Raises:
+        ScenarioError: neither an uncertainty set nor a cup range.
+    """
+    scenario = combination.scenario
+    (obj,) = scenario.objects
+    uncertainty = obj.uncertainty or ObjectUncertainty()
+    if uncertainty.is_zero() and not scenario.cup.is_uncertain():
+        raise ScenarioError(
+            f"object '{obj.name}' has no uncertainty file and cup "
+            f"'{combination.cup.name}' no friction or suction range: nothing "
+            "for the robust variant to hold"
+        )
+    planned = plan_move(combination, grasp_constraint=True)
+    nominal = planned.move
+    assert nominal.planned is not None
+    start = time.perf_counter()
+    grasp = planned.motions.grasp_for(obj, nominal.planned.X_OC, robust=True)
+    retimed = planned.motions.retime_path(nominal.planned.path, grasp)
+    retime_s = time.perf_counter() - start
+    rng = np.random.default_rng([combination.key.seed, combination.key.trial])
+    world, inertias, true = true_object_world(
+        scenario, planned.q_grasp, obj, uncertainty, rng
+    )
+    start = time.perf_counter()
+    played, on_true = (
+        simulate_move(world, planned.q_grasp, trajectory, object_inertias=inertias)
+        for trajectory in (retimed.trajectory, nominal.trajectory)
+    )
+    return _row(
+        planned,
+        1.0,
+        played,
+        time.perf_counter() - start,
+        duration=retimed.duration,
+        plan_s=planned.plan_s + retime_s,
+        nominal_duration_s=nominal.duration,
+        price=retimed.duration / nominal.duration,
+        robust_retime_s=retime_s,
+        true_object=true.as_dict(),
+        nominal_on_true={"success": on_true.success, **on_true.as_dict()},
+    )
+
+
 #: The registry: every :class:`Variant` and its function (read-only).
 VARIANTS: Mapping[Variant, VariantFunction] = MappingProxyType(
     {
@@ -216,6 +283,7 @@ VARIANTS: Mapping[Variant, VariantFunction] = MappingProxyType(
         Variant.UNCONSTRAINED: unconstrained,
         Variant.SPEED_SWEEP: speed_sweep,
         Variant.OPTIMIZED: optimized,
+        Variant.ROBUST: robust,
     }
 )
 
@@ -245,6 +313,7 @@ __all__ = [
     "constrained",
     "optimized",
     "plan_move",
+    "robust",
     "run_variant",
     "speed_sweep",
     "unconstrained",
