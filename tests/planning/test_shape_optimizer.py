@@ -236,3 +236,32 @@ def test_no_faster_path_returns_the_spline_path(setup):
     assert not result.improved
     assert result.path is straight.path
     assert result.duration == result.spline_duration
+
+
+def test_kernels_only_take_the_layout_warm_up_compiles(moves):
+    """No timed MOVE compiles: every kernel specialisation is C-ordered and writeable.
+
+    numba compiles one specialisation per array layout and writeability;
+    ``warm_up`` compiles C-ordered writeable arrays. An F-ordered or read-only
+    argument (e.g. a Drake pose matrix, a fancy-indexed column block) would
+    compile anew inside the first optimised MOVE of a cycle (seconds of
+    planning on the critical path).
+    """
+    from numba.core import types
+
+    from rt_drake.planning.shape import _fk
+    from rt_drake.planning.shape.clearance import _clearance
+    from rt_drake.planning.shape.spline import _splines
+    from rt_drake.planning.shape.surrogate import _batch_durations
+
+    warm_up()
+    kernels = (_fk.frames, _fk.accelerations, _splines, _batch_durations, _clearance)
+    for kernel in kernels:
+        assert kernel.signatures, kernel
+        for signature in kernel.signatures:
+            for argument in signature:
+                if isinstance(argument, types.Array):
+                    assert argument.layout == "C" and argument.mutable, (
+                        kernel.py_func.__name__,
+                        signature,
+                    )

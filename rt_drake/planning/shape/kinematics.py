@@ -134,7 +134,7 @@ class CupChain:
             np.array([np.eye(4) if Y is None else Y for _, Y, _, _ in self._steps]),
             np.array([i for _, _, i, _ in self._steps], dtype=np.int64),
             np.array([np.zeros(3) if k is None else k for _, _, _, k in self._steps]),
-            X_BC,
+            _kernel_array(X_BC),
         )
         self.gravity_W = np.asarray(plant.gravity_field().gravity_vector(), float)
 
@@ -151,7 +151,7 @@ class CupChain:
             (..., n, 3)), all in W; R_WC (..., 3, 3) and p_WC (m, (..., 3)).
         """
         q = np.asarray(q, float)
-        flat = np.ascontiguousarray(q.reshape(-1, q.shape[-1]))
+        flat = _kernel_array(q.reshape(-1, q.shape[-1]))
         count, n = flat.shape
         z, o = np.empty((count, n, 3)), np.empty((count, n, 3))
         R, p = np.empty((count, 3, 3)), np.empty((count, 3))
@@ -256,7 +256,7 @@ class CupChain:
         q = np.asarray(q, float)
         shape, n = q.shape[:-1], q.shape[-1]
         flat = [
-            np.ascontiguousarray(np.broadcast_to(x, q.shape).reshape(-1, n), float)
+            _kernel_array(np.broadcast_to(x, q.shape).reshape(-1, n))
             for x in (q, dq, ddq)
         ]
         count = flat[0].shape[0]
@@ -269,9 +269,9 @@ class CupChain:
             o,
             R,
             p,
-            flat[1][:, self.order],
-            flat[2][:, self.order],
-            np.asarray(p_CoS_C, float),
+            _kernel_array(flat[1][:, self.order]),
+            _kernel_array(flat[2][:, self.order]),
+            _kernel_array(p_CoS_C),
             out,
         )
         return (R.reshape(*shape, 3, 3), *(x.reshape(*shape, 3) for x in out))
@@ -298,5 +298,16 @@ class CupChain:
         c_w = np.concatenate([-m * _cross(p, g_C), -m * g_C], -1)
         return a_w, b_w, c_w
 
+
+
+def _kernel_array(x: np.ndarray) -> np.ndarray:
+    """``x`` as a writeable C-ordered float64 array (a copy only if it is not).
+
+    numba compiles one specialisation per array layout and writeability; the
+    kernels are compiled ahead of time (:func:`rt_drake.planning.shape.warm_up`)
+    for C-ordered writeable arrays only, so every call passes those, else a
+    timed MOVE would pay a compilation (seconds).
+    """
+    return np.require(x, float, ("C", "W"))
 
 __all__ = ["CupChain", "KinematicsError"]

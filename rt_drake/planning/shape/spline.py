@@ -38,9 +38,10 @@ def evaluate_splines(
         waypoints: (P, K, n) joint waypoints (rad), no two consecutive equal.
         s: (M,) nondecreasing parameters in [0, 1].
     """
-    waypoints = np.ascontiguousarray(waypoints, dtype=float)
-    knots = np.ascontiguousarray(chord_knots_batch(waypoints))
-    s = np.ascontiguousarray(s, dtype=float)
+    # writeable C-ordered float64, the layout warm_up compiles (no other)
+    waypoints = np.require(waypoints, float, ("C", "W"))
+    knots = np.require(chord_knots_batch(waypoints), float, ("C", "W"))
+    s = np.require(s, float, ("C", "W"))
     count, _, n = waypoints.shape
     out = np.empty((3, count, len(s), n))
     _splines(waypoints, knots, s, out)
