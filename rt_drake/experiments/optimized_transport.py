@@ -9,7 +9,8 @@ in the same physics with its own speed sweep. Per trial it returns the keys
 ``critical_speed_factor_optimized``, and what the report needs: the spline
 path's duration on the optimiser's grid (``duration_spline_same_grid_s``)
 and the cup's position, tilt and grasp margin over time along both MOVEs
-(``cup_profiles``).
+(``cup_profiles``). :func:`optimize_spline` is its optimisation alone (the
+campaign's ``optimized`` variant plays its result at speed 1).
 
 The budget is counted in this process's CPU time (``Clock.PROCESS``): the
 trials run two at a time on a shared machine, and a wall-clock budget would
@@ -34,6 +35,7 @@ from rt_drake.planning.shape import (
     Clock,
     MoveOptimizer,
     MoveOptimizerOptions,
+    OptimizedMove,
     warm_up,
 )
 from rt_drake.planning.shape.kinematics import CupChain
@@ -67,14 +69,7 @@ def optimized_trial(
         rollout_world: The rollout scenario (:func:`.rollout.rollout_scenario`).
         replay_path: Write a Meshcat replay (HTML) of the optimised MOVE here.
     """
-    plant = make_arm_plant(scenario)
-    limits = JointLimits.from_plant(plant, scenario.robot)
-    options = dataclasses.replace(
-        MoveOptimizerOptions.from_config(scenario.planning), clock=Clock.PROCESS
-    )
-    warm_up()
-    optimizer = MoveOptimizer(plant, limits, options)
-    result = optimizer.optimize(planner, spline, grasp)
+    optimizer, result = optimize_spline(scenario, planner, spline, grasp)
     q_grasp = spline.q_start
     trajectory = result.retimed.trajectory
     critical, sweep = critical_speed(rollout_world, q_grasp, trajectory)
@@ -104,6 +99,32 @@ def optimized_trial(
             "optimized": cup_profile(chain, result.retimed),
         },
     }
+
+
+def optimize_spline(
+    scenario: Scenario,
+    planner: CyclePlanner,
+    spline: PlannedPath,
+    grasp: GraspConstraint,
+) -> tuple[MoveOptimizer, OptimizedMove]:
+    """Shape the spline MOVE ``spline`` for speed, retimed under ``grasp``.
+
+    The optimiser has the scenario's ``planning`` tilt and budget, the
+    budget counted in this process's CPU time (module docstring).
+
+    Returns:
+        The optimiser (its ``chain`` gives the cup kinematics) and its result:
+        the returned path, retimed under the exact grasp constraint on the
+        adaptive grid, never slower than the spline path on that grid.
+    """
+    plant = make_arm_plant(scenario)
+    limits = JointLimits.from_plant(plant, scenario.robot)
+    options = dataclasses.replace(
+        MoveOptimizerOptions.from_config(scenario.planning), clock=Clock.PROCESS
+    )
+    warm_up()
+    optimizer = MoveOptimizer(plant, limits, options)
+    return optimizer, optimizer.optimize(planner, spline, grasp)
 
 
 def cup_profile(chain: CupChain, retimed: RetimeResult) -> dict[str, list[float]]:
@@ -170,6 +191,7 @@ __all__ = [
     "PROFILE_SAMPLES",
     "REPLAY_FILE",
     "cup_profile",
+    "optimize_spline",
     "optimized_trial",
     "summarize_optimized",
 ]

@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
+from pydrake.multibody.tree import SpatialInertia
 
 from rt_drake.contact import worst_cup_polytope
 from rt_drake.cup_frame import CupFrame
@@ -90,8 +91,8 @@ def robust_trial(
     robust_s = time.perf_counter() - start
 
     rng = np.random.default_rng([seed, index])
+    world, inertias, true = true_object_world(trial, q_grasp, obj, uncertainty, rng)
     model = ObjectInertia.of_model(obj)
-    true = hardest_corner(model, uncertainty, rng)
     sample = corners(model, uncertainty) + random_objects(
         model, uncertainty, SAMPLE, rng
     )
@@ -99,8 +100,6 @@ def robust_trial(
     held_sample = [o.held(X_OC) for o in sample]
     bound = motions.retime_path(path, GraspConstraint.for_objects(held_sample, cup))
     excess = sound_excess(trial, robust.trajectory, held_sample)
-    world = dataclasses.replace(rollout_scenario(trial, q_grasp), cup=cup.worst_case())
-    inertias = {obj.name: true.spatial_inertia()}
     played = {
         name: simulate_move(world, q_grasp, trajectory, object_inertias=inertias)
         for name, trajectory in (
@@ -131,6 +130,31 @@ def robust_trial(
         "robust_vertex_objects": robust.grasp_objects,
         "guarantee_robust": robust_grasp.guarantee(),
     }
+
+
+def true_object_world(
+    trial: Scenario,
+    q_grasp: np.ndarray,
+    obj: ObjectConfig,
+    uncertainty: ObjectUncertainty,
+    rng: np.random.Generator,
+) -> tuple[Scenario, dict[str, SpatialInertia], ObjectInertia]:
+    """The physics a robust plan is played in: a hard TRUE object, the worst cup.
+
+    The true object is drawn from the set's hardest corners
+    (:func:`~rt_drake.object_samples.hardest_corner`, one draw of ``rng``);
+    the cup is the worst of its range (``friction_min``,
+    ``suction_force_min``).
+
+    Returns:
+        The rollout scenario (arm at ``q_grasp``), the object inertias to
+        pass to :func:`.rollout.simulate_move`, and the true object.
+    """
+    true = hardest_corner(ObjectInertia.of_model(obj), uncertainty, rng)
+    world = dataclasses.replace(
+        rollout_scenario(trial, q_grasp), cup=trial.cup.worst_case()
+    )
+    return world, {obj.name: true.spatial_inertia()}, true
 
 
 def sound_excess(scenario: Scenario, trajectory: TimedPath, objects: list) -> float:
@@ -274,4 +298,9 @@ def summarize_robust(trials: list[dict[str, Any]]) -> dict[str, Any]:
     }
 
 
-__all__ = ["SAMPLE", "robust_trial", "run_robust_transport_experiment"]
+__all__ = [
+    "SAMPLE",
+    "robust_trial",
+    "run_robust_transport_experiment",
+    "true_object_world",
+]

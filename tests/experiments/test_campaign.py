@@ -85,9 +85,10 @@ def test_content_hash_follows_content_not_formatting(tmp_path):
 def test_every_variant_has_a_function_and_unknown_ones_list_the_known():
     assert set(VARIANTS) == set(Variant)
     with pytest.raises(CampaignError) as error:
-        Variant.parse("robust")
+        Variant.parse("sturdy")
     assert str(error.value) == (
-        "unknown variant 'robust' (known: constrained, unconstrained, speed_sweep)"
+        "unknown variant 'sturdy' "
+        "(known: constrained, unconstrained, speed_sweep, optimized, robust)"
     )
 
 
@@ -97,7 +98,12 @@ BAD_EDITS = [
     ("  radius: 0.010", "  radus: 0.010", ["bad.yaml", "cups[1].radus"]),
     ("trials: 2", "trials: two", ["bad.yaml", "'trials'", "'two'"]),
     ("trials: 2", "trials: 0", ["bad.yaml", "'trials'", "got 0"]),
-    ("[constrained]", "[constrained, robust]", ["variants[1]", "robust", "known:"]),
+    ("[constrained]", "[constrained, sturdy]", ["variants[1]", "sturdy", "known:"]),
+    (
+        "notebook.sdf\n",
+        "notebook.sdf\n  uncertainty: nowhere.yaml\n",
+        ["objects[0].uncertainty", "no such file", "nowhere.yaml"],
+    ),
     ("  radius: 0.010", "  points: 2", ["bad.yaml", "cups[1]", "points", "2"]),
     ("- name: small", "- name: paper", ["cups[1].name", "duplicate", "paper"]),
     ("notebook.sdf", "notbook.sdf", ["objects[0].model", "notbook.sdf"]),
@@ -106,6 +112,47 @@ BAD_EDITS = [
     ("seed: 0", "seed: 0\nseed: 1", ["bad.yaml", "duplicate key 'seed'"]),
     ("  radius: 0.010", "  radius: .nan", ["bad.yaml", "cups[1].radius", "finite"]),
 ]
+
+
+BAD_SETS = [
+    # (uncertainty file, words the one-line message must contain)
+    ("mass: 1.5\n", ["objects[0].uncertainty", "set.yaml", "mass", "1.5"]),
+    ("mas: 0.2\n", ["objects[0].uncertainty", "set.yaml", "unknown key 'mas'"]),
+    ("com: [0.5, 0, 0]\n", ["objects[0].uncertainty", "com[0]", "outside"]),
+    ("inertia: .nan\n", ["objects[0].uncertainty", "inertia", "finite"]),
+]
+
+
+@pytest.mark.parametrize("text,words", BAD_SETS)
+def test_bad_uncertainty_file_is_one_line_naming_it(tmp_path, text, words):
+    (tmp_path / "set.yaml").write_text(text)
+    good = write_campaign(tmp_path / "good.yaml").read_text()
+    path = tmp_path / "bad.yaml"
+    path.write_text(
+        good.replace("notebook.sdf\n", "notebook.sdf\n  uncertainty: set.yaml\n")
+    )
+    with pytest.raises(CampaignError) as error:
+        load_campaign(path)
+    message = str(error.value)
+    assert "\n" not in message
+    for word in words:
+        assert word in message, (word, message)
+
+
+def test_uncertainty_file_reaches_the_robust_row_only(tmp_path):
+    (tmp_path / "set.yaml").write_text("mass: 0.2\ncom: [0.01, 0.01, 0.005]\n")
+    good = write_campaign(tmp_path / "good.yaml", variants="[constrained, robust]")
+    text = good.read_text()
+    path = tmp_path / "set_campaign.yaml"
+    path.write_text(
+        text.replace("notebook.sdf\n", "notebook.sdf\n  uncertainty: set.yaml\n")
+    )
+    campaign = load_campaign(path)
+    assert campaign.content_hash != load_campaign(good).content_hash
+    key = RowKey("notebook", "paper", 0, 0, Variant.ROBUST)
+    (obj,) = campaign.combination(key).scenario.objects
+    assert obj.uncertainty is not None
+    assert (obj.uncertainty.mass, obj.uncertainty.com) == (0.2, [0.01, 0.01, 0.005])
 
 
 @pytest.mark.parametrize("old,new,words", BAD_EDITS)
@@ -194,12 +241,24 @@ def _synthetic(campaign, seed: int = 0) -> list[Outcome]:
             result = RowResult.failed(Status.CRASHED, "WorkerCrashed: y")
         else:
             critical = rng.choice([None, 1.1, 1.2, 1.3, 1.6])
+            detail = {}
+            if key.variant is Variant.OPTIMIZED:
+                detail = {
+                    "ratio_to_spline": rng.uniform(0.7, 1.0),
+                    "optimize_cpu_s": rng.uniform(0.1, 0.5),
+                }
+            if key.variant is Variant.ROBUST:
+                detail = {
+                    "price": rng.uniform(1.0, 1.5),
+                    "nominal_on_true": {"success": rng.random() < 0.5},
+                }
             result = RowResult(
                 Status.OK,
                 duration_s=rng.uniform(0.8, 1.6),
                 speed=1.0,
                 success=rng.random() < 0.7,
                 critical_speed=critical if key.variant is Variant.SPEED_SWEEP else None,
+                detail=detail,
             )
         outcomes.append(_outcome(key, result))
     return outcomes
@@ -263,11 +322,61 @@ def test_report_numbers_equal_an_independent_sql_aggregation(tmp_path):
             if slipped:
                 assert got["median"] == statistics.median(slipped)
                 assert got["min"] == min(slipped)
+        _check_optimized(sql, summary, groups)
+        _check_robust(sql, summary, groups)
     table = (tmp_path / "report" / "summary.md").read_text()
     for (obj, cup), group in groups.items():
         held = group["variants"]["constrained"]
         assert f"| {obj} | {cup} | {held['held']}/{held['ran']} |" in table
+        optimized = group["variants"]["optimized"]
+        ratio = group["optimized"]["ratio_median"]
+        assert f" {optimized['held']}/{optimized['ran']} | {ratio:.3f} |" in table
+        robust = group["robust"]
+        assert (
+            f" {robust['held']}/{robust['ran']} ({robust['nominal_held']}) | "
+            f"{robust['price_median']:.3f} |"
+        ) in table
     assert not math.isnan(summary["groups"][0]["time_extension_pct"]["mean"])
+
+
+def _check_optimized(sql: sqlite3.Connection, summary: dict, groups: dict) -> None:
+    """The optimized numbers against the rows' JSON detail, read by SQLite."""
+    query = (
+        "SELECT object, cup, success, json_extract(detail, '$.ratio_to_spline'),"
+        " json_extract(detail, '$.optimize_cpu_s') FROM rollouts"
+        " WHERE variant = 'optimized' AND status = 'ok'"
+    )
+    rows = sql.execute(query).fetchall()
+    assert rows and summary["optimized"]["ran"] == len(rows)
+    assert summary["optimized"]["held"] == sum(r[2] for r in rows)
+    assert summary["optimized"]["ratio_median"] == statistics.median(r[3] for r in rows)
+    for (obj, cup), group in groups.items():
+        mine = [r for r in rows if r[:2] == (obj, cup)]
+        got = group["optimized"]
+        assert (got["ran"], got["held"]) == (len(mine), sum(r[2] for r in mine))
+        assert got["ratio_median"] == statistics.median(r[3] for r in mine)
+        assert got["ratio_min"] == min(r[3] for r in mine)
+        assert got["optimize_cpu_s_median"] == statistics.median(r[4] for r in mine)
+
+
+def _check_robust(sql: sqlite3.Connection, summary: dict, groups: dict) -> None:
+    """The robust numbers against the rows' JSON detail, read by SQLite."""
+    rows = sql.execute(
+        "SELECT object, cup, success, json_extract(detail, '$.price'),"
+        " json_extract(detail, '$.nominal_on_true.success') FROM rollouts"
+        " WHERE variant = 'robust' AND status = 'ok'"
+    ).fetchall()
+    assert rows and summary["robust"]["ran"] == len(rows)
+    assert summary["robust"]["held"] == sum(r[2] for r in rows)
+    assert summary["robust"]["nominal_held"] == sum(r[4] for r in rows)
+    assert summary["robust"]["price_median"] == statistics.median(r[3] for r in rows)
+    for (obj, cup), group in groups.items():
+        mine = [r for r in rows if r[:2] == (obj, cup)]
+        got = group["robust"]
+        assert (got["ran"], got["held"]) == (len(mine), sum(r[2] for r in mine))
+        assert got["nominal_held"] == sum(r[4] for r in mine)
+        assert got["price_median"] == statistics.median(r[3] for r in mine)
+        assert got["price_max"] == max(r[3] for r in mine)
 
 
 @pytest.mark.parametrize(

@@ -48,7 +48,8 @@ class Combination:
         obj: The object carried.
         cup: The cup holding it.
         scenario: The trial's scenario: the base cell with this cup and this
-            object alone, at the trial's start pose, with its goal pose.
+            object alone, at the trial's start pose, with its goal pose (and
+            its uncertainty set, which only the ``robust`` variant holds).
         planner_seed: Seed of the planner (campaign seed + trial).
     """
 
@@ -124,6 +125,7 @@ class Campaign:
             goal=Transform(X_goal),
             approach_offset=base.approach_offset,
             grasp=Transform(obj.X_OC),
+            uncertainty=obj.uncertainty_set,
         )
         return dataclasses.replace(
             self.scenario,

@@ -5,6 +5,14 @@ grasp X_OC (the cup frame C in the object frame O). By default the grasp is
 the centre of the top face of the SDF's first box collision (cup +z
 pointing down into the object), so a catalogue of boxes needs no grasp
 poses; an object without a box takes the base scenario's grasp.
+
+An object may name an uncertainty set file, for the ``robust`` variant: a
+YAML mapping with the fields of :class:`~rt_drake.uncertainty.ObjectUncertainty`
+(the scenario key ``objects[].uncertainty``), e.g.::
+
+    mass: 0.2                   # relative half-width of the mass
+    com: [0.01, 0.01, 0.005]    # m, half-widths of the centre of mass (axes O)
+    inertia: 0.2                # relative half-width of each principal moment
 """
 
 from __future__ import annotations
@@ -15,12 +23,17 @@ from pathlib import Path
 
 import numpy as np
 from pydrake.common.schema import Transform
+from pydrake.common.yaml import yaml_load_typed
 from pydrake.math import RigidTransform, RotationMatrix
 
 from rt_drake.contact import CupParameters
+from rt_drake.errors import InputError, ScenarioError
 from rt_drake.experiments.campaign.errors import CampaignError
 from rt_drake.plant import OBJECT_BODY
 from rt_drake.resources import models_dir
+from rt_drake.scenario import MAX_SCENARIO_BYTES, ObjectConfig
+from rt_drake.scenario_yaml import check_schema, locate, read_yaml
+from rt_drake.uncertainty import ObjectUncertainty
 
 #: The URL prefix of the shipped models.
 PACKAGE_PREFIX = "package://rt_drake/"
@@ -36,6 +49,7 @@ class CampaignObject:
         file: The SDF on this machine.
         X_OC: The grasp: pose of the cup frame C in the object frame O.
         uncertainty: Its uncertainty set file, if any.
+        uncertainty_set: That file's set (None: no file).
     """
 
     name: str
@@ -43,6 +57,7 @@ class CampaignObject:
     file: Path
     X_OC: RigidTransform
     uncertainty: Path | None
+    uncertainty_set: ObjectUncertainty | None = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -111,17 +126,61 @@ def _object(
             f"{path}: key '{where}.model': unknown model '{model}' (no such file)"
         )
     uncertainty_file: Path | None = None
+    uncertainty_set: ObjectUncertainty | None = None
+    name = name or file.stem
     if uncertainty:
         _, uncertainty_file = resolve_file(path.parent, uncertainty)
         if not uncertainty_file.is_file():
             raise CampaignError(
                 f"{path}: key '{where}.uncertainty': no such file '{uncertainty}'"
             )
+        try:
+            uncertainty_set = read_uncertainty(uncertainty_file, name, url)
+        except CampaignError as error:
+            raise CampaignError(f"{path}: key '{where}.uncertainty': {error}") from None
     if grasp is not None:
         X_OC = grasp.GetDeterministicValue()
     else:
         X_OC = top_face_grasp(file) or base_grasp.GetDeterministicValue()
-    return CampaignObject(name or file.stem, url, file, X_OC, uncertainty_file)
+    return CampaignObject(name, url, file, X_OC, uncertainty_file, uncertainty_set)
+
+
+def read_uncertainty(file: Path, name: str, model: str) -> ObjectUncertainty:
+    """The uncertainty set in ``file`` (module docstring) of object ``name``.
+
+    Read with the scenario loader's strict reader and schema check; the
+    widths in range and the centre-of-mass box inside the model's box.
+
+    Raises:
+        CampaignError: ``file: ...`` naming the key and value.
+    """
+    size = file.stat().st_size
+    if size > MAX_SCENARIO_BYTES:
+        raise CampaignError(f"{file}: {size} bytes; at most {MAX_SCENARIO_BYTES}")
+    try:
+        text = file.read_bytes().decode("utf-8")
+    except UnicodeDecodeError:
+        raise CampaignError(f"{file}: not UTF-8 text") from None
+    try:
+        raw = read_yaml(file, text)
+        check_schema(file, raw, ObjectUncertainty)
+        uncertainty = yaml_load_typed(schema=ObjectUncertainty, data=text)
+        uncertainty.validate()  # yaml_load_typed sets fields after __init__
+    except ScenarioError as error:
+        raise CampaignError(str(error)) from None
+    except (RuntimeError, ValueError, TypeError) as error:
+        raise CampaignError(locate(file, raw, str(error))) from None
+    except InputError as error:  # a width out of range
+        raise CampaignError(f"{file}: {error}") from None
+    if any(uncertainty.com):
+        from rt_drake.object_geometry import object_box  # parses the model: Drake
+
+        try:
+            p_OoScm_O, half_extents = object_box(ObjectConfig(name=name, model=model))
+            uncertainty.check_inside(p_OoScm_O, half_extents)
+        except InputError as error:
+            raise CampaignError(f"{file}: {error}") from None
+    return uncertainty
 
 
 def resolve_objects(
@@ -164,6 +223,7 @@ def resolve_objects(
 __all__ = [
     "CampaignCup",
     "CampaignObject",
+    "read_uncertainty",
     "resolve_file",
     "resolve_objects",
     "top_face_grasp",

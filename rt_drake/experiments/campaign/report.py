@@ -10,7 +10,18 @@ Per object and cup (:class:`GroupSummary`):
   both ran, ``100 (d_c - d_u) / d_c`` % as in the paper's Table I (mean,
   min, max);
 - the critical speed factors of the ``speed_sweep`` rows that slipped
-  (median, min), and how many held up to the fastest factor.
+  (median, min), and how many held up to the fastest factor;
+- the ``optimized`` rows that ran: the ratio of the optimised MOVE's
+  duration to the spline MOVE's (``detail.ratio_to_spline``; median, min,
+  max), how many held, and the optimisation's CPU time (median, s).
+
+- the ``robust`` rows that ran: how many held (robust MOVE, true object,
+  worst cup), how many of the nominal MOVEs held in the same physics
+  (``detail.nominal_on_true``), and the price robust / nominal duration
+  (``detail.price``; median, min, max).
+
+``summary.json`` also has these ``optimized`` and ``robust`` numbers over
+the whole campaign.
 
 :func:`write_campaign_report` writes ``summary.md``, ``summary.csv``,
 ``summary.json`` and the plots ``success_rates.png``,
@@ -57,6 +68,10 @@ class GroupSummary:
     time_extension_pct: list[float]
     critical_speeds: list[float]
     held_through_sweep: int
+    optimized_ratios: list[float] = dataclasses.field(default_factory=list)
+    optimize_cpu_s: list[float] = dataclasses.field(default_factory=list)
+    robust_prices: list[float] = dataclasses.field(default_factory=list)
+    nominal_held_on_true: int = 0
 
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready numbers, with the derived statistics."""
@@ -80,7 +95,45 @@ class GroupSummary:
                 "min": min(critical, default=None),
                 "held_through_sweep": self.held_through_sweep,
             },
+            "optimized": optimized_summary(
+                self.variants.get(Variant.OPTIMIZED.value),
+                self.optimized_ratios,
+                self.optimize_cpu_s,
+            ),
+            "robust": robust_summary(
+                self.variants.get(Variant.ROBUST.value),
+                self.robust_prices,
+                self.nominal_held_on_true,
+            ),
         }
+
+
+def robust_summary(
+    counts: VariantCounts | None, prices: list[float], nominal_held: int
+) -> dict[str, Any]:
+    """The ``robust`` rows: ran, held, nominal MOVEs held, robust / nominal."""
+    return {
+        "ran": 0 if counts is None else counts.ran,
+        "held": 0 if counts is None else counts.held,
+        "nominal_held": nominal_held,
+        "price_median": statistics.median(prices) if prices else None,
+        "price_min": min(prices, default=None),
+        "price_max": max(prices, default=None),
+    }
+
+
+def optimized_summary(
+    counts: VariantCounts | None, ratios: list[float], cpu_s: list[float]
+) -> dict[str, Any]:
+    """The ``optimized`` rows: ran, held, optimised / spline duration, CPU time."""
+    return {
+        "ran": 0 if counts is None else counts.ran,
+        "held": 0 if counts is None else counts.held,
+        "ratio_median": statistics.median(ratios) if ratios else None,
+        "ratio_min": min(ratios, default=None),
+        "ratio_max": max(ratios, default=None),
+        "optimize_cpu_s_median": statistics.median(cpu_s) if cpu_s else None,
+    }
 
 
 def read_rows(database: Path) -> tuple[dict[str, str], list[dict[str, Any]]]:
@@ -124,6 +177,16 @@ def _summarize(obj: str, cup: str, rows: list[dict[str, Any]]) -> GroupSummary:
     sweeps = [
         row for row in by_variant[Variant.SPEED_SWEEP.value] if row["status"] == "ok"
     ]
+    optimized = [
+        json.loads(row["detail"])
+        for row in by_variant[Variant.OPTIMIZED.value]
+        if row["status"] == "ok"
+    ]
+    robust = [
+        json.loads(row["detail"])
+        for row in by_variant[Variant.ROBUST.value]
+        if row["status"] == "ok"
+    ]
     return GroupSummary(
         object=obj,
         cup=cup,
@@ -133,6 +196,10 @@ def _summarize(obj: str, cup: str, rows: list[dict[str, Any]]) -> GroupSummary:
             r["critical_speed"] for r in sweeps if r["critical_speed"] is not None
         ),
         held_through_sweep=sum(r["critical_speed"] is None for r in sweeps),
+        optimized_ratios=[d["ratio_to_spline"] for d in optimized],
+        optimize_cpu_s=[d["optimize_cpu_s"] for d in optimized],
+        robust_prices=[d["price"] for d in robust],
+        nominal_held_on_true=sum(bool(d["nominal_on_true"]["success"]) for d in robust),
     )
 
 
@@ -162,8 +229,9 @@ def summary_table(groups: list[GroupSummary]) -> str:
     lines = [
         "| object | cup | held with constraint | held without | infeasible | "
         "failed | time ext. % mean (min to max) | critical speed median (min) | "
-        "sweeps that never slipped |",
-        "|---|---|---:|---:|---:|---:|---:|---:|---:|",
+        "sweeps that never slipped | held optimized | optimized / spline median | "
+        "held robust (nominal) | robust / nominal median |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for group in groups:
         d = group.as_dict()
@@ -172,6 +240,11 @@ def summary_table(groups: list[GroupSummary]) -> str:
         extension = "-"
         if ext["n"]:
             extension = f"{ext['mean']:.2f} ({ext['min']:.2f} to {ext['max']:.2f})"
+        ratio = d["optimized"]["ratio_median"]
+        robust, price = d["robust"], d["robust"]["price_median"]
+        held_robust = "-"
+        if Variant.ROBUST.value in group.variants:
+            held_robust = f"{robust['held']}/{robust['ran']} ({robust['nominal_held']})"
         critical = "-"
         if crit["n"]:
             critical = f"{crit['median']:.1f}x ({crit['min']:.1f}x)"
@@ -179,7 +252,10 @@ def summary_table(groups: list[GroupSummary]) -> str:
             f"| {group.object} | {group.cup} | {_held(group, Variant.CONSTRAINED)} | "
             f"{_held(group, Variant.UNCONSTRAINED)} | "
             f"{sum(c.infeasible for c in counts)} | {sum(c.failed for c in counts)} | "
-            f"{extension} | {critical} | {_held_sweep(group)} |"
+            f"{extension} | {critical} | {_held_sweep(group)} | "
+            f"{_held(group, Variant.OPTIMIZED)} | "
+            f"{'-' if ratio is None else f'{ratio:.3f}'} | {held_robust} | "
+            f"{'-' if price is None else f'{price:.3f}'} |"
         )
     return "\n".join(lines)
 
@@ -204,6 +280,16 @@ def write_campaign_report(database: str | Path, out: str | Path) -> list[Path]:
         "rows": len(rows),
         "status": status,
         "groups": [group.as_dict() for group in groups],
+        "optimized": optimized_summary(
+            _total_counts(groups, Variant.OPTIMIZED),
+            [r for group in groups for r in group.optimized_ratios],
+            [c for group in groups for c in group.optimize_cpu_s],
+        ),
+        "robust": robust_summary(
+            _total_counts(groups, Variant.ROBUST),
+            [p for group in groups for p in group.robust_prices],
+            sum(group.nominal_held_on_true for group in groups),
+        ),
     }
     paths = [out / "summary.json", out / "summary.md", out / "summary.csv"]
     paths[0].write_text(json.dumps(summary, indent=2) + "\n")
@@ -221,6 +307,18 @@ def write_campaign_report(database: str | Path, out: str | Path) -> list[Path]:
 _STATUSES = ("ok", "infeasible", "error", "crashed")
 
 
+def _total_counts(groups: list[GroupSummary], variant: Variant) -> VariantCounts | None:
+    counts = [g.variants[variant.value] for g in groups if variant.value in g.variants]
+    if not counts:
+        return None
+    return VariantCounts(
+        *(
+            sum(getattr(c, f.name) for c in counts)
+            for f in dataclasses.fields(counts[0])
+        )
+    )
+
+
 def _write_csv(path: Path, groups: list[GroupSummary]) -> None:
     with path.open("w", newline="") as file:
         writer = csv.writer(file)
@@ -228,6 +326,7 @@ def _write_csv(path: Path, groups: list[GroupSummary]) -> None:
             ["object", "cup", "variant", "rows", "ran", "held", "success_rate"]
             + ["infeasible", "failed", "time_extension_mean_pct"]
             + ["critical_speed_median", "critical_speed_min"]
+            + ["optimized_ratio_median", "robust_price_median"]
         )
         for group in groups:
             d = group.as_dict()
@@ -237,12 +336,15 @@ def _write_csv(path: Path, groups: list[GroupSummary]) -> None:
                     + [c.success_rate, c.infeasible, c.failed]
                     + [d["time_extension_pct"]["mean"]]
                     + [d["critical_speed"]["median"], d["critical_speed"]["min"]]
+                    + [d["optimized"]["ratio_median"], d["robust"]["price_median"]]
                 )
 
 
 __all__ = [
     "GroupSummary",
     "VariantCounts",
+    "optimized_summary",
+    "robust_summary",
     "read_rows",
     "summarize_rows",
     "summary_table",

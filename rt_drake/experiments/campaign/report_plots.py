@@ -1,7 +1,7 @@
 """Plots of a campaign report (matplotlib, Agg backend, imported lazily).
 
 - ``success_rates.png``: per object and cup, the share of rollouts that
-  held, with and without the grasp constraint;
+  held, with and without the grasp constraint, and on the optimised path;
 - ``time_extension.png``: each trial's time extension (%);
 - ``critical_speed.png``: each speed sweep's critical factor (a hollow
   marker at the fastest factor for a sweep that never slipped).
@@ -44,9 +44,10 @@ def plot_success_rates(groups: list[GroupSummary], path: Path) -> Path:
     variants = (
         (Variant.CONSTRAINED, "tab:green", "with grasp constraint"),
         (Variant.UNCONSTRAINED, "tab:red", "joint limits only"),
+        (Variant.OPTIMIZED, "tab:purple", "optimised path, with constraint"),
     )
-    width = 0.38
-    for offset, (variant, colour, label) in zip((-0.5, 0.5), variants, strict=True):
+    width = 0.27
+    for offset, (variant, colour, label) in zip((-1, 0, 1), variants, strict=True):
         rates = []
         for group in groups:
             counts = group.variants.get(variant.value)

@@ -32,11 +32,21 @@ class Variant(enum.Enum):
     - ``speed_sweep``: the constrained MOVE played faster and faster
       (:data:`~rt_drake.experiments.rollout.SPEED_FACTORS`) until the object
       slips: the critical speed factor.
+    - ``optimized``: the MOVE path optimised for speed from the same grasp
+      to the same goal (:class:`~rt_drake.planning.shape.MoveOptimizer`),
+      retimed under the exact grasp constraint, played at speed 1; its
+      ratio to the spline path's duration is in the row's detail.
+    - ``robust``: the spline MOVE retimed to hold every object of the
+      object's uncertainty set with every cup of the cup's range, played
+      with a hard true object of the set and the worst cup; the price
+      (robust / nominal duration) is in the row's detail.
     """
 
     CONSTRAINED = "constrained"
     UNCONSTRAINED = "unconstrained"
     SPEED_SWEEP = "speed_sweep"
+    OPTIMIZED = "optimized"
+    ROBUST = "robust"
 
     @classmethod
     def parse(cls, text: str) -> Variant:

@@ -54,8 +54,10 @@ class ObjectEntry:
         grasp: X_OC, the cup frame in the object frame while held (default:
             the centre of the top face of the SDF's box, cup pointing down;
             else the base scenario's grasp).
-        uncertainty: A file with the object's uncertainty set (for the
-            ``robust`` comparison; hashed, not yet read).
+        uncertainty: A file with the object's uncertainty set, held by the
+            ``robust`` comparison only (the fields of
+            :class:`~rt_drake.uncertainty.ObjectUncertainty`; see
+            :mod:`.catalogue`).
     """
 
     model: str = ""

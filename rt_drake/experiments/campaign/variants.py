@@ -7,9 +7,16 @@ in the physics of the cycle (:mod:`rt_drake.experiments.rollout`). A
 planner with the same seed in the same scene plans the same path, so the
 rows of one trial compare the same path.
 
-To add a comparison (e.g. ``optimized`` once MOVE path optimisation lands,
-``robust`` for uncertainty sets): add a member to :class:`Variant`, write
-its function here, and add it to :data:`VARIANTS`.
+The ``optimized`` row optimises the trial's spline MOVE with the transport
+experiment's :func:`~rt_drake.experiments.optimized_transport.optimize_spline`
+and plays the result at speed 1. Every variant but ``robust`` plans and
+retimes for the nominal object and cup; the ``robust`` row retimes the same
+spline path for the object's uncertainty set and the cup's range and plays
+it as the robust transport experiment does
+(:func:`~rt_drake.experiments.robust_transport.true_object_world`).
+
+To add a comparison: add a member to :class:`Variant`, write its function
+here, and add it to :data:`VARIANTS`.
 """
 
 from __future__ import annotations
@@ -22,9 +29,11 @@ from types import MappingProxyType
 
 import numpy as np
 
-from rt_drake.errors import RtDrakeError
+from rt_drake.errors import RtDrakeError, ScenarioError
 from rt_drake.experiments.campaign.campaign import Combination
 from rt_drake.experiments.campaign.rows import RowResult, Status, Variant
+from rt_drake.experiments.optimized_transport import optimize_spline
+from rt_drake.experiments.robust_transport import true_object_world
 from rt_drake.experiments.rollout import (
     SPEED_FACTORS,
     Rollout,
@@ -34,6 +43,7 @@ from rt_drake.experiments.rollout import (
 )
 from rt_drake.scenario import Scenario
 from rt_drake.simulation import Motion, OnlineMotions
+from rt_drake.uncertainty import ObjectUncertainty
 
 #: A variant: one row's results from its combination.
 VariantFunction = Callable[[Combination], RowResult]
@@ -45,13 +55,15 @@ class PlannedMove:
 
     Attributes:
         q_grasp: The grasp configuration (rad), where the MOVE starts.
-        move: The MOVE (its path, retiming and trajectory).
+        move: The MOVE (its path, retiming, grasp constraint, trajectory).
+        motions: The planner and retimer that made it.
         world: The rollout scenario (arm at the grasp, short waits).
         plan_s: Wall time of planning and retiming, s.
     """
 
     q_grasp: np.ndarray
     move: Motion
+    motions: OnlineMotions
     world: Scenario
     plan_s: float
 
@@ -69,6 +81,9 @@ class PlannedMove:
 def plan_move(combination: Combination, grasp_constraint: bool) -> PlannedMove:
     """Plan the trial's APPROACH, REACH and MOVE; retime the MOVE.
 
+    For the nominal object and cup (the uncertainty set and cup range, if
+    any, left to the ``robust`` variant).
+
     Raises:
         PlanningError: no collision-free path.
         RetimeError: e.g. the object slips off the cup even at rest.
@@ -78,6 +93,7 @@ def plan_move(combination: Combination, grasp_constraint: bool) -> PlannedMove:
         combination.scenario,
         grasp_constraint=grasp_constraint,
         seed=combination.planner_seed,
+        robust=False,
     )
     (obj,) = combination.scenario.objects
     approach = motions.approach(motions.q_home, obj)
@@ -87,6 +103,7 @@ def plan_move(combination: Combination, grasp_constraint: bool) -> PlannedMove:
     return PlannedMove(
         q_grasp,
         move,
+        motions,
         rollout_scenario(combination.scenario, q_grasp),
         time.perf_counter() - start,
     )
@@ -98,18 +115,21 @@ def _row(
     rollout: Rollout,
     simulate_s: float,
     critical: float | None = None,
+    duration: float | None = None,
+    plan_s: float | None = None,
     **detail: object,
 ) -> RowResult:
+    """The row of ``rollout``; duration and plan time: the planned MOVE's."""
     slip = rollout.as_dict()
     return RowResult(
         status=Status.OK,
-        duration_s=planned.move.duration,
+        duration_s=planned.move.duration if duration is None else duration,
         speed=speed,
         success=rollout.success,
         slip_translation_mm=slip["max_translation_mm"],
         slip_rotation_deg=slip["max_rotation_deg"],
         critical_speed=critical,
-        plan_s=planned.plan_s,
+        plan_s=planned.plan_s if plan_s is None else plan_s,
         simulate_s=simulate_s,
         detail={**planned.detail, **detail},
     )
@@ -151,12 +171,119 @@ def speed_sweep(combination: Combination) -> RowResult:
     )
 
 
+def optimized(combination: Combination) -> RowResult:
+    """The MOVE path optimised for speed, retimed under the constraint, at speed 1.
+
+    The trial's spline MOVE (the ``constrained`` row's path) is optimised
+    from the same grasp to the same goal within the scenario's ``planning``
+    budget (CPU time), retimed under the exact grasp constraint (adaptive
+    grid), and played in the same physics. ``duration_s`` is the optimised
+    MOVE's; ``plan_s`` adds the optimisation's wall time to the spline's
+    planning. ``detail`` adds:
+
+    - ``spline_duration_s``: the spline MOVE's duration (the
+      ``constrained`` row's), and ``ratio_to_spline`` = optimised / spline;
+    - ``spline_same_grid_s``: the spline path on the optimiser's grid;
+    - ``optimize_cpu_s``, ``optimize_wall_s``: the optimisation's CPU and
+      wall time, s;
+    - ``improved``, ``evaluations``, ``max_tilt_deg``, ``rejected``;
+    - ``waypoints_optimized``: the returned path's waypoints (rad), a
+      clamped chord-length spline
+      (:meth:`~rt_drake.planning.GeometricPath.from_waypoints`).
+    """
+    planned = plan_move(combination, grasp_constraint=True)
+    spline, grasp = planned.move.planned, planned.move.grasp
+    assert spline is not None and grasp is not None
+    _, result = optimize_spline(
+        combination.scenario, planned.motions.planner, spline, grasp
+    )
+    start = time.perf_counter()
+    rollout = simulate_move(planned.world, planned.q_grasp, result.retimed.trajectory)
+    return _row(
+        planned,
+        1.0,
+        rollout,
+        time.perf_counter() - start,
+        duration=result.duration,
+        plan_s=planned.plan_s + result.wall_s,
+        spline_duration_s=planned.move.duration,
+        ratio_to_spline=result.duration / planned.move.duration,
+        spline_same_grid_s=result.spline_duration,
+        optimize_cpu_s=result.cpu_s,
+        optimize_wall_s=result.wall_s,
+        improved=result.improved,
+        evaluations=result.evaluations,
+        max_tilt_deg=result.max_tilt_deg,
+        rejected=list(result.rejected),
+        waypoints_optimized=result.path.waypoints.tolist(),
+    )
+
+
+def robust(combination: Combination) -> RowResult:
+    """The spline MOVE retimed for the uncertainty set, played with a true object.
+
+    The trial's spline MOVE (the ``constrained`` row's path) retimed to hold
+    every object of the object's uncertainty set with every cup of the cup's
+    range (:meth:`~rt_drake.simulation.OnlineMotions.grasp_for`), and played
+    at speed 1 with a hard true object of the set and the worst cup
+    (:func:`~rt_drake.experiments.robust_transport.true_object_world`,
+    seeded by the row's seed and trial). ``duration_s`` is the robust
+    MOVE's; ``detail`` adds ``nominal_duration_s`` (the ``constrained``
+    row's), ``price`` = robust / nominal, ``robust_retime_s``, the true
+    object, and ``nominal_on_true``: the nominal MOVE played with the same
+    true object and cup (held, slip).
+
+    Raises:
+        ScenarioError: neither an uncertainty set nor a cup range.
+    """
+    scenario = combination.scenario
+    (obj,) = scenario.objects
+    uncertainty = obj.uncertainty or ObjectUncertainty()
+    if uncertainty.is_zero() and not scenario.cup.is_uncertain():
+        raise ScenarioError(
+            f"object '{obj.name}' has no uncertainty file and cup "
+            f"'{combination.cup.name}' no friction or suction range: nothing "
+            "for the robust variant to hold"
+        )
+    planned = plan_move(combination, grasp_constraint=True)
+    nominal = planned.move
+    assert nominal.planned is not None
+    start = time.perf_counter()
+    grasp = planned.motions.grasp_for(obj, nominal.planned.X_OC, robust=True)
+    retimed = planned.motions.retime_path(nominal.planned.path, grasp)
+    retime_s = time.perf_counter() - start
+    rng = np.random.default_rng([combination.key.seed, combination.key.trial])
+    world, inertias, true = true_object_world(
+        scenario, planned.q_grasp, obj, uncertainty, rng
+    )
+    start = time.perf_counter()
+    played, on_true = (
+        simulate_move(world, planned.q_grasp, trajectory, object_inertias=inertias)
+        for trajectory in (retimed.trajectory, nominal.trajectory)
+    )
+    return _row(
+        planned,
+        1.0,
+        played,
+        time.perf_counter() - start,
+        duration=retimed.duration,
+        plan_s=planned.plan_s + retime_s,
+        nominal_duration_s=nominal.duration,
+        price=retimed.duration / nominal.duration,
+        robust_retime_s=retime_s,
+        true_object=true.as_dict(),
+        nominal_on_true={"success": on_true.success, **on_true.as_dict()},
+    )
+
+
 #: The registry: every :class:`Variant` and its function (read-only).
 VARIANTS: Mapping[Variant, VariantFunction] = MappingProxyType(
     {
         Variant.CONSTRAINED: constrained,
         Variant.UNCONSTRAINED: unconstrained,
         Variant.SPEED_SWEEP: speed_sweep,
+        Variant.OPTIMIZED: optimized,
+        Variant.ROBUST: robust,
     }
 )
 
@@ -184,7 +311,9 @@ __all__ = [
     "PlannedMove",
     "VariantFunction",
     "constrained",
+    "optimized",
     "plan_move",
+    "robust",
     "run_variant",
     "speed_sweep",
     "unconstrained",

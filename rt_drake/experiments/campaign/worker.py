@@ -6,7 +6,10 @@ per worker and kept for all its tasks:
 
 - the loaded campaign and its base scenario (re-hashed: a worker refuses to
   run if the files changed since the driver hashed them);
-- the retimer's compiled numba kernels (:func:`rt_drake.retiming.warm_up`);
+- the retimer's compiled numba kernels (:func:`rt_drake.retiming.warm_up`),
+  and the MOVE optimiser's if the campaign runs the ``optimized`` variant
+  (:func:`rt_drake.planning.shape.warm_up`), so that no row's optimisation
+  time counts a compilation;
 - the exact wrench polytope of every cup (computed once, then in the
   on-disk cache that each task's retimer reads in milliseconds);
 - the code version (rt_drake's version and git commit) and ``host:pid``.
@@ -32,8 +35,9 @@ from rt_drake._version import __version__
 from rt_drake.contact import cached_wrench_polytope
 from rt_drake.experiments.campaign.campaign import Campaign, load_campaign
 from rt_drake.experiments.campaign.errors import CampaignMismatchError
-from rt_drake.experiments.campaign.rows import Outcome, RowKey
+from rt_drake.experiments.campaign.rows import Outcome, RowKey, Variant
 from rt_drake.experiments.campaign.variants import run_variant
+from rt_drake.planning.shape import warm_up as warm_up_optimizer
 from rt_drake.retiming import warm_up
 
 
@@ -99,6 +103,8 @@ def build_context(campaign_path: str, content_hash: str) -> WorkerContext:
     # Not Drake's INFO line at every simulation (pydrake syncs its C++ level).
     logging.getLogger("drake").setLevel(logging.WARNING)
     warm_up()
+    if Variant.OPTIMIZED in campaign.variants:
+        warm_up_optimizer()
     for cup in campaign.cups:
         cached_wrench_polytope(cup.parameters)
     return WorkerContext(

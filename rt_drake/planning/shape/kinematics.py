@@ -299,7 +299,6 @@ class CupChain:
         return a_w, b_w, c_w
 
 
-
 def _kernel_array(x: np.ndarray) -> np.ndarray:
     """``x`` as a writeable C-ordered float64 array (a copy only if it is not).
 
@@ -309,5 +308,6 @@ def _kernel_array(x: np.ndarray) -> np.ndarray:
     timed MOVE would pay a compilation (seconds).
     """
     return np.require(x, float, ("C", "W"))
+
 
 __all__ = ["CupChain", "KinematicsError"]
