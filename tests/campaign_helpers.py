@@ -45,7 +45,7 @@ def write_campaign(
 ) -> Path:
     """Two boxes x two cups (the small cup cannot hold the notebook at rest).
 
-    ``variants`` None leaves the key out (every variant).
+    ``variants`` None leaves the key out (the default variants).
     """
     line = "" if variants is None else f"variants: {variants}\n"
     path.write_text(

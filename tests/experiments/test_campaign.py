@@ -266,7 +266,11 @@ def _synthetic(campaign, seed: int = 0) -> list[Outcome]:
 
 def test_report_numbers_equal_an_independent_sql_aggregation(tmp_path):
     campaign = load_campaign(
-        write_campaign(tmp_path / "c.yaml", trials=6, variants=None)
+        write_campaign(
+            tmp_path / "c.yaml",
+            trials=6,
+            variants="[constrained, unconstrained, speed_sweep, optimized, robust]",
+        )
     )
     db = tmp_path / "c.db"
     with ResultStore(db, campaign) as store:
@@ -408,3 +412,13 @@ def test_bad_database_or_flags_exit_2_with_one_line(tmp_path, capsys, argv, word
     assert len(err.splitlines()) == 1 and ": error: " in err
     for word in words:
         assert word in err, (word, err)
+
+
+def test_without_variants_the_campaign_runs_table_one_comparisons(tmp_path):
+    """No ``variants`` key: constrained, unconstrained and the speed sweep only."""
+    campaign = load_campaign(write_campaign(tmp_path / "c.yaml", variants=None))
+    assert [variant.value for variant in campaign.variants] == [
+        "constrained",
+        "unconstrained",
+        "speed_sweep",
+    ]
