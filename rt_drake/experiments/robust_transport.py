@@ -23,13 +23,10 @@ import dataclasses
 import math
 import time
 from collections.abc import Callable
-from concurrent.futures import ProcessPoolExecutor, as_completed
-from multiprocessing import get_context
 from pathlib import Path
 from typing import Any
 
 import numpy as np
-from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
 from pydrake.multibody.tree import SpatialInertia
 
@@ -37,6 +34,8 @@ from rt_drake.contact import worst_cup_polytope
 from rt_drake.cup_frame import CupFrame
 from rt_drake.errors import InputError, ScenarioError
 from rt_drake.experiments.rollout import rollout_scenario, simulate_move
+from rt_drake.experiments.transport import transport_scenario
+from rt_drake.experiments.trial_pool import run_trials
 from rt_drake.newton_euler import reference_object_wrenches
 from rt_drake.object_samples import (
     ObjectInertia,
@@ -67,14 +66,7 @@ def robust_trial(
     """Plan one transport, retime it nominal and robust, play both (true object)."""
     obj = scenario.object(object_name)
     uncertainty = _uncertainty(obj)
-    trial = dataclasses.replace(
-        scenario,
-        objects=[
-            dataclasses.replace(
-                obj, start=Transform(X_WO_start), goal=Transform(X_WO_goal)
-            )
-        ],
-    )
+    trial = transport_scenario(scenario, object_name, X_WO_start, X_WO_goal)
     motions = OnlineMotions(
         trial, grasp_constraint=True, seed=seed + index, robust=False
     )
@@ -237,19 +229,7 @@ def run_robust_transport_experiment(
         (str(scenario_path), name, i, X_s.GetAsMatrix4(), X_g.GetAsMatrix4(), seed)
         for i, (X_s, X_g) in enumerate(pairs)
     ]
-    report = progress or (lambda done, total: None)
-    report(0, n)
-    trials: list[dict[str, Any]] = []
-    if workers == 1:
-        for job in jobs:
-            trials.append(_trial_job(job))
-            report(len(trials), n)
-    else:
-        with ProcessPoolExecutor(workers, mp_context=get_context("spawn")) as pool:
-            for future in as_completed([pool.submit(_trial_job, j) for j in jobs]):
-                trials.append(future.result())
-                report(len(trials), n)
-        trials.sort(key=lambda trial: trial["index"])
+    trials = run_trials(_trial_job, jobs, workers, progress)
     obj = scenario.object(name)
     assert obj.uncertainty is not None
     return {

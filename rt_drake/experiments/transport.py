@@ -20,8 +20,6 @@ import dataclasses
 import math
 import time
 from collections.abc import Callable
-from concurrent.futures import ProcessPoolExecutor, as_completed
-from multiprocessing import get_context
 from pathlib import Path
 from typing import Any
 
@@ -41,11 +39,29 @@ from rt_drake.experiments.rollout import (
     rollout_scenario,
     simulate_move,
 )
+from rt_drake.experiments.trial_pool import run_trials
 from rt_drake.phase import Phase
 from rt_drake.planning import GeometricPath, PlanningError, sample_transports
 from rt_drake.retiming import GraspConstraint, RetimeResult
 from rt_drake.scenario import ObjectConfig, Scenario, load_scenario
 from rt_drake.simulation import Motion, OnlineMotions
+
+
+def transport_scenario(
+    scenario: Scenario,
+    object_name: str,
+    X_WO_start: RigidTransform,
+    X_WO_goal: RigidTransform,
+) -> Scenario:
+    """``scenario`` holding only ``object_name``, at one transport's poses.
+
+    ``X_WO_start`` and ``X_WO_goal``: the object's body frame O in the world W.
+    """
+    obj = scenario.object(object_name)
+    moved = dataclasses.replace(
+        obj, start=Transform(X_WO_start), goal=Transform(X_WO_goal)
+    )
+    return dataclasses.replace(scenario, objects=[moved])
 
 
 def transport_trial(
@@ -63,15 +79,7 @@ def transport_trial(
     With ``optimize``, also the optimised MOVE (:func:`.optimized_trial`),
     its Meshcat replay written to ``replay_path`` if given.
     """
-    obj = scenario.object(object_name)
-    planner_scenario = dataclasses.replace(
-        scenario,
-        objects=[
-            dataclasses.replace(
-                obj, start=Transform(X_WO_start), goal=Transform(X_WO_goal)
-            )
-        ],
-    )
+    planner_scenario = transport_scenario(scenario, object_name, X_WO_start, X_WO_goal)
     constrained = OnlineMotions(
         planner_scenario, grasp_constraint=True, seed=seed + index, optimize=False
     )
@@ -255,19 +263,7 @@ def run_transport_experiment(
         )  # fmt: skip
         for i, (X_s, X_g) in enumerate(pairs)
     ]
-    report = progress or (lambda done, total: None)
-    report(0, n)
-    trials: list[dict[str, Any]] = []
-    if workers == 1:
-        for job in jobs:
-            trials.append(_trial_job(job))
-            report(len(trials), n)
-    else:
-        with ProcessPoolExecutor(workers, mp_context=get_context("spawn")) as pool:
-            for future in as_completed([pool.submit(_trial_job, j) for j in jobs]):
-                trials.append(future.result())
-                report(len(trials), n)
-        trials.sort(key=lambda trial: trial["index"])
+    trials = run_trials(_trial_job, jobs, workers, progress)
     return {
         "object": name,
         "seed": seed,
@@ -313,4 +309,9 @@ def _stats(values: list[float]) -> dict[str, float]:
     }
 
 
-__all__ = ["run_transport_experiment", "summarize", "transport_trial"]
+__all__ = [
+    "run_transport_experiment",
+    "summarize",
+    "transport_scenario",
+    "transport_trial",
+]
