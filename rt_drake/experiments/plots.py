@@ -45,7 +45,12 @@ def plot_profiles(trial: dict[str, Any], path: Path) -> Path:
         color="0.9",
         label="joint velocity limits allow",
     )
-    ax.plot(p["s"], p["sd_unconstrained"], color="tab:red", label="joint limits only")
+    ax.plot(
+        p.get("s_unconstrained", p["s"]),  # results.json before 0.2.0: one grid
+        p["sd_unconstrained"],
+        color="tab:red",
+        label="joint limits only",
+    )
     ax.plot(
         p["s"], p["sd_constrained"], color="tab:green", label="with grasp constraint"
     )

@@ -178,10 +178,17 @@ def _profiles(
     constrained: RetimeResult,
     unconstrained: RetimeResult,
 ) -> dict[str, list[float]]:
-    """s'(s), its velocity-limit bound, and the grasp margin over time, for plots."""
+    """s'(s), its velocity-limit bound, and the grasp margin over time, for plots.
+
+    ``s`` is the constrained retime's grid (of ``sd_constrained`` and
+    ``sd_velocity_limit``), ``s_unconstrained`` the other's.
+    """
     return {
         "s": constrained.gridpoints.tolist(),
         "sd_constrained": constrained.sd.tolist(),
+        # the retimer refines each grid where its own limits need it, so the
+        # two grids may differ
+        "s_unconstrained": unconstrained.gridpoints.tolist(),
         "sd_unconstrained": unconstrained.sd.tolist(),
         "sd_velocity_limit": motions.velocity_bound(
             path, constrained.gridpoints
