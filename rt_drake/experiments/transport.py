@@ -87,7 +87,7 @@ def transport_trial(
     transport = scenario.random_transport
     if transport is not None and transport.start_on_cup:
         start = time.perf_counter()
-        move_c = _move_from_the_cup(constrained, planned_obj, X_WO_start)
+        move_c = move_from_the_cup(constrained, planned_obj, X_WO_start)
         q_grasp = move_c.planned.q_start if move_c.planned is not None else None
     else:
         approach = constrained.approach(constrained.q_home, planned_obj)
@@ -141,7 +141,7 @@ def transport_trial(
     return trial
 
 
-def _move_from_the_cup(
+def move_from_the_cup(
     motions: OnlineMotions, obj: ObjectConfig, X_WO_start: RigidTransform
 ) -> Motion:
     """The MOVE from the object sealed on the cup at X_WO_start (IK, first flip).
@@ -317,6 +317,7 @@ def _stats(values: list[float]) -> dict[str, float]:
 
 
 __all__ = [
+    "move_from_the_cup",
     "run_transport_experiment",
     "summarize",
     "transport_scenario",
