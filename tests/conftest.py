@@ -1,15 +1,25 @@
-"""Shared fixtures: the shipped scenarios and plants built from them."""
+"""Shared fixtures: the shipped scenarios and plants built from them.
+
+Property tests draw the same examples on every run (hypothesis profile
+``deterministic``, the default), so CI never turns red at random; run
+``python -m pytest --hypothesis-profile=explore`` to search new examples.
+"""
 
 from __future__ import annotations
 
 from pathlib import Path
 
 import pytest
+from hypothesis import settings
 from pydrake.multibody.plant import MultibodyPlant
 
 from rt_drake.plant import make_arm_plant
 from rt_drake.resources import scenarios_dir
 from rt_drake.scenario import Scenario, load_scenario
+
+settings.register_profile("deterministic", derandomize=True)
+settings.register_profile("explore", derandomize=False)
+settings.load_profile("deterministic")
 
 SCENARIO_NAMES = (
     "stack_four_objects",
