@@ -32,9 +32,9 @@ from pydrake.multibody.tree import SpatialInertia
 
 from rt_drake.contact import worst_cup_polytope
 from rt_drake.cup_frame import CupFrame
-from rt_drake.errors import InputError, ScenarioError
+from rt_drake.errors import ScenarioError
 from rt_drake.experiments.rollout import rollout_scenario, simulate_move
-from rt_drake.experiments.transport import transport_scenario
+from rt_drake.experiments.transport import transport_inputs, transport_scenario
 from rt_drake.experiments.trial_pool import run_trials
 from rt_drake.newton_euler import reference_object_wrenches
 from rt_drake.object_samples import (
@@ -212,17 +212,7 @@ def run_robust_transport_experiment(
         ScenarioError: no ``random_transport`` section, no such object, or
             an object without an uncertainty set.
     """
-    scenario = load_scenario(scenario_path)
-    if n < 1:
-        raise InputError(f"number of trials must be >= 1, got {n}")
-    if workers < 1:
-        raise InputError(f"number of worker processes must be >= 1, got {workers}")
-    transport = scenario.random_transport
-    if transport is None:
-        raise ScenarioError(
-            f"{scenario_path}: the scenario has no 'random_transport' section"
-        )
-    name = object_name or transport.object
+    scenario, name = transport_inputs(scenario_path, n, workers, object_name)
     _uncertainty(scenario.object(name))
     pairs = sample_transports(scenario, n, seed)
     jobs = [

@@ -47,6 +47,31 @@ from rt_drake.scenario import ObjectConfig, Scenario, load_scenario
 from rt_drake.simulation import Motion, OnlineMotions
 
 
+def transport_inputs(
+    scenario_path: str | Path, n: int, workers: int, object_name: str | None
+) -> tuple[Scenario, str]:
+    """The scenario and the carried object's name, after checking the arguments.
+
+    Raises:
+        InputError: fewer than one trial or one worker.
+        ScenarioError: the scenario has no ``random_transport`` section or
+            no such object.
+    """
+    scenario = load_scenario(scenario_path)
+    if n < 1:
+        raise InputError(f"number of trials must be >= 1, got {n}")
+    if workers < 1:
+        raise InputError(f"number of worker processes must be >= 1, got {workers}")
+    transport = scenario.random_transport
+    if transport is None:
+        raise ScenarioError(
+            f"{scenario_path}: the scenario has no 'random_transport' section"
+        )
+    name = object_name or transport.object
+    scenario.object(name)
+    return scenario, name
+
+
 def transport_scenario(
     scenario: Scenario,
     object_name: str,
@@ -241,18 +266,7 @@ def run_transport_experiment(
         ScenarioError: the scenario has no ``random_transport`` section or
             no such object.
     """
-    scenario = load_scenario(scenario_path)
-    if n < 1:
-        raise InputError(f"number of trials must be >= 1, got {n}")
-    if workers < 1:
-        raise InputError(f"number of worker processes must be >= 1, got {workers}")
-    transport = scenario.random_transport
-    if transport is None:
-        raise ScenarioError(
-            f"{scenario_path}: the scenario has no 'random_transport' section"
-        )
-    name = object_name or transport.object
-    scenario.object(name)
+    scenario, name = transport_inputs(scenario_path, n, workers, object_name)
     if optimize is None:
         optimize = scenario.planning.optimize_move
     pairs = sample_transports(scenario, n, seed)
@@ -320,6 +334,7 @@ __all__ = [
     "move_from_the_cup",
     "run_transport_experiment",
     "summarize",
+    "transport_inputs",
     "transport_scenario",
     "transport_trial",
 ]
