@@ -14,7 +14,10 @@ does).
 
 :func:`lp2d` is Seidel's incremental algorithm with toppra's warm start (the
 two rows active at the last optimum of the same objective are tried first)
-and its tolerances; :func:`lp1d` the one-variable LP of the forward pass,
+and its tolerances, but without toppra's bound of 1e10 on the variable of
+its 1-D subproblems (which made a feasible LP infeasible when a row's
+coefficients are tiny; on every LP that bound lets through, the answer is
+unchanged to the bit); :func:`lp1d` the one-variable LP of the forward pass,
 where x is fixed. :func:`passes` runs the backward pass of controllable sets
 K_i and the greedy forward pass with toppra's safeguards (see
 :mod:`rt_drake.retiming.passes`).
@@ -33,8 +36,6 @@ from toppra.constants import TINY as PASS_TINY
 #: Tolerances of toppra's seidel solver (cy_seidel_solverwrapper.pyx).
 LP_TINY = 1e-10
 LP_SMALL = 1e-8
-#: Bound of the 1-D subproblems' variable (never active).
-LP_INF = 1e10
 
 
 def kernel_array(values) -> np.ndarray:
@@ -112,8 +113,13 @@ def lp2d(v0, v1, a, b, c, low, high, active, order):  # noqa: D417
         p1 = -b[i] * c[i] / norm2
         d0, d1 = -b[i], a[i]
         # The 1-D LP in t over the earlier rows and the box (toppra's lp1d
-        # on rows a_1d = +-1, b_1d = value / denom, written out).
-        t_min, t_max, hit_min, hit_max = -LP_INF, LP_INF, -1, -2
+        # on rows a_1d = +-1, b_1d = value / denom, written out). t is not
+        # bounded beforehand: toppra bounds it by +-1e10, but d is not a
+        # unit vector, and on a row with tiny coefficients (|d| = 1.8e-5
+        # for a joint barely moving) the box is reached only at |t| of
+        # 1e12 and more, so toppra cuts a feasible LP to nothing. The box
+        # rows bound t wherever d is not parallel to them.
+        t_min, t_max, hit_min, hit_max = -math.inf, math.inf, -1, -2
         for j in range(k + 4):
             if j == k:
                 aj, bj, cj = -1.0, 0.0, low[0]
