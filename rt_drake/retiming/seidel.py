@@ -14,10 +14,13 @@ does).
 
 :func:`lp2d` is Seidel's incremental algorithm with toppra's warm start (the
 two rows active at the last optimum of the same objective are tried first)
-and its tolerances, but without toppra's bound of 1e10 on the variable of
-its 1-D subproblems (which made a feasible LP infeasible when a row's
-coefficients are tiny; on every LP that bound lets through, the answer is
-unchanged to the bit); :func:`lp1d` the one-variable LP of the forward pass,
+and its tolerances, with two departures where toppra's absolute
+tolerances made a feasible LP infeasible on rows of small coefficients (a
+joint that barely moves): no bound of 1e10 on the variable of its 1-D
+subproblems (the box bounds it), and rows are parallel to the line only if
+the angle between them is below ``LP_TINY`` too, not ``|d . n_j|`` alone.
+On every LP toppra's rules solve, the answer is unchanged to the bit.
+:func:`lp1d` the one-variable LP of the forward pass,
 where x is fixed. :func:`passes` runs the backward pass of controllable sets
 K_i and the greedy forward pass with toppra's safeguards (see
 :mod:`rt_drake.retiming.passes`).
@@ -143,7 +146,20 @@ def lp2d(v0, v1, a, b, c, low, high, active, order):  # noqa: D417
                 if t > t_min:
                     t_min, hit_min = t, j
             elif value > LP_SMALL:
-                return False, math.nan, math.nan
+                # toppra: row j is parallel to the line and excludes it. It
+                # is parallel only if the angle is below LP_TINY too: rows
+                # of small coefficients (|n| ~ 0.01) meet at angles of 1e-7
+                # with |denom| ~ 1e-11, and bound t, far along the line.
+                if denom * denom <= LP_TINY * LP_TINY * (d0 * d0 + d1 * d1) * (
+                    aj * aj + bj * bj
+                ):
+                    return False, math.nan, math.nan
+                t = -value / denom
+                if denom > 0.0:
+                    if t < t_max:
+                        t_max, hit_max = t, j
+                elif t > t_min:
+                    t_min, hit_min = t, j
         if t_min > t_max:
             return False, math.nan, math.nan
         v_1d = d0 * v0 + d1 * v1
