@@ -218,7 +218,9 @@ def run(args: argparse.Namespace) -> int:
     else:
         cup_model = scenario.tool_parameters()
         if not args.no_grasp_constraint:
-            grasp = GraspConstraint.for_tool(held, cup_model)
+            grasp = GraspConstraint.for_tool(
+                held, cup_model, load_sharing=scenario.tool.load_sharing
+            )
     limits = JointLimits.from_plant(plant, scenario.robot)
     cup = CupFrame.of(plant, scenario.robot.cup_frame)
     result = retime(plant, waypoints, limits, grasp, args.gridpoints, cup=cup)
