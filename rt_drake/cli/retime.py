@@ -4,8 +4,8 @@ Retimes the clamped C2 spline through joint-space waypoints (one row per
 waypoint, one column per joint, rad; ``#`` starts a comment) time-optimally
 under the scenario's joint limits and, unless ``--no-grasp-constraint``, the
 grasp stability of the named object held by the scenario's cup, or by its
-multi-cup tool (``tool:``; the exact set W_T, computed once and cached, with
-``robot.cup_frame`` as the tool frame T): of every object of its uncertainty
+multi-cup tool (``tool:``; its set for ``tool.load_sharing``, by default the
+rims' spring split, with ``robot.cup_frame`` as the tool frame T): of every object of its uncertainty
 set (and every cup of the cup's friction and suction range) if the scenario
 gives one or the flags ``--mass-uncertainty``, ``--com-uncertainty``,
 ``--inertia-uncertainty`` do (one cup only). Writes an
