@@ -12,10 +12,9 @@ MOVE optimisation on (the scenario's ``planning.optimize_move``, or
 timed on the wall clock, as in the paper's Table II. The grasp polytope is
 computed once, offline, per cup or multi-cup tool (as the paper did: the
 exact W_c, or the tool's set about the tool frame, :func:`move_polytope`),
-not in the cycle; with
-a ``first_order`` vacuum the MOVE is retimed for the force guaranteed when
-"part present" fires, ``part_present_fraction P A``: the same polytope
-translated (:func:`~rt_drake.contact.with_suction_force`).
+not in the cycle; with a ``first_order`` vacuum the MOVE is retimed for
+the force guaranteed when "part present" fires, ``part_present_fraction
+P A``: the same polytope translated (:func:`~rt_drake.contact.with_suction_force`).
 
 An object with an uncertainty set (scenario key ``uncertainty``), or a cup
 with a friction or suction range, is held robustly: every object of the set,
