@@ -170,9 +170,18 @@ class ToolCupConfig:
 
 @dataclasses.dataclass
 class ToolConfig:
-    """A tool carrying several suction cups (``tool: {cups: [...]}``)."""
+    """A tool carrying several suction cups (``tool: {cups: [...]}``).
+
+    Attributes:
+        cups: The cups, each posed in the tool frame.
+        load_sharing: How the cups split the load, ``elastic`` (a rigid tool:
+            the rims as equal springs; the cups in the tool frame's z = 0
+            plane, axes along z) or ``any`` (every split; over-claims for a
+            rigid tool); see :class:`~rt_drake.contact.LoadSharing`.
+    """
 
     cups: list[ToolCupConfig] = dataclasses.field(default_factory=list)
+    load_sharing: str = "elastic"
 
 
 @dataclasses.dataclass
@@ -362,8 +371,23 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
         raise ScenarioError(f"{path}: key 'cup': {error}") from None
     if scenario.tool is not None:
         _check_tool(path, scenario.tool)
+        _check_load_sharing(path, scenario)
     check_vacuum(path, scenario.vacuum)
     _check_planning(path, scenario.planning)
+
+
+def _check_load_sharing(path: Path, scenario: Scenario) -> None:
+    """An ``elastic`` tool of several cups has the planar rims it needs."""
+    from rt_drake.contact.load_sharing import rim_springs
+
+    assert scenario.tool is not None
+    tool = scenario.tool_parameters()
+    if scenario.tool.load_sharing != "elastic" or len(tool.cups) == 1:
+        return
+    try:
+        rim_springs(tool)
+    except InputError as error:
+        raise ScenarioError(f"{path}: key 'tool.load_sharing': {error}") from None
 
 
 def _check_planning(path: Path, planning: PlanningConfig) -> None:
@@ -380,9 +404,15 @@ def _check_planning(path: Path, planning: PlanningConfig) -> None:
 
 
 def _check_tool(path: Path, tool: ToolConfig) -> None:
-    """At least one cup; each cup's parameters in range and its pose fixed."""
+    """At least one cup, each in range and fixed; a known ``load_sharing``."""
     if not tool.cups:
         raise ScenarioError(f"{path}: key 'tool.cups': a tool needs at least one cup")
+    choices = ("elastic", "any")
+    if tool.load_sharing not in choices:
+        raise ScenarioError(
+            f"{path}: key 'tool.load_sharing': must be one of "
+            f"{', '.join(choices)}, got {tool.load_sharing!r}"
+        )
     for index, entry in enumerate(tool.cups):
         where = f"{path}: key 'tool.cups[{index}]"
         if not entry.pose.IsDeterministic():
