@@ -174,6 +174,20 @@ class ToolConfig:
 
     cups: list[ToolCupConfig] = dataclasses.field(default_factory=list)
 
+    def parameters(self) -> ToolParameters:
+        """The tool's cups and their poses X_TC (validated)."""
+        mounts = []
+        for entry in self.cups:
+            X_TC = entry.pose.GetDeterministicValue()
+            mounts.append(
+                CupMount(
+                    entry.parameters(),
+                    X_TC.rotation().matrix(),
+                    X_TC.translation(),
+                )
+            )
+        return ToolParameters(cups=tuple(mounts))
+
 
 @dataclasses.dataclass
 class Scenario:
@@ -204,17 +218,7 @@ class Scenario:
         """The tool's cups and poses: ``tool``, or ``cup`` at the tool frame."""
         if self.tool is None:
             return ToolParameters.single(self.cup)
-        mounts = []
-        for entry in self.tool.cups:
-            X_TC = entry.pose.GetDeterministicValue()
-            mounts.append(
-                CupMount(
-                    entry.parameters(),
-                    X_TC.rotation().matrix(),
-                    X_TC.translation(),
-                )
-            )
-        return ToolParameters(cups=tuple(mounts))
+        return self.tool.parameters()
 
     def single_cup(self, what: str) -> CupParameters:
         """The one cup, for the parts that model a single cup (``what``).
@@ -361,7 +365,7 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
     except InputError as error:
         raise ScenarioError(f"{path}: key 'cup': {error}") from None
     if scenario.tool is not None:
-        _check_tool(path, scenario.tool)
+        check_tool(path, scenario.tool)
     check_vacuum(path, scenario.vacuum)
     _check_planning(path, scenario.planning)
 
@@ -379,12 +383,21 @@ def _check_planning(path: Path, planning: PlanningConfig) -> None:
         )
 
 
-def _check_tool(path: Path, tool: ToolConfig) -> None:
-    """At least one cup; each cup's parameters in range and its pose fixed."""
+def check_tool(path: Path, tool: ToolConfig, key: str = "tool") -> None:
+    """At least one cup; each cup's parameters in range and its pose fixed.
+
+    Args:
+        path: The file, for messages.
+        tool: The tool as loaded.
+        key: Its key path in the file (a campaign's ``cups[1].tool``).
+
+    Raises:
+        ScenarioError: ``<path>: key '<key>.cups[i].<field>': ...``.
+    """
     if not tool.cups:
-        raise ScenarioError(f"{path}: key 'tool.cups': a tool needs at least one cup")
+        raise ScenarioError(f"{path}: key '{key}.cups': a tool needs at least one cup")
     for index, entry in enumerate(tool.cups):
-        where = f"{path}: key 'tool.cups[{index}]"
+        where = f"{path}: key '{key}.cups[{index}]"
         if not entry.pose.IsDeterministic():
             raise ScenarioError(
                 f"{where}.pose': must be a fixed pose, not a random one"
@@ -424,5 +437,6 @@ __all__ = [
     "ToolCupConfig",
     "Vacuum",
     "VacuumModel",
+    "check_tool",
     "load_scenario",
 ]
