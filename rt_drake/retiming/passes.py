@@ -21,6 +21,11 @@ with x_i reduced), on the interpolation discretization.
   at rest at every grid point, so min K_i = 0), and retries an LP found
   infeasible once without its warm start (toppra 0.6.10's warm start can
   report a feasible LP infeasible, and its TOPPRA class then fails the path).
+  Its LP drops two absolute tolerances of toppra's that called feasible
+  stage LPs infeasible on rows of small coefficients (a joint that barely
+  moves, so ``|q'|, |q''| ~ 1e-5``; grasp rows of norm 0.01 at an angle of
+  1e-7): see :mod:`rt_drake.retiming.seidel`; on every LP toppra's rules
+  solve, the answer is unchanged to the bit.
 - ``engine="toppra"``: toppra's own ``TOPPRA`` class with its seidel wrapper
   (the reference).
 """

@@ -14,7 +14,13 @@ does).
 
 :func:`lp2d` is Seidel's incremental algorithm with toppra's warm start (the
 two rows active at the last optimum of the same objective are tried first)
-and its tolerances; :func:`lp1d` the one-variable LP of the forward pass,
+and its tolerances, with two departures where toppra's absolute
+tolerances made a feasible LP infeasible on rows of small coefficients (a
+joint that barely moves): no bound of 1e10 on the variable of its 1-D
+subproblems (the box bounds it), and rows are parallel to the line only if
+the angle between them is below ``LP_TINY`` too, not ``|d . n_j|`` alone.
+On every LP toppra's rules solve, the answer is unchanged to the bit.
+:func:`lp1d` the one-variable LP of the forward pass,
 where x is fixed. :func:`passes` runs the backward pass of controllable sets
 K_i and the greedy forward pass with toppra's safeguards (see
 :mod:`rt_drake.retiming.passes`).
@@ -33,8 +39,6 @@ from toppra.constants import TINY as PASS_TINY
 #: Tolerances of toppra's seidel solver (cy_seidel_solverwrapper.pyx).
 LP_TINY = 1e-10
 LP_SMALL = 1e-8
-#: Bound of the 1-D subproblems' variable (never active).
-LP_INF = 1e10
 
 
 def kernel_array(values) -> np.ndarray:
@@ -112,8 +116,13 @@ def lp2d(v0, v1, a, b, c, low, high, active, order):  # noqa: D417
         p1 = -b[i] * c[i] / norm2
         d0, d1 = -b[i], a[i]
         # The 1-D LP in t over the earlier rows and the box (toppra's lp1d
-        # on rows a_1d = +-1, b_1d = value / denom, written out).
-        t_min, t_max, hit_min, hit_max = -LP_INF, LP_INF, -1, -2
+        # on rows a_1d = +-1, b_1d = value / denom, written out). t is not
+        # bounded beforehand: toppra bounds it by +-1e10, but d is not a
+        # unit vector, and on a row with tiny coefficients (|d| = 1.8e-5
+        # for a joint barely moving) the box is reached only at |t| of
+        # 1e12 and more, so toppra cuts a feasible LP to nothing. The box
+        # rows bound t wherever d is not parallel to them.
+        t_min, t_max, hit_min, hit_max = -math.inf, math.inf, -1, -2
         for j in range(k + 4):
             if j == k:
                 aj, bj, cj = -1.0, 0.0, low[0]
@@ -137,7 +146,20 @@ def lp2d(v0, v1, a, b, c, low, high, active, order):  # noqa: D417
                 if t > t_min:
                     t_min, hit_min = t, j
             elif value > LP_SMALL:
-                return False, math.nan, math.nan
+                # toppra: row j is parallel to the line and excludes it. It
+                # is parallel only if the angle is below LP_TINY too: rows
+                # of small coefficients (|n| ~ 0.01) meet at angles of 1e-7
+                # with |denom| ~ 1e-11, and bound t, far along the line.
+                if denom * denom <= LP_TINY * LP_TINY * (d0 * d0 + d1 * d1) * (
+                    aj * aj + bj * bj
+                ):
+                    return False, math.nan, math.nan
+                t = -value / denom
+                if denom > 0.0:
+                    if t < t_max:
+                        t_max, hit_max = t, j
+                elif t > t_min:
+                    t_min, hit_min = t, j
         if t_min > t_max:
             return False, math.nan, math.nan
         v_1d = d0 * v0 + d1 * v1
