@@ -8,8 +8,9 @@ file each doomed task leaves just before it kills its process.
 
 - Local executor, 2 workers: the pool breaks with both rows running; the
   killed row is recorded as ``crashed`` after dying twice alone, the row
-  beside it is not blamed and finishes; a rerun with the same command
-  computes nothing and the database keeps one row per combination.
+  beside it is not blamed and finishes (before, it was started twice beside
+  the killed row and recorded as ``crashed`` too); a rerun with the same
+  command computes nothing and the database keeps one row per combination.
 - Ray executor (a Ray instance started here): the killed row is started
   exactly twice, then recorded; a row that dies once is started again and
   stored with ``attempts`` 2.
@@ -85,13 +86,19 @@ def test_local_killed_worker_is_retried_alone_once_then_recorded(tmp_path, monke
     run = run_campaign(campaign, db, executor, stream=io.StringIO())
     assert (run.total, run.computed, run.failed) == (2, 2, 1)
     killed, beside = _check_resume(campaign, db, executor)
-    # Its worker died beside trial 1 (not blamed: whose worker it was is
-    # unknown), then twice alone: three deaths, three starts.
-    assert _deaths(tmp_path, "local") == 3
-    assert killed[5] == Status.CRASHED.value and killed[6] == 3
-    assert killed[7].startswith("WorkerCrashed: worker died 2 times, started 3")
-    # The row beside it finished: broken with its pool, started again alone.
-    assert (beside[5], beside[6], beside[7]) == (Status.OK.value, 2, None)
+    # Usually the pool breaks with both rows: trial 0 is not blamed for that
+    # death (whose worker it was is unknown) and dies twice more alone:
+    # three deaths, three starts; trial 1 is started again, alone. But the
+    # pool may notice the death only after trial 1 has finished (CPython
+    # watches a worker spawned by a later submit from its next event on):
+    # then trial 0 broke the pool alone, and dies twice, started twice.
+    deaths = _deaths(tmp_path, "local")
+    assert deaths in (2, 3)
+    assert killed[5] == Status.CRASHED.value and killed[6] == deaths
+    message = f"WorkerCrashed: worker died 2 times, started {deaths} times"
+    assert killed[7].startswith(message)
+    # The row beside it finished (never blamed).
+    assert (beside[5], beside[6], beside[7]) == (Status.OK.value, deaths - 1, None)
 
 
 @pytest.fixture(scope="module")
