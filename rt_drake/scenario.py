@@ -170,9 +170,18 @@ class ToolCupConfig:
 
 @dataclasses.dataclass
 class ToolConfig:
-    """A tool carrying several suction cups (``tool: {cups: [...]}``)."""
+    """A tool carrying several suction cups (``tool: {cups: [...]}``).
+
+    Attributes:
+        cups: The cups, each posed in the tool frame.
+        load_sharing: How the cups split the load, ``elastic`` (a rigid tool:
+            the rims as equal springs; the cups in the tool frame's z = 0
+            plane, axes along z) or ``any`` (every split; over-claims for a
+            rigid tool); see :class:`~rt_drake.contact.LoadSharing`.
+    """
 
     cups: list[ToolCupConfig] = dataclasses.field(default_factory=list)
+    load_sharing: str = "elastic"
 
     def parameters(self) -> ToolParameters:
         """The tool's cups and their poses X_TC (validated)."""
@@ -384,7 +393,11 @@ def _check_planning(path: Path, planning: PlanningConfig) -> None:
 
 
 def check_tool(path: Path, tool: ToolConfig, key: str = "tool") -> None:
-    """At least one cup; each cup's parameters in range and its pose fixed.
+    """Check a tool: its cups, their parameters and poses, its load sharing.
+
+    At least one cup; each cup's parameters in range and its pose fixed; a
+    known ``load_sharing``, and for ``elastic`` with several cups, the
+    planar rims it needs (:func:`~rt_drake.contact.load_sharing.rim_springs`).
 
     Args:
         path: The file, for messages.
@@ -396,6 +409,12 @@ def check_tool(path: Path, tool: ToolConfig, key: str = "tool") -> None:
     """
     if not tool.cups:
         raise ScenarioError(f"{path}: key '{key}.cups': a tool needs at least one cup")
+    choices = ("elastic", "any")
+    if tool.load_sharing not in choices:
+        raise ScenarioError(
+            f"{path}: key '{key}.load_sharing': must be one of "
+            f"{', '.join(choices)}, got {tool.load_sharing!r}"
+        )
     for index, entry in enumerate(tool.cups):
         where = f"{path}: key '{key}.cups[{index}]"
         if not entry.pose.IsDeterministic():
@@ -408,6 +427,14 @@ def check_tool(path: Path, tool: ToolConfig, key: str = "tool") -> None:
             message = str(error).removeprefix("cup ")
             name = message.split(" ", 1)[0]
             raise ScenarioError(f"{where}.{name}': {message}") from None
+    parameters = tool.parameters()
+    if tool.load_sharing == "elastic" and len(parameters.cups) > 1:
+        from rt_drake.contact.load_sharing import rim_springs
+
+        try:
+            rim_springs(parameters)
+        except InputError as error:
+            raise ScenarioError(f"{path}: key '{key}.load_sharing': {error}") from None
 
 
 def _check_robot(path: Path, robot: RobotConfig) -> None:
