@@ -12,10 +12,14 @@ object is a 0.8 kg box whose centre of mass is 0.01 m off the cup axis and
 
 For each grasp, in the same run: the exact set computed without the cache
 (``contact_wrench_polytope`` for one cup, ``tool_wrench_polytope`` for the
-tool: rows, vertices, CPU seconds), then ``retime`` ``--repeats`` times
-(duration, best CPU seconds). CPU time is ``time.process_time`` (the
-machine is shared). OpenBLAS is made single-threaded, as in
-``bench_retime.py``.
+tool's free split, ``SharedLoadSet`` for its spring split: rows, vertices
+where the method gives them, CPU seconds), then ``retime`` ``--repeats``
+times (duration, best CPU seconds). A second table: the spring split of two
+and four paper cups (6 points, 4 sides; pair at x = +/-0.06 m, four at the
+corners of a 0.12 m square), rows and CPU seconds, and the retime of the
+same box under two paper cups (springs) against one paper cup. CPU time is
+``time.process_time`` (the machine is shared). OpenBLAS is made
+single-threaded, as in ``bench_retime.py``.
 """
 
 import os
@@ -34,6 +38,7 @@ from rt_drake import (  # noqa: E402
     GraspConstraint,
     HeldObject,
     JointLimits,
+    SharedLoadSet,
     ToolParameters,
     contact_wrench_polytope,
     retime,
@@ -100,6 +105,11 @@ def main() -> None:
             lambda: tool_wrench_polytope(TWO_CUPS),
             lambda p: GraspConstraint(held=held, F=p.F, g=p.g, cup=TWO_CUPS),
         ),
+        (
+            "two cups, springs",
+            lambda: SharedLoadSet.of(TWO_CUPS),
+            lambda p: GraspConstraint(held=held, F=p.F, g=p.g, cup=TWO_CUPS),
+        ),
         ("no grasp constraint", None, None),
     ):
         exact = "-"
@@ -108,7 +118,9 @@ def main() -> None:
             start = time.process_time()
             polytope = compute()
             cpu = time.process_time() - start
-            exact = f"{len(polytope.F)} / {len(polytope.vertices)} / {cpu:.2f}"
+            vertices = getattr(polytope, "vertices", None)
+            count = "-" if vertices is None else len(vertices)
+            exact = f"{len(polytope.F)} / {count} / {cpu:.3f}"
             grasp = make_grasp(polytope)
         retime(plant, SWING, limits, grasp)  # warm-up (numba, caches)
         times, duration = [], 0.0
@@ -126,6 +138,48 @@ def main() -> None:
     print("|---|---|---|---|")
     for name, exact, duration, cpu in rows:
         print(f"| {name} | {exact} | {duration:.3f} | {cpu:.3f} |")
+    paper_tables(plant, limits, held, args.repeats)
+
+
+def paper_tables(
+    plant: MultibodyPlant, limits: JointLimits, held: HeldObject, repeats: int
+) -> None:
+    """Spring sets of two and four paper cups; retime two against one."""
+    paper = CupParameters()
+    corners = (
+        [(0.06, 0.0), (-0.06, 0.0)],
+        [(x, y) for x in (0.06, -0.06) for y in (0.06, -0.06)],
+    )
+    print()
+    print("| paper cups | spring set rows | CPU (s) |")
+    print("|---|---|---|")
+    pair = None
+    for places in corners:
+        tool = ToolParameters(
+            cups=[CupMount(paper, np.eye(3), [x, y, 0.0]) for x, y in places]
+        )
+        start = time.process_time()
+        shared = SharedLoadSet.of(tool)
+        cpu = time.process_time() - start
+        print(f"| {len(places)} | {len(shared.F)} | {cpu:.3f} |")
+        pair = pair or shared
+    assert pair is not None
+    one = contact_wrench_polytope(paper)
+    print()
+    print("| grasp (paper cups) | rows | duration (s) | retime CPU (s) |")
+    print("|---|---|---|---|")
+    for name, F, g in (
+        ("one cup", one.F, one.g),
+        ("two cups, springs", pair.F, pair.g),
+    ):
+        grasp = GraspConstraint(held=held, F=F, g=g)
+        retime(plant, SWING, limits, grasp)  # warm-up
+        times = []
+        for _ in range(repeats):
+            start = time.process_time()
+            result = retime(plant, SWING, limits, grasp)
+            times.append(time.process_time() - start)
+        print(f"| {name} | {len(F)} | {result.duration:.3f} | {min(times):.3f} |")
 
 
 if __name__ == "__main__":

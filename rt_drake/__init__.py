@@ -11,8 +11,10 @@ scenario -> plant -> (IK, planner) -> path -> (dynamics + grasp constraint)
   ``WrenchPolytope``, ``contact_wrench_polytope``, ``cached_wrench_polytope``,
   ``is_realizable``, ``is_realizable_lp``; multi-cup tools:
   ``ToolParameters`` of ``CupMount`` (cup and pose in the tool frame),
-  ``tool_wrench_polytope`` (exact W_T), ``ToolWrenchSet`` (support function
-  and LP, for inner approximations); retime under them with
+  ``SharedLoadSet`` (the set when the cups share the load as equal springs,
+  as a rigid tool does; ``LoadSharing``), ``tool_wrench_polytope`` (exact
+  W_T of any split), ``ToolWrenchSet`` (support function and LP, for inner
+  approximations); retime under them with
   ``GraspConstraint.for_tool`` or ``GraspConstraint.inner_for_tool``;
 - dynamics: ``HeldObject``, ``CupFrame`` (the cup frame of a plant),
   ``object_wrench``, ``make_arm_plant``;
@@ -44,6 +46,8 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
     from rt_drake.contact import (
         CupMount,
         CupParameters,
+        LoadSharing,
+        SharedLoadSet,
         ToolParameters,
         ToolWrenchSet,
         WrenchPolytope,
@@ -94,6 +98,8 @@ _LAZY: dict[str, str] = {
     "CupMount": "rt_drake.contact",
     "CupParameters": "rt_drake.contact",
     "ToolParameters": "rt_drake.contact",
+    "LoadSharing": "rt_drake.contact",
+    "SharedLoadSet": "rt_drake.contact",
     "ToolWrenchSet": "rt_drake.contact",
     "tool_wrench_polytope": "rt_drake.contact",
     "WrenchPolytope": "rt_drake.contact",
@@ -150,6 +156,7 @@ __all__ = [
     "HeldObject",
     "InputError",
     "JointLimits",
+    "LoadSharing",
     "MakeStation",
     "MoveOptimizer",
     "MoveOptimizerOptions",
@@ -166,6 +173,7 @@ __all__ = [
     "SavedTrajectory",
     "Scenario",
     "ScenarioError",
+    "SharedLoadSet",
     "TooLargeError",
     "ToolParameters",
     "ToolWrenchSet",

@@ -1,4 +1,4 @@
-"""Retiming under a two-cup tool's exact wrench set, checked independently.
+"""Retiming under a two-cup tool's wrench sets, checked independently.
 
 The tool frame T is the plant's ``suction_cup`` frame; the two cups sit
 0.12 m apart on T's x axis. A coarse cup model (4 rim points, 3-sided
@@ -8,7 +8,11 @@ for the tool (about a second). The reference is an LP written apart
 combination of its friction pyramid's vertices (not the H-form of
 ``rt_drake.contact.lp``), applied to the object wrenches of the retimed
 motion computed by Newton-Euler from the bodies' accelerations
-(:mod:`rt_drake.newton_euler`).
+(:mod:`rt_drake.newton_euler`). ``for_tool``'s default set (the rims as
+equal springs, ``load_sharing="elastic"``) is checked by
+``rt_drake.contact.shared_load_residual``, an LP that ties each normal force
+to a rigid displacement instead of using the set's rows; the tests of the
+free split (``load_sharing="any"``, the exact Minkowski sum) ask for it.
 """
 
 from __future__ import annotations
@@ -29,6 +33,7 @@ from rt_drake import (
     check_trajectory,
     retime,
 )
+from rt_drake.contact import shared_load_residual
 from rt_drake.newton_euler import reference_object_wrench
 from rt_drake.plant import make_parser
 from rt_drake.retiming import GraspUnstableAtRestError, RetimeInputError
@@ -91,7 +96,9 @@ def limits(arm):
 
 def test_the_reference_lp_agrees_with_the_exact_tool_set_at_rest():
     """Static carton wrenches: inside W_T iff the reference LP says so."""
-    exact = GraspConstraint.for_tool(_box(1.0, [0, 0, 0.03]), TWO_CUPS)
+    exact = GraspConstraint.for_tool(
+        _box(1.0, [0, 0, 0.03]), TWO_CUPS, load_sharing="any"
+    )
     rng = np.random.default_rng(3)
     wrenches = []
     for _ in range(40):
@@ -135,13 +142,35 @@ def test_two_cups_move_an_offset_box_faster_than_one(arm, limits):
 
 def test_an_inner_approximation_is_sound_and_no_faster_than_the_exact_set(arm, limits):
     held = _box(2.5, [0.0, 0.0, 0.03])
-    exact = retime(arm, SWING, limits, GraspConstraint.for_tool(held, TWO_CUPS))
+    exact = retime(
+        arm, SWING, limits, GraspConstraint.for_tool(held, TWO_CUPS, load_sharing="any")
+    )
     samples = _object_wrenches(arm, exact, held, count=200)
     inner = GraspConstraint.inner_for_tool(held, TWO_CUPS, samples, max_vertices=60)
     result = retime(arm, SWING, limits, inner)
     assert result.duration >= exact.duration - 1e-6
     wrenches = _object_wrenches(arm, result, held)
     assert _residual(wrenches, TWO).max() <= 1e-3
+
+
+def test_the_spring_split_retime_holds_by_an_independent_lp(arm, limits):
+    """Default set: the motion's Newton-Euler wrenches pass the spring LP."""
+    held = _box(2.5, [0.01, 0.0, 0.03])
+    elastic = retime(arm, SWING, limits, GraspConstraint.for_tool(held, TWO_CUPS))
+    wrenches = _object_wrenches(arm, elastic, held, count=80)
+    assert shared_load_residual(wrenches, TWO_CUPS).max() <= 1e-3
+    free = retime(
+        arm, SWING, limits, GraspConstraint.for_tool(held, TWO_CUPS, load_sharing="any")
+    )
+    assert elastic.duration >= free.duration - 1e-9  # springs: a subset
+    # The free split's motion asks the springs for more than they hold.
+    wrenches = _object_wrenches(arm, free, held, count=200)
+    assert shared_load_residual(wrenches, TWO_CUPS).max() > 1e-2
+
+
+def test_a_bad_load_sharing_is_refused():
+    with pytest.raises(RetimeInputError, match="load_sharing must be one of"):
+        GraspConstraint.for_tool(_box(1.0, [0, 0, 0.03]), TWO_CUPS, load_sharing="x")
 
 
 def test_a_tool_grasp_is_described_and_a_cup_is_not_a_tool():
@@ -202,6 +231,16 @@ NO_CUPS = "tool:\n  cups: []\nobjects:" + TOOL_SCENARIO.split("objects:")[1]
         ),
         ("tool:", "cup: {radius: 0.01}\ntool:", "keys 'cup' and 'tool'"),
         ("points", "points", "key 'tool.cups': a tool needs at least one cup"),
+        (
+            "tool:\n",
+            "tool:\n  load_sharing: rigid\n",
+            "key 'tool.load_sharing': must be one of elastic, any, got 'rigid'",
+        ),
+        (
+            "[0.06, 0, 0]}",
+            "[0.06, 0, 0.01]}",
+            "key 'tool.load_sharing': cup 0: elastic load sharing needs every cup",
+        ),
     ],
 )
 def test_a_wrong_tool_is_refused_naming_the_key(tmp_path, old, new, message):

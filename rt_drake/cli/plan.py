@@ -136,21 +136,33 @@ def _optimized(scenario, planner, move):
 
     from pydrake.common.schema import Transform
 
-    from rt_drake import GraspConstraint, HeldObject, JointLimits, make_arm_plant
+    from rt_drake import (
+        CupFrame,
+        GraspConstraint,
+        HeldObject,
+        JointLimits,
+        make_arm_plant,
+    )
     from rt_drake.planning.shape import (
         MoveOptimizer,
         MoveOptimizerOptions,
         warm_up,
     )
+    from rt_drake.simulation.online_motions import move_polytope
 
     plant = make_arm_plant(scenario)
     limits = JointLimits.from_plant(plant, scenario.robot)
     obj = dataclasses.replace(scenario.object(move.object), grasp=Transform(move.X_OC))
-    cup = scenario.single_cup("rt-drake plan --optimize")
-    grasp = GraspConstraint.for_cup(HeldObject.from_scenario_object(obj), cup)
+    held = HeldObject.from_scenario_object(obj)
+    if scenario.tool is None:
+        grasp = GraspConstraint.for_cup(held, scenario.cup)
+    else:  # the set the cycle retimes a multi-cup tool's MOVE under
+        polytope = move_polytope(scenario)
+        grasp = GraspConstraint(held=held, F=polytope.F, g=polytope.g, cup=polytope.cup)
     warm_up()
     options = MoveOptimizerOptions.from_config(scenario.planning)
-    result = MoveOptimizer(plant, limits, options).optimize(planner, move, grasp)
+    cup = CupFrame.of(plant, scenario.robot.cup_frame)
+    result = MoveOptimizer(plant, limits, options, cup).optimize(planner, move, grasp)
     verdict = "optimised" if result.improved else "kept (no faster path found)"
     print(
         f"MOVE {verdict}: {result.spline_duration:.3f} s -> {result.duration:.3f} s "

@@ -4,11 +4,12 @@ Retimes the clamped C2 spline through joint-space waypoints (one row per
 waypoint, one column per joint, rad; ``#`` starts a comment) time-optimally
 under the scenario's joint limits and, unless ``--no-grasp-constraint``, the
 grasp stability of the named object held by the scenario's cup, or by its
-multi-cup tool (``tool:``; the exact set W_T, computed once and cached, with
-``robot.cup_frame`` as the tool frame T): of every object of its uncertainty
-set (and every cup of the cup's friction and suction range) if the scenario
-gives one or the flags ``--mass-uncertainty``, ``--com-uncertainty``,
-``--inertia-uncertainty`` do (one cup only). Writes an
+multi-cup tool (``tool:``; its set for ``tool.load_sharing``, by default
+the rims' spring split, with ``robot.cup_frame`` as the tool frame T): of
+every object of its uncertainty set (and every cup of the cup's friction
+and suction range) if the scenario gives one or the flags
+``--mass-uncertainty``, ``--com-uncertainty``, ``--inertia-uncertainty``
+do (one cup only). Writes an
 ``.npz`` from which anyone can re-check the result (the format of
 ``rt_drake.save_trajectory``: samples every 1 ms of t, q, qd, qdd and the
 cup's pose X_WC, the object's inertia, the grasp constraint F, g, the cup,
@@ -218,7 +219,9 @@ def run(args: argparse.Namespace) -> int:
     else:
         cup_model = scenario.tool_parameters()
         if not args.no_grasp_constraint:
-            grasp = GraspConstraint.for_tool(held, cup_model)
+            grasp = GraspConstraint.for_tool(
+                held, cup_model, load_sharing=scenario.tool.load_sharing
+            )
     limits = JointLimits.from_plant(plant, scenario.robot)
     cup = CupFrame.of(plant, scenario.robot.cup_frame)
     result = retime(plant, waypoints, limits, grasp, args.gridpoints, cup=cup)

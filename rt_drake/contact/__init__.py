@@ -11,7 +11,10 @@ origin, expressed in C. The grasp is stable when ``F w <= g``.
 - :class:`ToolParameters`: a tool of several cups, each a
   :class:`CupMount` (cup and pose in the tool frame T);
   :func:`tool_wrench_polytope`: its exact set W_T, about T's origin, in T
-  (also cached by :func:`cached_wrench_polytope`).
+  (also cached by :func:`cached_wrench_polytope`), which lets the cups
+  split the load in any way; :class:`SharedLoadSet` (``LoadSharing``
+  ``elastic``): the set when the cups share it as equal springs, which a
+  rigid tool does (:func:`shared_load_residual`: its independent LP).
 - :func:`is_realizable` (H-rep), :func:`is_realizable_lp` (independent LP,
   for a cup or a tool).
 - :func:`guided_approximation`: the paper's inner approximation.
@@ -42,7 +45,16 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers
         load_polytope,
         save_polytope,
     )
-    from rt_drake.contact.lp import is_realizable_lp, lp_residual
+    from rt_drake.contact.load_sharing import (
+        LoadSharing,
+        SharedLoadSet,
+        shared_load_polytope,
+    )
+    from rt_drake.contact.lp import (
+        is_realizable_lp,
+        lp_residual,
+        shared_load_residual,
+    )
     from rt_drake.contact.samplers import object_wrench_sampler
     from rt_drake.contact.tool_polytope import (
         ToolWrenchSet,
@@ -69,6 +81,10 @@ _LAZY = {
     "save_polytope": "cache",
     "is_realizable_lp": "lp",
     "lp_residual": "lp",
+    "shared_load_residual": "lp",
+    "LoadSharing": "load_sharing",
+    "SharedLoadSet": "load_sharing",
+    "shared_load_polytope": "load_sharing",
     "object_wrench_sampler": "samplers",
     "WrenchPolytope": "wrench_polytope",
     "contact_wrench_polytope": "wrench_polytope",
@@ -86,6 +102,8 @@ __all__ = [
     "CupMount",
     "CupParameters",
     "GuidedApproximation",
+    "LoadSharing",
+    "SharedLoadSet",
     "ToolParameterError",
     "ToolParameters",
     "ToolWrenchSet",
@@ -103,6 +121,8 @@ __all__ = [
     "lp_residual",
     "object_wrench_sampler",
     "save_polytope",
+    "shared_load_polytope",
+    "shared_load_residual",
     "suction_wrench",
     "tool_summands",
     "tool_symmetry",

@@ -125,6 +125,70 @@ def lp_residual(
     return residuals.reshape(wrenches.shape[:-1])
 
 
+def shared_load_residual(wrenches: np.ndarray, tool: ToolParameters) -> np.ndarray:
+    """:func:`lp_residual` with the rims' normal forces split by equal springs.
+
+    The LP of :func:`lp_residual` over every rim force of ``tool``, plus
+    three free variables c (a rigid displacement of the object on the tool,
+    times the springs' stiffness) and the equalities ``(f_i)_z = c_1 y_i -
+    c_2 x_i + c_3``: each point's normal force is what its spring carries
+    (:mod:`rt_drake.contact.load_sharing`). Independent of that module's
+    rows: it uses the pyramids' H-form and no split matrix. Every cup must
+    lie in T's z = 0 plane with its axis along T's z.
+    """
+    wrenches = np.asarray(wrenches, dtype=float)
+    if wrenches.shape[-1:] != (6,):
+        raise InputError(f"{wrenches.shape=}: need (..., 6) wrenches")
+    if not np.all(np.isfinite(wrenches)):
+        raise InputError("wrenches must be finite, got NaN or inf")
+    tool.validate()
+    G, polygon, bounds, suction = _point_forces(tool)
+    forces = G.shape[1]
+    points = forces // 3
+    xy = np.vstack(
+        [
+            m.p_TC[:2] + contact_positions(m.cup)[:, :2] @ m.R_TC[:2, :2].T
+            for m in tool.cups
+        ]
+    )
+    # Variables: forces, c (3), residual t.
+    A_eq = np.zeros((points, forces + 4))
+    A_eq[np.arange(points), 3 * np.arange(points) + 2] = 1.0
+    A_eq[:, forces : forces + 3] = -np.column_stack(
+        [xy[:, 1], -xy[:, 0], np.ones(points)]
+    )
+    ones = np.ones((6, 1))
+    zeros3 = np.zeros((6, 3))
+    A_ub = np.vstack(
+        [
+            np.hstack([polygon, np.zeros((len(polygon), 4))]),
+            np.hstack([G, zeros3, -ones]),
+            np.hstack([-G, zeros3, -ones]),
+        ]
+    )
+    all_bounds = [*bounds, (None, None), (None, None), (None, None), (0.0, None)]
+    cost = np.zeros(forces + 4)
+    cost[-1] = 1.0
+    flat = wrenches.reshape(-1, 6) - suction
+    residuals = np.empty(len(flat))
+    for row, target in enumerate(flat):
+        b_ub = np.concatenate([np.zeros(len(polygon)), target, -target])
+        result = linprog(
+            cost,
+            A_ub=A_ub,
+            b_ub=b_ub,
+            A_eq=A_eq,
+            b_eq=np.zeros(points),
+            bounds=all_bounds,
+            method="highs",
+            options=_HIGHS_OPTIONS,
+        )
+        if result.status != 0:
+            raise ArithmeticError(f"HiGHS failed on wrench {row}: {result.message}")
+        residuals[row] = result.fun
+    return residuals.reshape(wrenches.shape[:-1])
+
+
 def is_realizable_lp(
     wrenches: np.ndarray, cup: CupParameters | ToolParameters, tol: float = 1e-8
 ) -> np.ndarray:

@@ -67,6 +67,24 @@ MAX_BUDGET_S = 600.0
 ABOVE_FRACTIONS = (1.0, 0.5, 0.25)
 
 
+@dataclasses.dataclass(frozen=True)
+class PhaseEnds:
+    """Where a phase starts and ends, before any path joins them.
+
+    Attributes:
+        attempt: the phase's planning call (its stopwatch and RNG).
+        q_start, q_goal: rad, the ends.
+        X_OC: the grasp (or its flip) the phase is for.
+        chain: the REACH's IK line from q_start to q_goal (None otherwise).
+    """
+
+    attempt: Attempt
+    q_start: np.ndarray
+    q_goal: np.ndarray
+    X_OC: RigidTransform
+    chain: np.ndarray | None = None
+
+
 def _raised(X_WC: RigidTransform, height: float) -> RigidTransform:
     return RigidTransform([0.0, 0.0, height]) @ X_WC
 
@@ -106,6 +124,12 @@ class CyclePlanner:
         self.object_poses: dict[str, RigidTransform | None] = {
             o.name: o.start.GetDeterministicValue() for o in scenario.objects
         }
+        # The scene is loaded with the cell and the objects at their start
+        # poses (adding an object's shapes to the checker takes ~3 ms); each
+        # plan then re-adds only what its phase changes.
+        for obj in scenario.objects:
+            X_WO = self.object_poses[obj.name]
+            self.scene.set_object(obj.name, X_WO, obj.model, None, TOUCH_ALLOWANCE)
 
     def set_object_pose(self, name: str, X_WO: RigidTransform | None) -> None:
         """Move object ``name`` to X_WO (None: the object left the cell)."""
@@ -123,10 +147,24 @@ class CyclePlanner:
 
     def plan_approach(self, q_current: np.ndarray, name: str) -> PlannedPath:
         """Path from ``q_current`` to the cup above object ``name``."""
+        goal = self.approach_goal(q_current, name)
+        anchors = [goal.q_start, goal.q_goal]
+        return through(self.scene, self.ik, anchors, goal.X_OC, goal.attempt)
+
+    def approach_goal(
+        self, q_current: np.ndarray, name: str, prepared: bool = False
+    ) -> PhaseEnds:
+        """The APPROACH's ends (no path yet): the cup above ``name``, nearest q.
+
+        Leaves the scene prepared for the APPROACH from ``q_current``, or,
+        if ``prepared``, checks start and goal in the scene as it is (the
+        pick's: :mod:`.pick`).
+        """
         attempt = self._begin(Phase.APPROACH, name)
         q_current = self._configuration(attempt, q_current, "q_current")
-        with attempt.watch("scene"):
-            self.prepare(Phase.APPROACH, name, q_current)
+        if not prepared:
+            with attempt.watch("scene"):
+                self.prepare(Phase.APPROACH, name, q_current)
         self._check_start(attempt, q_current)
         offset = self.scenario.object(name).approach_offset
         grasps = self.grasps(name)
@@ -134,16 +172,33 @@ class CyclePlanner:
         targets = [_raised(X_WO @ X_OC, offset) for X_OC in grasps]
         with attempt.watch("ik"):
             index, q_goal = self._solve(attempt, "approach", targets, q_current)
-        return through(self.scene, self.ik, [q_current, q_goal], grasps[index], attempt)
+        return PhaseEnds(attempt, q_current, q_goal, grasps[index])
 
     def plan_reach(self, q_approach: np.ndarray, name: str) -> PlannedPath:
         """Straight descent from ``q_approach`` to the grasp of ``name``."""
+        line = self.descent_line(q_approach, name)
+        assert line.chain is not None  # descent_line raises otherwise
+        planned = through(
+            self.scene, self.ik, list(line.chain), line.X_OC, line.attempt
+        )
+        return dataclasses.replace(planned, descent=line.chain)
+
+    def descent_line(
+        self, q_approach: np.ndarray, name: str, prepared: bool = False
+    ) -> PhaseEnds:
+        """The REACH's IK line from ``q_approach`` down to the grasp (no spline).
+
+        ``chain`` holds the line's configurations (``q_goal`` the last, on
+        the grasp, collision-free). Leaves the scene prepared for the REACH
+        from ``q_approach``, or, if ``prepared``, checks in the scene as it is.
+        """
         attempt = self._begin(Phase.REACH, name)
         q_approach = self._configuration(attempt, q_approach, "q_approach")
         X_start = self.scene.cup_pose(q_approach)
         X_OC = self._nearest_grasp(attempt, X_start)
-        with attempt.watch("scene"):
-            self.prepare(Phase.REACH, name, q_approach, X_OC)
+        if not prepared:
+            with attempt.watch("scene"):
+                self.prepare(Phase.REACH, name, q_approach, X_OC)
         self._check_start(attempt, q_approach)
         with attempt.watch("ik"):
             line = ik_line(self.ik, q_approach, X_start, self._pose(attempt) @ X_OC)
@@ -159,8 +214,7 @@ class CyclePlanner:
             raise GoalInCollisionError(
                 Phase.REACH, name, describe(self.scene, chain[-1], "goal")
             )
-        planned = through(self.scene, self.ik, list(chain), X_OC, attempt)
-        return dataclasses.replace(planned, descent=chain)
+        return PhaseEnds(attempt, q_approach, chain[-1], X_OC, chain)
 
     def plan_pick(
         self, q_start: np.ndarray, name: str, retreat: bool = False
@@ -446,5 +500,6 @@ __all__ = [
     "CyclePlanner",
     "GRASP_TOLERANCE_M",
     "GRASP_TOLERANCE_RAD",
+    "PhaseEnds",
     "TOUCH_ALLOWANCE",
 ]

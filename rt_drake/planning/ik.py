@@ -51,6 +51,21 @@ class CupIk:
             SnoptSolver.id(), "Major optimality tolerance", OPTIMALITY_TOLERANCE
         )
         self._context = plant.CreateDefaultContext()
+        # One program, its bounds and cost updated per solve (building it
+        # costs about as much as SNOPT's solve); the same program as a
+        # fresh one, so the same solution.
+        self._ik = InverseKinematics(plant, self._context, with_joint_limits=True)
+        world = plant.world_frame()
+        self._points = [
+            self._ik.AddPositionConstraint(
+                cup_frame, p_CP, world, np.zeros(3), np.zeros(3)
+            )
+            for p_CP in _POINTS_C
+        ]
+        n = plant.num_positions()
+        self._cost = self._ik.prog().AddQuadraticErrorCost(
+            np.eye(n), np.zeros(n), self._ik.q()
+        )
 
     def solve(
         self, X_WC: RigidTransform, q_near: np.ndarray, q_guess: np.ndarray
@@ -62,16 +77,19 @@ class CupIk:
             q_near: the cost's reference configuration.
             q_guess: the solver's initial guess.
         """
-        ik = InverseKinematics(self._plant, self._context, with_joint_limits=True)
-        q = ik.q()
+        q = self._ik.q()
         world = self._plant.world_frame()
-        for p_CP in _POINTS_C:
+        for p_CP, binding in zip(_POINTS_C, self._points, strict=True):
             p_WP = X_WC.multiply(p_CP)
-            ik.AddPositionConstraint(
-                self._cup, p_CP, world, p_WP - TOLERANCE, p_WP + TOLERANCE
-            )
-        prog = ik.prog()
-        prog.AddQuadraticErrorCost(np.eye(len(q_near)), q_near, q)
+            binding.evaluator().set_bounds(p_WP - TOLERANCE, p_WP + TOLERANCE)
+        # ||q - q_near||^2 as Drake's AddQuadraticErrorCost writes it:
+        # 0.5 q' (2 I) q - 2 q_near' q + q_near' q_near.
+        q_near = np.asarray(q_near, dtype=float)
+        identity = np.eye(len(q_near))
+        self._cost.evaluator().UpdateCoefficients(
+            2.0 * identity, -2.0 * identity @ q_near, q_near.dot(identity @ q_near)
+        )
+        prog = self._ik.prog()
         prog.SetInitialGuess(q, q_guess)
         result = self._solver.Solve(prog, None, self._options)
         if not result.is_success():

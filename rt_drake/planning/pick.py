@@ -5,11 +5,13 @@ the cup
 
 1. retreats vertically by ``RETREAT_HEIGHT`` when it rests on an object at
    q_start (the cup leaves the face along its normal: no scraping);
-2. travels to the approach pose (the grasp raised by ``approach_offset``),
+2. travels to the approach pose (the grasp raised by ``approach_offset``,
+   :meth:`~.cycle_planner.CyclePlanner.approach_goal`): directly, or, if
+   that blend collides between the retreat's top and the approach pose,
    along the polyline :meth:`~.cycle_planner.CyclePlanner.plan_approach`
    finds from the retreat's top;
 3. descends vertically along the IK line of
-   :meth:`~.cycle_planner.CyclePlanner.plan_reach` to the grasp.
+   :meth:`~.cycle_planner.CyclePlanner.descent_line` to the grasp.
 
 One clamped chord-length spline (:class:`~.path.GeometricPath`) runs
 through all of it, so the motion retimed on it starts and ends at rest but
@@ -23,7 +25,15 @@ violates it gets the IK solution of its Cartesian midpoint; a transit
 segment where the dense collision check
 (:func:`~.dense_check.check_path`) fails gets its joint-space midpoint. The
 whole path is checked in the REACH scene from q_start (the grasped face and
-the face under the cup at q_start moved in by the touch allowance).
+the face under the cup at q_start moved in by the touch allowance); the
+approach pose and the descent line are solved and checked in that scene too.
+
+Only the blend is certified: the APPROACH and REACH paths are not splined
+and checked on their own first (the blend replaces them; they cost as much
+again), except the APPROACH's when the straight transit is blocked. Where
+the straight APPROACH is collision-free the pick is the one planned with
+those separate checks; where it is not but the blend without transit points
+is, that blend (certified like any other) is kept.
 """
 
 from __future__ import annotations
@@ -35,6 +45,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from pydrake.math import RigidTransform
 
+from rt_drake.errors import RtDrakeError
 from rt_drake.phase import Phase
 from rt_drake.planning.connect import ik_line
 from rt_drake.planning.dense_check import check_path
@@ -110,9 +121,7 @@ def line_deviation(
 ) -> LineDeviation:
     """Deviation of the cup from the vertical line through X_line, s in [s0, s1]."""
     s = np.linspace(s0, s1, samples)
-    poses = scene.cup_poses(path.value(s))
-    p = np.array([X.translation() for X in poses])
-    R = np.array([X.rotation().matrix() for X in poses])
+    R, p = scene.cup_frames(path.value(s))
     offset = np.linalg.norm((p - X_line.translation())[:, :2], axis=1)
     # angle of R_line^T R: arccos((trace - 1) / 2)
     trace = np.einsum("ij,nij->n", X_line.rotation().matrix(), R)
@@ -148,27 +157,47 @@ def plan_pick(
             )
         retreat_chain = np.vstack([chain, q_top])
     retreat_s = time.perf_counter() - start
-    approach = planner.plan_approach(retreat_chain[-1], name)
-    reach = planner.plan_reach(approach.q_goal, name)
-    assert reach.descent is not None  # plan_reach always returns its line
+    # One scene for all of it: the REACH's from q_start (the grasped face's
+    # allowance does not depend on the grasp's yaw flip, about z_C).
     start = time.perf_counter()
-    X_approach = planner.scene.cup_pose(approach.q_goal)
+    planner.prepare(Phase.REACH, name, q_start, planner.grasps(name)[0])
+    scene_s = time.perf_counter() - start
+    goal = planner.approach_goal(retreat_chain[-1], name, prepared=True)
+    reach = planner.descent_line(goal.q_goal, name, prepared=True)
+    assert reach.chain is not None  # descent_line always returns its line
+    start = time.perf_counter()
+    X_approach = planner.scene.cup_pose(goal.q_goal)
     q_turn = planner.ik.solve(
         RigidTransform([0.0, 0.0, -TURN_STEP]) @ X_approach,
-        reach.descent[0],
-        reach.descent[0],
+        reach.chain[0],
+        reach.chain[0],
     )
-    descent = reach.descent
+    descent = reach.chain
     if q_turn is not None and TURN_STEP < planner.scenario.object(name).approach_offset:
         descent = np.vstack([descent[:1], [q_turn], descent[1:]])
-    planner.prepare(Phase.REACH, name, q_start, reach.X_OC)
-    blend = _Blend(planner, retreat_chain, approach.polyline[1:-1], descent)
-    path, s_retreat, s_approach = blend.refine(name)
     blend_s = time.perf_counter() - start
+    approach_timing, transit = goal.attempt.watch.timing(), None
+    while True:
+        start = time.perf_counter()
+        planner.prepare(Phase.REACH, name, q_start, reach.X_OC)
+        blend = _Blend(planner, retreat_chain, transit, descent)
+        try:
+            path, s_retreat, s_approach = blend.refine(name)
+            blend_s += time.perf_counter() - start
+            break
+        except (_TransitBlocked, NoPathError):
+            if transit is not None:
+                raise
+        # The straight transit is blocked: the APPROACH's own path from the
+        # retreat's top (its spline, else its connected polyline) joins in.
+        blend_s += time.perf_counter() - start
+        approach = planner.plan_approach(retreat_chain[-1], name)
+        approach_timing, transit = approach.timing, approach.polyline[1:-1]
     timing = dataclasses.replace(
-        approach.timing,
-        ik_s=approach.timing.ik_s + retreat_s,
-        check_s=approach.timing.check_s + blend_s,
+        approach_timing,
+        scene_s=approach_timing.scene_s + scene_s,
+        ik_s=approach_timing.ik_s + retreat_s,
+        check_s=approach_timing.check_s + blend_s,
     )
     planned = PlannedPath(
         Phase.APPROACH,
@@ -179,20 +208,37 @@ def plan_pick(
         timing,
         descent=blend.descent(),
     )
-    return PlannedPick(planned, s_retreat, s_approach, reach.timing)
+    reach_timing = reach.attempt.watch.timing()
+    return PlannedPick(planned, s_retreat, s_approach, reach_timing)
+
+
+class _TransitBlocked(RtDrakeError):
+    """The blend without transit points collides between retreat and descent.
+
+    Caught inside :func:`plan_pick` (it then plans the APPROACH's own path);
+    an :class:`~rt_drake.errors.RtDrakeError` like every error the package
+    defines.
+    """
 
 
 class _Blend:
-    """The waypoints of a blended pick and which segments lie on a line."""
+    """The waypoints of a blended pick and which segments lie on a line.
+
+    ``transit`` None: no points between the retreat's top and the approach
+    pose, and no path there certified yet; a collision there raises
+    :class:`_TransitBlocked` instead of refining.
+    """
 
     def __init__(
         self,
         planner: CyclePlanner,
         retreat: np.ndarray,
-        transit: np.ndarray,
+        transit: np.ndarray | None,
         descent: np.ndarray,
     ) -> None:
         self._planner = planner
+        self._straight = transit is None
+        transit = np.empty((0, len(descent[0]))) if transit is None else transit
         self._points = [*retreat, *transit, *descent]
         # Per point: 0 on the retreat line, 2 on the descent line, 1 between.
         self._line = [0] * len(retreat) + [1] * len(transit) + [2] * len(descent)
@@ -230,6 +276,9 @@ class _Blend:
             if check.ok:
                 return path, s_top if self._has_retreat else 0.0, s_approach
             assert check.s is not None
+            between = s_top < check.s < s_approach
+            if self._straight and check.reason == "collision" and between:
+                raise _TransitBlocked
             self._insert(path, check.s)
         raise NoPathError(
             Phase.APPROACH,

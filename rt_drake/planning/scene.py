@@ -236,6 +236,21 @@ class PlanningScene:
             )
         return poses
 
+    def cup_frames(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """R_WC (N, 3, 3) and p_WC (N, 3) (m) at each row of q (N, n), vectorised.
+
+        The cup's body pose from :class:`~.kinematics.BodyKinematics`, times
+        the cup frame's fixed pose in that body: :meth:`cup_poses` as arrays.
+        """
+        column = self.bounds.column_lookup[int(self.cup_frame.body().index())]
+        R, p = self.bounds.kinematics.poses(q)
+        R_WB = np.moveaxis(R[column], -1, 0)  # (N, 3, 3)
+        p_WB = p[column].T  # (N, 3)
+        X_BC = self.cup_frame.GetFixedPoseInBodyFrame()
+        R_WC = R_WB @ X_BC.rotation().matrix()
+        p_WC = p_WB + R_WB @ X_BC.translation()
+        return R_WC, p_WC
+
     def collisions(self, q: np.ndarray) -> list[str]:
         """Name the colliding pairs at q: ``"vs060::link3 with cell::top_plate"``."""
         self.checker.UpdatePositions(q)

@@ -18,6 +18,7 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 
 from rt_drake.contact import CupParameters, ToolParameters, cached_wrench_polytope
+from rt_drake.contact.load_sharing import LoadSharing, SharedLoadSet
 from rt_drake.contact.tool_polytope import DEFAULT_MAX_FACETS
 from rt_drake.contact.worst_cup import worst_cup_polytope
 from rt_drake.contact.wrench_polytope import check_h_representation
@@ -322,19 +323,39 @@ class GraspConstraint:
         held: HeldObject,
         tool: ToolParameters,
         max_facets: int | None = DEFAULT_MAX_FACETS,
+        load_sharing: LoadSharing | str = LoadSharing.ELASTIC,
     ) -> GraspConstraint:
-        """The exact set W_T of a multi-cup ``tool`` (cached on disk).
+        """The wrench set of a ``tool``, about and in the tool frame T.
 
-        ``held`` is the object's inertia in the tool frame T, which is the
-        frame given to the retimer. Two paper cups take about a minute the
-        first time (47,728 rows); a tool whose set has more than
-        ``max_facets`` facets raises ``TooManyFacetsError`` (a
-        ``TooLargeError``): use :meth:`inner_for_tool` instead.
+        ``held`` is the object's inertia in T, which is the frame given to
+        the retimer. With several cups, ``load_sharing`` says how they split
+        the load:
+
+        - ``elastic`` (default): a rigid tool and object on equal rim springs
+          (:mod:`rt_drake.contact.load_sharing`; cups in T's z = 0 plane,
+          axes along z); a few hundred rows, computed in milliseconds.
+        - ``any``: any split (the exact Minkowski sum W_T, cached on disk;
+          two paper cups take about a minute the first time, 47,728 rows;
+          more than ``max_facets`` facets raise ``TooManyFacetsError``, a
+          ``TooLargeError``: use :meth:`inner_for_tool`). It over-claims
+          for a rigid tool: see :class:`~rt_drake.contact.LoadSharing`.
+
+        One cup: its exact set W_c mapped to T (the paper's).
         """
         if not isinstance(tool, ToolParameters):
             raise RetimeInputError(
                 f"for_tool needs a ToolParameters, got {type(tool).__name__}"
             )
+        try:
+            sharing = LoadSharing(load_sharing)
+        except ValueError:
+            choices = ", ".join(repr(m.value) for m in LoadSharing)
+            raise RetimeInputError(
+                f"load_sharing must be one of {choices}, got {load_sharing!r}"
+            ) from None
+        if len(tool.cups) > 1 and sharing is LoadSharing.ELASTIC:
+            shared = SharedLoadSet.of(tool)
+            return cls(held=held, F=shared.F, g=shared.g, cup=tool)
         polytope = cached_wrench_polytope(tool, max_facets=max_facets)
         return cls(held=held, F=polytope.F, g=polytope.g, cup=tool)
 

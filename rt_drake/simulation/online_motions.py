@@ -11,10 +11,10 @@ MOVE optimisation on (the scenario's ``planning.optimize_move``, or
 ``planning.budget_s``, and the path it returns is the one retimed. Both are
 timed on the wall clock, as in the paper's Table II. The grasp polytope is
 computed once, offline, per cup or multi-cup tool (as the paper did: the
-exact W_c, or the tool's W_T about the tool frame), not in the cycle; with
-a ``first_order`` vacuum the MOVE is retimed for the force guaranteed when
-"part present" fires, ``part_present_fraction P A``: the same polytope
-translated (:func:`~rt_drake.contact.with_suction_force`).
+exact W_c, or the tool's set about the tool frame, :func:`move_polytope`),
+not in the cycle; with a ``first_order`` vacuum the MOVE is retimed for
+the force guaranteed when "part present" fires, ``part_present_fraction
+P A``: the same polytope translated (:func:`~rt_drake.contact.with_suction_force`).
 
 An object with an uncertainty set (scenario key ``uncertainty``), or a cup
 with a friction or suction range, is held robustly: every object of the set,
@@ -40,6 +40,8 @@ from pydrake.trajectories import Trajectory
 
 from rt_drake.contact import (
     CupParameters,
+    LoadSharing,
+    SharedLoadSet,
     ToolParameters,
     WrenchPolytope,
     cached_wrench_polytope,
@@ -78,11 +80,14 @@ def held_object(obj: ObjectConfig, X_OC: RigidTransform) -> HeldObject:
     )
 
 
-def move_polytope(scenario: Scenario) -> WrenchPolytope:
-    """The exact wrench set the MOVE is retimed under (cached on disk).
+def move_polytope(scenario: Scenario) -> WrenchPolytope | SharedLoadSet:
+    """The wrench set the MOVE is retimed under (F, g and the cup or tool).
 
-    The scenario's cup W_c, or its tool's W_T (about the tool frame, in it;
-    two paper cups: 47,728 rows, about a minute the first time); with a
+    The scenario's cup W_c (cached on disk), or its tool's set about the
+    tool frame, in it: for several cups with ``tool.load_sharing:
+    elastic`` (the default) the rims' spring split (:class:`SharedLoadSet`,
+    milliseconds), with ``any`` the exact W_T of any split (two paper cups:
+    47,728 rows, about a minute the first time, then cached). With a
     ``first_order`` vacuum, for the suction force guaranteed at "part
     present": every cup's ``P A`` times ``part_present_fraction`` (one cup:
     W_c translated; a tool: the set of the tool with those forces).
@@ -107,6 +112,8 @@ def move_polytope(scenario: Scenario) -> WrenchPolytope:
                 for mount in tool.cups
             )
         )
+    if len(tool.cups) > 1 and scenario.tool.load_sharing == LoadSharing.ELASTIC.value:
+        return SharedLoadSet.of(tool)
     return cached_wrench_polytope(tool)
 
 

@@ -8,6 +8,10 @@ Planning ahead (``pipelined``, the default): the MOVE is requested when the
 pick starts moving (its grasp configuration is known), so it is planned
 during the pick and the ATTACH wait; the next object's pick is requested
 when the MOVE starts, so it is planned during the MOVE and the DETACH wait.
+The first object's pick has nothing before it to hide behind: it is
+requested at t = 0 and the arm waits for all of its planning and retiming
+(only the planner's construction, which loads the cell and the objects at
+their start poses into its collision scene, comes before the clock).
 Sequential (``pipelined=False``): each motion is requested when its phase
 starts. Either way a phase waits only for the part of its planning that did
 not fit in the time before it (:class:`~.motion.PendingMotion` defines how

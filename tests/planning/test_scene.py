@@ -31,6 +31,18 @@ def _load_corners(scene: PlanningScene, name: str, X_CO: RigidTransform, q: np.n
     return np.array([X_WG.multiply(half * sign) for sign in signs])
 
 
+def test_vectorised_cup_frames_match_drake(scene):
+    rng = np.random.default_rng(3)
+    q = rng.uniform(scene.lower, scene.upper, (25, 6))
+    R, p = scene.cup_frames(q)
+    context = scene.plant.CreateDefaultContext()
+    for k in range(len(q)):
+        scene.plant.SetPositions(context, q[k])
+        X_WC = scene.cup_frame.CalcPoseInWorld(context)
+        np.testing.assert_allclose(R[k], X_WC.rotation().matrix(), atol=1e-12)
+        np.testing.assert_allclose(p[k], X_WC.translation(), atol=1e-12)
+
+
 def test_vectorised_kinematics_matches_drake(scene):
     rng = np.random.default_rng(1)
     q = rng.uniform(scene.lower, scene.upper, (25, 6))

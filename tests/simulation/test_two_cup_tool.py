@@ -1,12 +1,13 @@
 """A two-cup tool in the simulated cell: it holds what one cup drops.
 
 The heavy carton (2.2 kg, 21.6 N of weight) hangs under the tool. The MOVE
-(lift off the destination zone, then swing joint 1) is retimed under the exact set of
-a coarse two-cup tool (4 rim points, 3-sided friction polygons, 20 N each,
-0.12 m apart; 4266 rows, about a second). The physics is the independent
-check: the station applies one vacuum force and one rim per cup, and the
-same commanded trajectory is played to the two-cup tool and to one cup at
-the tool frame. Two cups carry the carton along; one cup lets it fall.
+(lift off the destination zone, then swing joint 1) is retimed under the set
+of a coarse two-cup tool (4 rim points, 3-sided friction polygons, 20 N
+each, 0.12 m apart) whose rims share the load as equal springs (436 rows).
+The physics is the independent check: the station applies one vacuum force
+and one rim per cup, and the same commanded trajectory is played to the
+two-cup tool and to one cup at the tool frame. Two cups carry the carton along;
+one cup lets it fall.
 """
 
 from __future__ import annotations
