@@ -14,6 +14,7 @@ which adds grid points where one is exceeded.
 
 from __future__ import annotations
 
+import weakref
 from typing import NamedTuple
 
 import numpy as np
@@ -29,6 +30,12 @@ from rt_drake.retiming.samples import PathSamples
 
 #: Grasp rows violated by more than this (N or N m) are added and re-solved.
 ROW_TOLERANCE = 1e-9
+
+#: The rows of each grasp grouped for the exactness check, kept while the
+#: grasp lives (a GraspConstraint is immutable and hashed by identity).
+_GROUPS: weakref.WeakKeyDictionary[GraspConstraint, RowGroups] = (
+    weakref.WeakKeyDictionary()
+)
 
 
 class Check(NamedTuple):
@@ -60,7 +67,9 @@ class ObjectRows:
         rows: The rows of the current solve (``selected`` plus repairs).
         repairs: Times the current solve added rows.
         groups: The rows grouped for the exactness check (at the first
-            check, reused by every later one: :func:`.rows.wrench_groups`).
+            check of the first retime with this grasp, then reused by every
+            later one: :func:`.rows.wrench_groups`; any grouping gives the
+            same results, the wrenches only weight the split).
     """
 
     robust = False
@@ -71,7 +80,7 @@ class ObjectRows:
         self.selected = np.zeros(0, dtype=int)
         self.rows = self.selected
         self.repairs = 0
-        self.groups: RowGroups | None = None
+        self.groups: RowGroups | None = _GROUPS.get(grasp)
 
     def add(self, samples: PathSamples) -> None:
         """Check holding at rest at new samples; select their rows."""
@@ -113,6 +122,7 @@ class ObjectRows:
         enforced = segments.enforced_wrenches(samples.wrench, x, u)
         if self.groups is None:  # grouped at the first check, then reused
             self.groups = R.wrench_groups(enforced, self.normals, self.grasp.g)
+            _GROUPS[self.grasp] = self.groups
         ratio, violated, row_max = R.wrench_ratios(
             enforced,
             self.normals,
@@ -120,6 +130,7 @@ class ObjectRows:
             ROW_TOLERANCE,
             1.0 - ROW_SCREEN,
             self.groups,
+            exact=len(samples.s),  # the margins need the grid points' maxima
         )
         missed = np.setdiff1d(violated, self.rows) if violated.size else violated
         if missed.size:

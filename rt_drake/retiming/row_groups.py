@@ -15,6 +15,9 @@ and :func:`grouped_ratios` adds ``MARGIN sum_d (|c_d| + r_d) |w_d|`` for
 the rounding of both sides (each below 8 units in the last place of that
 sum). A group whose bound is at most both the best value found so far and
 the floor cannot hold the maximum nor a row above the floor: it is skipped.
+At a wrench whose maximum is not wanted (past the first ``exact``: the
+retimer needs the maxima at the grid points only), a group whose bound is
+at most the floor is skipped.
 The maximum and every row above the floor come out as evaluating every row
 would give them, to the last bit (the same products, in the same order).
 """
@@ -191,7 +194,7 @@ def _group_violated(low, high, groups, tol, w0, w1, w2, w3, w4, w5, violated):  
 
 
 @njit(cache=True)
-def grouped_ratios(wrenches, groups, tol, floor, ratio, violated, row_max):  # noqa: D417
+def grouped_ratios(wrenches, groups, tol, floor, exact, ratio, violated, row_max):  # noqa: D417
     """The exactness check over the groups (see the module docstring).
 
     Args:
@@ -199,7 +202,12 @@ def grouped_ratios(wrenches, groups, tol, floor, ratio, violated, row_max):  # n
         groups: :class:`RowGroups`.
         tol: Excess ``g_k (n_k w - 1)`` above which row k is violated.
         floor: Rows above it are found exactly (-inf: every row).
-        ratio: (M,) out: ``max_k n_k w`` at each wrench.
+        exact: The first ``exact`` wrenches get their largest value; the
+            others only the rows above ``floor`` (a group that cannot hold
+            one is skipped even if it could hold the wrench's maximum).
+        ratio: (M,) out: ``max_k n_k w`` at each of the first ``exact``
+            wrenches; at the others the same where above ``floor``, else at
+            most ``floor`` (-inf if no group was looked at).
         violated: (R,) bool, out: rows violated somewhere (set to True).
         row_max: (R,) out: ``max_w n_k w`` where above ``floor``, at most
             ``floor`` elsewhere (-inf if never evaluated).
@@ -244,9 +252,14 @@ def grouped_ratios(wrenches, groups, tol, floor, ratio, violated, row_max):  # n
             if bound[j] > top_bound:
                 top, top_bound = j, bound[j]
         best = -np.inf
+        wanted = i < exact  # this wrench's maximum, or only rows above floor
         for step in range(count + 1):  # the likeliest group first
             j = top if step == 0 else step - 1
-            if step > 0 and (j == top or bound[j] <= min(best, floor)):
+            if step > 0 and j == top:
+                continue
+            if (wanted and step > 0 and bound[j] <= min(best, floor)) or (
+                not wanted and bound[j] <= floor
+            ):
                 continue
             low, high = start[j], start[j + 1]
             value = _group_max(low, high, n, w0, w1, w2, w3, w4, w5, sorted_max, values)

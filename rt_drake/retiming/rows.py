@@ -87,6 +87,7 @@ def wrench_ratios(
     tol: float,
     floor: float = -np.inf,
     groups: RowGroups | None = None,
+    exact: int | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Evaluate every grasp row at every wrench (rows far below skipped).
 
@@ -104,9 +105,14 @@ def wrench_ratios(
             every row).
         groups: The rows grouped by :func:`wrench_groups` (to reuse them
             across calls); None: grouped here for these wrenches.
+        exact: Only the first ``exact`` wrenches need their ``ratio`` (None:
+            all); at the others only rows above ``floor`` are looked for
+            (the same ``violated`` and ``row_max``, in fewer products).
 
     Returns:
-        ratio: (M,) ``max_k n_k w`` (<= 1: the wrench is in the polytope).
+        ratio: (M,) ``max_k n_k w`` (<= 1: the wrench is in the polytope);
+            past the first ``exact`` wrenches, that where above ``floor``,
+            else at most ``floor``.
         violated: Sorted rows with ``g_k (n_k w - 1) > tol`` at some wrench.
         row_max: (R,) ``max_w n_k w`` of each row over the wrenches where
             that is above ``floor``; at most ``floor`` for the others.
@@ -119,8 +125,16 @@ def wrench_ratios(
     ratio = np.empty(len(wrenches))
     violated = np.zeros(len(g), dtype=np.bool_)
     row_max = np.empty(len(g))
+    count = len(wrenches) if exact is None else min(int(exact), len(wrenches))
     grouped_ratios(
-        wrenches, groups, float(tol), min(float(floor), 1.0), ratio, violated, row_max
+        wrenches,
+        groups,
+        float(tol),
+        min(float(floor), 1.0),
+        count,
+        ratio,
+        violated,
+        row_max,
     )
     return ratio, np.flatnonzero(violated), row_max
 
