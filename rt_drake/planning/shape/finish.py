@@ -77,9 +77,9 @@ def adaptive_grid(
     # uniform grid); retime_adaptive falls back then.
     step = 0.1 / points
     kept = [0.0]
-    for value in grid[1:-1]:
+    for value in grid[1:-1].tolist():  # Python floats: a tenth of the cost
         if value - kept[-1] >= step and 1.0 - value >= step:
-            kept.append(float(value))
+            kept.append(value)
     kept.append(1.0)
     return np.array(kept)
 
