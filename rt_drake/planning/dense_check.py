@@ -158,17 +158,21 @@ class _Rows:
 
 
 class _Tables:
-    """Column and pair lookups of a scene's clearance rows, as arrays."""
+    """Column and pair lookups of a scene's clearance rows (Python lists).
+
+    A query reports ten to twenty rows: a loop over Python objects reduces
+    them faster than NumPy's per-call overhead would.
+    """
 
     def __init__(self, scene: PlanningScene) -> None:
         bounds = scene.bounds
         #: Per plant body index, its column, or -1 (not part of the robot).
-        self.column = np.array(bounds.column_lookup, dtype=np.int64)
+        self.column = list(bounds.column_lookup)
         columns = len(bounds.bodies)
-        #: ``pair[a, o]`` (either order): the index in ``self_pairs``, or -1.
-        self.pair = np.full((columns, columns), -1, dtype=np.int64)
+        #: ``pair[a][o]`` (either order): the index in ``self_pairs``, or -1.
+        self.pair = [[-1] * columns for _ in range(columns)]
         for k, (a, o) in enumerate(bounds.self_pairs):
-            self.pair[a, o] = self.pair[o, a] = k
+            self.pair[a][o] = self.pair[o][a] = k
         self.pairs = len(bounds.self_pairs)
 
     def budgets(self, clearance, distances: np.ndarray):
@@ -177,19 +181,26 @@ class _Tables:
         The smallest distance of each body's environment rows and of each
         robot pair's rows; unreported ones are at least ``INFLUENCE`` apart.
         """
-        body = np.full(len(self.pair), INFLUENCE)
-        pair = np.full(self.pairs, INFLUENCE)
-        if distances.size:
-            a = self.column[np.fromiter(map(int, clearance.robot_indices()), np.int64)]
-            o = self.column[np.fromiter(map(int, clearance.other_indices()), np.int64)]
-            environment = o < 0
-            np.minimum.at(body, a[environment], distances[environment])
-            robot = ~environment
-            k = self.pair[a[robot], o[robot]]
-            if np.any(k < 0):  # the checker reported a pair it filters
+        column, table = self.column, self.pair
+        body = [INFLUENCE] * len(table)
+        pair = [INFLUENCE] * self.pairs
+        for a, o, d in zip(
+            clearance.robot_indices(),
+            clearance.other_indices(),
+            distances.tolist(),
+            strict=True,
+        ):
+            column_a, column_o = column[int(a)], column[int(o)]
+            if column_o < 0:
+                if d < body[column_a]:
+                    body[column_a] = d
+                continue
+            k = table[column_a][column_o]
+            if k < 0:
                 raise ValueError("clearance row of a filtered robot pair")
-            np.minimum.at(pair, k, distances[robot])
-        return body, pair
+            if d < pair[k]:
+                pair[k] = d
+        return np.array(body), np.array(pair)
 
 
 __all__ = ["DenseCheck", "GRID_STEP", "INFLUENCE", "check_path", "grid"]

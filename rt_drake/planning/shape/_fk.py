@@ -122,9 +122,6 @@ def accelerations(z, o, R, p, dq, ddq, p_CS, out):  # noqa: D417
         out[3, i, 0], out[3, i, 1], out[3, i, 2] = a0, a1, a2
 
 
-
-
-
 @njit(cache=True)
 def solve_poses(  # noqa: D417
     q, R_target, p_target, pre, post, index, axis, X_BC, order, iterations,
@@ -175,7 +172,9 @@ def solve_poses(  # noqa: D417
             # J = [z_j; z_j x (p - o_j)], dq = J^T (J J^T + 1e-12 I)^-1 r
             for j in range(n):
                 z0, z1, z2 = z[0, j, 0], z[0, j, 1], z[0, j, 2]
-                d0, d1, d2 = p[0, 0] - o[0, j, 0], p[0, 1] - o[0, j, 1], p[0, 2] - o[0, j, 2]
+                d0 = p[0, 0] - o[0, j, 0]
+                d1 = p[0, 1] - o[0, j, 1]
+                d2 = p[0, 2] - o[0, j, 2]
                 J[0, j], J[1, j], J[2, j] = z0, z1, z2
                 J[3, j] = z1 * d2 - z2 * d1
                 J[4, j] = z2 * d0 - z0 * d2
@@ -211,5 +210,6 @@ def solve_poses(  # noqa: D417
                 for a in range(6):
                     step += J[a, j] * y[a]
                 q[i, order[j]] += step
+
 
 __all__ = ["accelerations", "compose", "frames", "solve_poses"]

@@ -14,6 +14,7 @@ import numpy as np
 
 from rt_drake.planning.shape import _fk
 from rt_drake.planning.shape.clearance import _clearance
+from rt_drake.planning.shape.finish import _thin
 from rt_drake.planning.shape.spline import evaluate_splines
 from rt_drake.planning.shape.surrogate import _batch_durations
 from rt_drake.retiming import warm_up as warm_up_retimer
@@ -49,6 +50,7 @@ def warm_up() -> None:
         np.inf, np.empty(1), np.zeros(1, dtype=np.bool_),
         np.zeros((1, 12), dtype=np.bool_), np.zeros((1, points)),
     )  # fmt: skip
+    _thin(np.linspace(0.0, 1.0, points), 0.01)
     boxes = np.ones((1, 3))
     _clearance(
         R, p, np.zeros((1, 3)), np.ones(1), np.eye(3)[None], boxes, boxes, 1.0, 0.1,
