@@ -183,6 +183,20 @@ class ToolConfig:
     cups: list[ToolCupConfig] = dataclasses.field(default_factory=list)
     load_sharing: str = "elastic"
 
+    def parameters(self) -> ToolParameters:
+        """The tool's cups and their poses X_TC (validated)."""
+        mounts = []
+        for entry in self.cups:
+            X_TC = entry.pose.GetDeterministicValue()
+            mounts.append(
+                CupMount(
+                    entry.parameters(),
+                    X_TC.rotation().matrix(),
+                    X_TC.translation(),
+                )
+            )
+        return ToolParameters(cups=tuple(mounts))
+
 
 @dataclasses.dataclass
 class Scenario:
@@ -213,17 +227,7 @@ class Scenario:
         """The tool's cups and poses: ``tool``, or ``cup`` at the tool frame."""
         if self.tool is None:
             return ToolParameters.single(self.cup)
-        mounts = []
-        for entry in self.tool.cups:
-            X_TC = entry.pose.GetDeterministicValue()
-            mounts.append(
-                CupMount(
-                    entry.parameters(),
-                    X_TC.rotation().matrix(),
-                    X_TC.translation(),
-                )
-            )
-        return ToolParameters(cups=tuple(mounts))
+        return self.tool.parameters()
 
     def single_cup(self, what: str) -> CupParameters:
         """The one cup, for the parts that model a single cup (``what``).
@@ -370,24 +374,9 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
     except InputError as error:
         raise ScenarioError(f"{path}: key 'cup': {error}") from None
     if scenario.tool is not None:
-        _check_tool(path, scenario.tool)
-        _check_load_sharing(path, scenario)
+        check_tool(path, scenario.tool)
     check_vacuum(path, scenario.vacuum)
     _check_planning(path, scenario.planning)
-
-
-def _check_load_sharing(path: Path, scenario: Scenario) -> None:
-    """An ``elastic`` tool of several cups has the planar rims it needs."""
-    from rt_drake.contact.load_sharing import rim_springs
-
-    assert scenario.tool is not None
-    tool = scenario.tool_parameters()
-    if scenario.tool.load_sharing != "elastic" or len(tool.cups) == 1:
-        return
-    try:
-        rim_springs(tool)
-    except InputError as error:
-        raise ScenarioError(f"{path}: key 'tool.load_sharing': {error}") from None
 
 
 def _check_planning(path: Path, planning: PlanningConfig) -> None:
@@ -403,18 +392,31 @@ def _check_planning(path: Path, planning: PlanningConfig) -> None:
         )
 
 
-def _check_tool(path: Path, tool: ToolConfig) -> None:
-    """At least one cup, each in range and fixed; a known ``load_sharing``."""
+def check_tool(path: Path, tool: ToolConfig, key: str = "tool") -> None:
+    """Check a tool: its cups, their parameters and poses, its load sharing.
+
+    At least one cup; each cup's parameters in range and its pose fixed; a
+    known ``load_sharing``, and for ``elastic`` with several cups, the
+    planar rims it needs (:func:`~rt_drake.contact.load_sharing.rim_springs`).
+
+    Args:
+        path: The file, for messages.
+        tool: The tool as loaded.
+        key: Its key path in the file (a campaign's ``cups[1].tool``).
+
+    Raises:
+        ScenarioError: ``<path>: key '<key>.cups[i].<field>': ...``.
+    """
     if not tool.cups:
-        raise ScenarioError(f"{path}: key 'tool.cups': a tool needs at least one cup")
+        raise ScenarioError(f"{path}: key '{key}.cups': a tool needs at least one cup")
     choices = ("elastic", "any")
     if tool.load_sharing not in choices:
         raise ScenarioError(
-            f"{path}: key 'tool.load_sharing': must be one of "
+            f"{path}: key '{key}.load_sharing': must be one of "
             f"{', '.join(choices)}, got {tool.load_sharing!r}"
         )
     for index, entry in enumerate(tool.cups):
-        where = f"{path}: key 'tool.cups[{index}]"
+        where = f"{path}: key '{key}.cups[{index}]"
         if not entry.pose.IsDeterministic():
             raise ScenarioError(
                 f"{where}.pose': must be a fixed pose, not a random one"
@@ -425,6 +427,14 @@ def _check_tool(path: Path, tool: ToolConfig) -> None:
             message = str(error).removeprefix("cup ")
             name = message.split(" ", 1)[0]
             raise ScenarioError(f"{where}.{name}': {message}") from None
+    parameters = tool.parameters()
+    if tool.load_sharing == "elastic" and len(parameters.cups) > 1:
+        from rt_drake.contact.load_sharing import rim_springs
+
+        try:
+            rim_springs(parameters)
+        except InputError as error:
+            raise ScenarioError(f"{path}: key '{key}.load_sharing': {error}") from None
 
 
 def _check_robot(path: Path, robot: RobotConfig) -> None:
@@ -454,5 +464,6 @@ __all__ = [
     "ToolCupConfig",
     "Vacuum",
     "VacuumModel",
+    "check_tool",
     "load_scenario",
 ]

@@ -1,12 +1,14 @@
 """Campaign test helpers importable by worker processes (``tests`` is on the path).
 
-Tasks that crash their worker, to test the executors' retry, and a
-campaign file writer.
+Tasks that crash their worker, to test the executors' retry, and
+campaign file writers.
 """
 
 from __future__ import annotations
 
 import os
+import signal
+import time
 from pathlib import Path
 
 from rt_drake.experiments.campaign.rows import Outcome, RowResult, Status
@@ -14,6 +16,9 @@ from rt_drake.experiments.campaign.worker import Task
 
 #: Environment variable: directory of the marker files of crash_once.
 CRASH_DIR = "RT_DRAKE_TEST_CRASH_DIR"
+
+#: Environment variable: seconds killed_beside's trial 1 outlives trial 0.
+BESIDE_S = "RT_DRAKE_TEST_BESIDE_S"
 
 
 def no_init(campaign_path: str, content_hash: str) -> None:
@@ -33,11 +38,55 @@ def crash_always(task: Task) -> Outcome:
 
 def crash_once(task: Task) -> Outcome:
     """Kill the worker at the first start of each row (a marker file remembers)."""
-    marker = Path(os.environ[CRASH_DIR]) / f"{task.key.object}-{task.key.trial}"
+    key = task.key
+    marker = Path(os.environ[CRASH_DIR]) / f"{key.object}-{key.cup}-{key.trial}"
     if not marker.exists():
         marker.touch()
         os._exit(3)
     return _ok(task)
+
+
+def _markers(task: Task, kind: str) -> list[Path]:
+    directory = Path(os.environ[CRASH_DIR])
+    return list(directory.glob(f"{task.key.object}-{task.key.cup}-{kind}-*"))
+
+
+def _mark(task: Task, kind: str) -> int:
+    """Leave one more ``kind`` marker of the task's (object, cup); their count."""
+    count = len(_markers(task, kind)) + 1
+    name = f"{task.key.object}-{task.key.cup}-{kind}-{count}-{os.getpid()}"
+    (Path(os.environ[CRASH_DIR]) / name).touch()
+    return count
+
+
+def killed_beside(task: Task) -> Outcome:
+    """Trial 0 SIGKILLs its own worker at every start; trial 1 runs beside it.
+
+    Trial 0 first waits (at most 60 s) for trial 1 to have started once.
+    Trial 1, at its n-th start, waits (at most 60 s) for trial 0's n-th
+    death and, if trial 0 has died exactly n times, ``$RT_DRAKE_TEST_BESIDE_S``
+    seconds more (default 10): it is still running when a pool of both
+    breaks. Started after trial 0's last death (run alone), it finishes at
+    once, as other trials do. Markers (per object and cup) in
+    ``$RT_DRAKE_TEST_CRASH_DIR``.
+    """
+    if task.key.trial == 0:
+        _wait_for(task, "beside", 1)
+        _mark(task, "died")
+        os.kill(os.getpid(), signal.SIGKILL)
+    if task.key.trial == 1:
+        start = _mark(task, "beside")
+        _wait_for(task, "died", start)
+        if len(_markers(task, "died")) == start:
+            time.sleep(float(os.environ.get(BESIDE_S, "10")))
+    return _ok(task)
+
+
+def _wait_for(task: Task, kind: str, count: int) -> None:
+    deadline = time.monotonic() + 60.0
+    while len(_markers(task, kind)) < count:
+        assert time.monotonic() < deadline, f"no {count} {kind} markers in 60 s"
+        time.sleep(0.02)
 
 
 def write_campaign(
@@ -63,5 +112,34 @@ cups:
 trials: {trials}
 seed: 0
 {line}"""
+    )
+    return path
+
+
+def write_tool_campaign(path: Path) -> Path:
+    """The kindle box (2.06 N) on a weak cup (1.8 N of suction) and on a tool of two.
+
+    One cup cannot hold the box even at rest (its suction is below the
+    box's weight); the tool of two such cups, 8 cm apart on the tool
+    frame's x axis (along the box's 17.4 cm length), can. Small cups
+    (4 points, 4 sides): the tool's exact set takes seconds to make.
+    """
+    cup = "points: 4, sides: 4, suction_force: 1.8"
+    path.write_text(
+        f"""\
+scenario: random_transport
+objects:
+- model: package://rt_drake/objects/kindle_box.sdf
+cups:
+- {{name: weak, {cup}}}
+- name: weak_pair
+  tool:
+    cups:
+    - {{pose: {{translation: [0.04, 0.0, 0.0]}}, {cup}}}
+    - {{pose: {{translation: [-0.04, 0.0, 0.0]}}, {cup}}}
+trials: 1
+seed: 0
+variants: [constrained]
+"""
     )
     return path

@@ -45,6 +45,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from pydrake.math import RigidTransform
 
+from rt_drake.errors import RtDrakeError
 from rt_drake.phase import Phase
 from rt_drake.planning.connect import ik_line
 from rt_drake.planning.dense_check import check_path
@@ -211,8 +212,13 @@ def plan_pick(
     return PlannedPick(planned, s_retreat, s_approach, reach_timing)
 
 
-class _TransitBlocked(Exception):
-    """The blend without transit points collides between retreat and descent."""
+class _TransitBlocked(RtDrakeError):
+    """The blend without transit points collides between retreat and descent.
+
+    Caught inside :func:`plan_pick` (it then plans the APPROACH's own path);
+    an :class:`~rt_drake.errors.RtDrakeError` like every error the package
+    defines.
+    """
 
 
 class _Blend:

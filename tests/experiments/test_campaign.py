@@ -10,12 +10,13 @@ import io
 import json
 import math
 import random
+import re
 import sqlite3
 import statistics
 import sys
 
 import pytest
-from campaign_helpers import write_campaign
+from campaign_helpers import write_campaign, write_tool_campaign
 
 from rt_drake.cli import main
 from rt_drake.experiments.campaign import (
@@ -161,6 +162,100 @@ def test_bad_campaign_is_one_line_naming_file_key_value(tmp_path, old, new, word
     assert old in text, old
     path = tmp_path / "bad.yaml"
     path.write_text(text.replace(old, new, 1))
+    with pytest.raises(CampaignError) as error:
+        load_campaign(path)
+    message = str(error.value)
+    assert "\n" not in message
+    for word in words:
+        assert word in message, (word, message)
+
+
+def test_a_tool_entry_names_its_rows_and_sets_the_trial_scenarios_tool(tmp_path):
+    campaign = load_campaign(write_tool_campaign(tmp_path / "tool.yaml"))
+    assert [(c.name, c.tool is None) for c in campaign.cups] == [
+        ("weak", True),
+        ("weak_pair", False),
+    ]
+    assert [k.cup for k in campaign.row_keys()] == ["weak", "weak_pair"]
+    single, pair = (
+        campaign.combination(RowKey("kindle_box", cup, 0, 0, Variant.CONSTRAINED))
+        for cup in ("weak", "weak_pair")
+    )
+    assert single.scenario.tool is None
+    assert single.scenario.cup.suction_force == 1.8
+    tool = pair.scenario.tool_parameters()
+    assert [m.p_TC.tolist() for m in tool.cups] == [[0.04, 0, 0], [-0.04, 0, 0]]
+    assert [(m.cup.points, m.cup.suction_force) for m in tool.cups] == [(4, 1.8)] * 2
+    # Moving one cup of the tool is another campaign.
+    text = (tmp_path / "tool.yaml").read_text()
+    (tmp_path / "moved.yaml").write_text(text.replace("[0.04,", "[0.05,", 1))
+    moved = load_campaign(tmp_path / "moved.yaml")
+    assert moved.content_hash != campaign.content_hash
+
+
+def test_a_cup_entry_replaces_the_base_scenarios_tool(tmp_path):
+    path = write_campaign(tmp_path / "c.yaml").read_text()
+    (tmp_path / "c.yaml").write_text(
+        path.replace("random_transport", "carton_two_cups").replace(
+            "notebook.sdf", "carton_box.sdf"
+        )
+    )
+    campaign = load_campaign(tmp_path / "c.yaml")
+    assert campaign.scenario.tool is not None  # the base: a two-cup tool
+    key = RowKey("carton_box", "small", 0, 0, Variant.CONSTRAINED)
+    scenario = campaign.combination(key).scenario
+    assert scenario.tool is None and scenario.cup.suction_force == 4.0
+    assert len(scenario.tool_parameters().cups) == 1
+
+
+BAD_TOOL_EDITS = [
+    # (old text, new text, words the one-line message must contain)
+    (
+        "[0.04, 0.0, 0.0]}, points: 4",
+        "[0.04, 0.0, 0.0]}, points: 2",
+        ["tool.yaml", "cups[1].tool.cups[0].points", "got 2"],
+    ),
+    (
+        "[0.04, 0.0, 0.0]}, points: 4",
+        "[0.04, 0.0, 0.0]}, pionts: 4",
+        ["tool.yaml", "unknown key 'cups[1].tool.cups[0].pionts'"],
+    ),
+    (
+        "[0.04, 0.0, 0.0]}",
+        "[0.04, 0.0]}",
+        ["tool.yaml", "cups[1].tool.cups[0].pose.translation", "[0.04, 0.0]"],
+    ),
+    (
+        "[0.04, 0.0, 0.0]}, points: 4",
+        "[0.04, 0.0, 0.0]}, friction: .nan, points: 4",
+        ["tool.yaml", "cups[1].tool.cups[0].friction", "nan"],
+    ),
+    (
+        "  tool:\n",
+        "  radius: 0.01\n  tool:\n",
+        ["tool.yaml", "cups[1].radius", "a tool entry takes", "0.01"],
+    ),
+    ("- name: weak_pair\n  tool:", "- tool:", ["cups[1].name", "a tool needs a name"]),
+    ("name: weak_pair", "name: weak", ["cups[1].name", "duplicate", "weak"]),
+    ("    cups:\n", "    cup:\n", ["unknown key 'cups[1].tool.cup'"]),
+    (
+        re.compile(r"  tool:\n(    .*\n)+"),
+        "  tool: {cups: []}\n",
+        ["tool.yaml", "cups[1].tool.cups", "at least one cup"],
+    ),
+]
+
+
+@pytest.mark.parametrize("old,new,words", BAD_TOOL_EDITS)
+def test_bad_tool_entry_is_one_line_naming_file_key_value(tmp_path, old, new, words):
+    text = write_tool_campaign(tmp_path / "good.yaml").read_text()
+    path = tmp_path / "tool.yaml"
+    if isinstance(old, re.Pattern):
+        bad = old.sub(new, text, count=1)
+    else:
+        bad = text.replace(old, new, 1)
+    assert bad != text, old
+    path.write_text(bad)
     with pytest.raises(CampaignError) as error:
         load_campaign(path)
     message = str(error.value)

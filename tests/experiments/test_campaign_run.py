@@ -32,6 +32,7 @@ from campaign_helpers import (
     crash_once,
     no_init,
     write_campaign,
+    write_tool_campaign,
 )
 
 import rt_drake
@@ -210,3 +211,26 @@ def test_ray_worker_crash_is_retried_once_then_recorded(campaign_file, ray_run):
     assert outcomes[0].result.status is Status.CRASHED
     assert "WorkerCrashedError" in outcomes[0].result.error
     assert outcomes[1].result.status is Status.OK
+
+
+def test_a_tool_of_two_weak_cups_holds_what_one_cannot(tmp_path):
+    """The rows and report name the tool; its MOVE is retimed under both cups.
+
+    The kindle box weighs 2.06 N: one cup of 1.8 N of suction cannot hold
+    it at rest (an infeasible row), two such cups can (3.6 N), and the
+    MOVE retimed under the tool's set keeps it on the tool in the physics.
+    """
+    campaign_file = write_tool_campaign(tmp_path / "tool.yaml")
+    db = tmp_path / "tool.db"
+    argv = ["experiment", "campaign", str(campaign_file), "--out", str(db)]
+    assert main([*argv, "--workers", "1"]) == 0
+    rows = _rows(db, "cup, status, success, slip_translation_mm, duration_s, error")
+    (cup, *weak), (tool, *pair) = rows
+    assert (cup, tool) == ("weak", "weak_pair")
+    assert weak[0] == Status.INFEASIBLE.value
+    assert weak[4].startswith("GraspUnstableAtRestError: object slips even at rest")
+    status, success, slip, duration, error = pair
+    assert (status, success, error) == (Status.OK.value, 1, None)
+    assert slip < 5.0 and 0.5 < duration < 5.0
+    assert main(["experiment", "report", str(db), "--out", str(tmp_path)]) == 0
+    assert "| kindle_box | weak_pair | 1/1 |" in (tmp_path / "summary.md").read_text()

@@ -46,8 +46,9 @@ class Combination:
     Attributes:
         key: The row.
         obj: The object carried.
-        cup: The cup holding it.
-        scenario: The trial's scenario: the base cell with this cup and this
+        cup: The cup (or multi-cup tool) holding it.
+        scenario: The trial's scenario: the base cell with this cup (or
+            tool, replacing the base scenario's cup or tool) and this
             object alone, at the trial's start pose, with its goal pose (and
             its uncertainty set, which only the ``robust`` variant holds).
         planner_seed: Seed of the planner (campaign seed + trial).
@@ -106,6 +107,10 @@ class Campaign:
         scenario = self._trial_scenario(obj, cup, key.trial)
         return Combination(key, obj, cup, scenario, key.seed + key.trial)
 
+    def cup_scenario(self, cup: CampaignCup) -> Scenario:
+        """The base scenario with ``cup`` (or its tool) instead of its own."""
+        return dataclasses.replace(self.scenario, cup=cup.parameters, tool=cup.tool)
+
     def _trial_scenario(
         self, obj: CampaignObject, cup: CampaignCup, trial: int
     ) -> Scenario:
@@ -128,10 +133,7 @@ class Campaign:
             uncertainty=obj.uncertainty_set,
         )
         return dataclasses.replace(
-            self.scenario,
-            cup=cup.parameters,
-            objects=[carried],
-            random_transport=None,
+            self.cup_scenario(cup), objects=[carried], random_transport=None
         )
 
 
@@ -171,7 +173,7 @@ def load_campaign(path: str | Path) -> Campaign:
                 }
                 for obj in objects
             ],
-            "cups": [{"name": c.name, **c.parameters.as_dict()} for c in cups],
+            "cups": [cup.as_dict() for cup in cups],
             "trials": spec.trials,
             "seed": spec.seed,
             "variants": [v.value for v in variants],

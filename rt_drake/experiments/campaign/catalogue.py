@@ -26,12 +26,12 @@ from pydrake.common.schema import Transform
 from pydrake.common.yaml import yaml_load_typed
 from pydrake.math import RigidTransform, RotationMatrix
 
-from rt_drake.contact import CupParameters
+from rt_drake.contact import CupParameters, ToolParameters
 from rt_drake.errors import InputError, ScenarioError
 from rt_drake.experiments.campaign.errors import CampaignError
 from rt_drake.plant import OBJECT_BODY
 from rt_drake.resources import models_dir
-from rt_drake.scenario import MAX_SCENARIO_BYTES, ObjectConfig
+from rt_drake.scenario import MAX_SCENARIO_BYTES, ObjectConfig, ToolConfig
 from rt_drake.scenario_yaml import check_schema, locate, read_yaml
 from rt_drake.uncertainty import ObjectUncertainty
 
@@ -60,12 +60,44 @@ class CampaignObject:
     uncertainty_set: ObjectUncertainty | None = None
 
 
-@dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True, eq=False)
 class CampaignCup:
-    """One cup of the campaign: a name and its contact model."""
+    """One cup or multi-cup tool of the campaign: a name and its contact model.
+
+    Attributes:
+        name: Its name in the rows (``cup`` column) and the report.
+        parameters: The cup (a tool's scenarios keep the default cup, unused,
+            as a scenario with ``tool`` does).
+        tool: A tool of several cups posed in the tool frame (the
+            scenario's ``tool``), or None for the single cup ``parameters``.
+    """
 
     name: str
     parameters: CupParameters
+    tool: ToolConfig | None = None
+
+    def tool_parameters(self) -> ToolParameters:
+        """Its cups and their poses in the tool frame (one cup: at the frame)."""
+        if self.tool is None:
+            return ToolParameters.single(self.parameters)
+        return self.tool.parameters()
+
+    def as_dict(self) -> dict[str, object]:
+        """Its name and model as plain data (for the campaign's content hash).
+
+        A cup: its name and CupParameters fields; a tool: its name and
+        ``tool``, each cup's fields and ``X_TC`` (3 x 4, rounded to 1e-12).
+        """
+        if self.tool is None:
+            return {"name": self.name, **self.parameters.as_dict()}
+        cups = [
+            {
+                **mount.cup.as_dict(),
+                "X_TC": np.hstack([mount.R_TC, mount.p_TC[:, None]]).round(12).tolist(),
+            }
+            for mount in self.tool_parameters().cups
+        ]
+        return {"name": self.name, "tool": cups}
 
 
 def resolve_file(base: Path, text: str) -> tuple[str, Path]:

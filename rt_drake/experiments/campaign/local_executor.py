@@ -5,9 +5,12 @@ Drake state is forked); each worker process builds its shared inputs once,
 in the pool's initializer (:func:`.worker.init_worker`). At most one task
 per worker is in flight, so when a worker dies (killed, out of memory, a
 crash in compiled code) the pool breaks with exactly the rows that were
-running: each is started again in a new pool, once; a row whose worker dies
-twice is recorded as ``crashed``. (With several workers, a row running
-beside the one that killed its worker is charged an attempt too.)
+running. The pool does not say whose worker died, so a row is blamed for a
+death only when it ran alone: the rows that were running together are
+started again one at a time (in a pool of one worker), and a row whose
+worker died while it ran alone is started again once; if it dies again, it
+is recorded as ``crashed``. A row that merely ran beside a crashing one is
+never recorded as crashed.
 """
 
 from __future__ import annotations
@@ -35,11 +38,16 @@ MAX_ATTEMPTS = 2
 
 
 def crashed(key: RowKey, attempts: int, cause: str) -> Outcome:
-    """The row of a task whose worker died ``attempts`` times."""
+    """The row of a task started ``attempts`` times whose worker died each time.
+
+    (Locally, a first start beside another row's crash adds a start.)
+    """
     return Outcome(
         key=key,
         result=RowResult.failed(
-            Status.CRASHED, f"WorkerCrashed: worker died {attempts} times ({cause})"
+            Status.CRASHED,
+            f"WorkerCrashed: worker died {MAX_ATTEMPTS} times, started "
+            f"{attempts} times ({cause})",
         ),
         wall_s=None,
         cpu_s=None,
@@ -79,21 +87,36 @@ class LocalExecutor:
     def run(self, campaign: Campaign, keys: Sequence[RowKey]) -> Iterator[Outcome]:
         """Yield each row's outcome as it finishes (in no particular order)."""
         pending = collections.deque(keys)
-        attempts: collections.Counter[RowKey] = collections.Counter()
-        while pending:
-            size = min(self.workers, len(pending))
+        alone: collections.deque[RowKey] = collections.deque()  # run one at a time
+        starts: collections.Counter[RowKey] = collections.Counter()
+        deaths: collections.Counter[RowKey] = collections.Counter()  # while alone
+        while pending or alone:
+            queue = alone or pending
+            size = 1 if alone else min(self.workers, len(pending))
             pool = ProcessPoolExecutor(
                 size,
                 mp_context=get_context("spawn"),
                 initializer=self._initializer,
                 initargs=(str(campaign.path), campaign.content_hash),
             )
+            broken: list[tuple[RowKey, str]] = []
             finished = False
             try:
-                yield from _drain(pool, size, self._task, campaign, pending, attempts)
+                yield from _drain(
+                    pool, size, self._task, campaign, queue, starts, broken
+                )
                 finished = True
             finally:
                 _stop(pool, wait=finished)
+            if len(broken) > 1:  # whose worker died is unknown: run each alone
+                alone.extend(key for key, _ in broken)
+                continue
+            for key, cause in broken:  # it ran alone: its worker died
+                deaths[key] += 1
+                if deaths[key] < MAX_ATTEMPTS:
+                    alone.appendleft(key)
+                else:
+                    yield crashed(key, starts[key], cause)
 
 
 def _drain(
@@ -101,31 +124,31 @@ def _drain(
     size: int,
     function: Callable[[Task], Outcome],
     campaign: Campaign,
-    pending: collections.deque[RowKey],
-    attempts: collections.Counter[RowKey],
+    queue: collections.deque[RowKey],
+    starts: collections.Counter[RowKey],
+    broken: list[tuple[RowKey, str]],
 ) -> Iterator[Outcome]:
-    """Run ``pending`` in ``pool`` (``size`` workers) until done or it breaks."""
+    """Run ``queue`` in ``pool`` (``size`` workers) until done or it breaks.
+
+    The rows that were running when the pool broke go to ``broken`` with the
+    error, in the order they were started.
+    """
     running: dict[Future[Outcome], RowKey] = {}
-    broken = False
-    while running or (pending and not broken):
-        while pending and not broken and len(running) < size:
-            key = pending.popleft()
-            attempts[key] += 1
+    while running or (queue and not broken):
+        while queue and not broken and len(running) < size:
+            key = queue.popleft()
+            starts[key] += 1
             task = Task(str(campaign.path), campaign.content_hash, key)
             running[pool.submit(function, task)] = key
         done, _ = wait(running, return_when=FIRST_COMPLETED)
-        for future in done:
+        for future in sorted(done, key=list(running).index):
             key = running.pop(future)
             try:
                 outcome = future.result()
             except BrokenProcessPool as error:
-                broken = True
-                if attempts[key] < MAX_ATTEMPTS:
-                    pending.appendleft(key)
-                else:
-                    yield crashed(key, attempts[key], str(error))
+                broken.append((key, str(error)))
                 continue
-            yield dataclasses.replace(outcome, attempts=attempts[key])
+            yield dataclasses.replace(outcome, attempts=starts[key])
 
 
 def _stop(pool: ProcessPoolExecutor, wait: bool) -> None:

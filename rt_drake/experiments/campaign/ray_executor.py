@@ -8,8 +8,10 @@ driver holds few references whatever the campaign's size. A Ray worker
 process builds the campaign's shared inputs at its first task and keeps
 them (:mod:`.worker`); Ray reuses its worker processes across tasks.
 
-A task whose worker or node dies is retried once by Ray
-(``max_retries=1``); if it dies again the row is recorded as ``crashed``.
+A task whose worker or node dies is started again once by the executor
+(not by Ray's ``max_retries``, so that the row records its starts in
+``attempts``); if it dies again the row is recorded as ``crashed``. A Ray
+task runs in one worker process, so the row whose worker died is known.
 Every node needs rt-drake installed and the campaign's files at the same
 paths (a shared file system, or the same checkout on each node).
 
@@ -19,6 +21,7 @@ Ray is an optional extra (``pip install "rt-drake[ray]"``).
 from __future__ import annotations
 
 import collections
+import dataclasses
 import warnings
 from collections.abc import Callable, Iterator, Sequence
 from types import ModuleType
@@ -80,19 +83,26 @@ class RayExecutor:
         started = not ray.is_initialized()
         if started:
             self._init()
-        remote = ray.remote(num_cpus=1, max_retries=MAX_ATTEMPTS - 1)(self._task)
+        remote = ray.remote(num_cpus=1, max_retries=0)(self._task)
         running: dict[Any, RowKey] = {}
+        starts: collections.Counter[RowKey] = collections.Counter()
         try:
             window = 2 * max(1, int(ray.cluster_resources().get("CPU", 1)))
             pending = collections.deque(keys)
             while pending or running:
                 while pending and len(running) < window:
                     key = pending.popleft()
+                    starts[key] += 1
                     task = Task(str(campaign.path), campaign.content_hash, key)
                     running[remote.remote(task)] = key
                 done, _ = ray.wait(list(running), num_returns=1)
                 for ref in done:
-                    yield self._outcome(ref, running.pop(ref))
+                    key = running.pop(ref)
+                    outcome = self._outcome(ref, key, starts[key])
+                    if outcome is None:  # its worker died: start it again
+                        pending.appendleft(key)
+                    else:
+                        yield outcome
         finally:
             for ref in running:
                 ray.cancel(ref, force=True)
@@ -117,19 +127,26 @@ class RayExecutor:
                 f"cannot start or join Ray: {message}"
             ) from None
 
-    def _outcome(self, ref: Any, key: RowKey) -> Outcome:
-        """The task's outcome; a crash (after Ray's retry) as a ``crashed`` row."""
+    def _outcome(self, ref: Any, key: RowKey, starts: int) -> Outcome | None:
+        """The task's outcome, started ``starts`` times.
+
+        None if its worker (or node) died and it may start again; after
+        :data:`MAX_ATTEMPTS` deaths, a ``crashed`` row.
+        """
         exceptions = self._ray.exceptions
         try:
-            return self._ray.get(ref)
+            outcome: Outcome = self._ray.get(ref)
         except exceptions.RayTaskError as error:
             cause = getattr(error, "cause", None)
             if isinstance(cause, RtDrakeError):
                 raise cause from None
             raise
         except exceptions.RayError as error:  # worker or node died
+            if starts < MAX_ATTEMPTS:
+                return None
             first = str(error).strip().splitlines()[0] if str(error) else ""
-            return crashed(key, MAX_ATTEMPTS, f"{type(error).__name__}: {first}")
+            return crashed(key, starts, f"{type(error).__name__}: {first}")
+        return dataclasses.replace(outcome, attempts=starts)
 
 
 __all__ = ["RAY_VERSION", "RayExecutor", "import_ray"]

@@ -2,8 +2,8 @@
 
 A campaign names a base scenario (with a ``random_transport`` section: the
 regions where transports are sampled), a catalogue of objects, a list of
-cups, the trials per combination with a seed, and the comparisons to run
-(see ``scenarios/campaigns/two_objects_two_cups.yaml``)::
+cups or multi-cup tools, the trials per combination with a seed, and the
+comparisons to run (see ``scenarios/campaigns/two_objects_two_cups.yaml``)::
 
     scenario: random_transport          # a file beside this one, or a shipped name
     objects:
@@ -13,9 +13,19 @@ cups, the trials per combination with a seed, and the comparisons to run
     cups:
     - {name: paper}              # CupParameters fields; default: the paper's cup
     - {name: small, radius: 0.01, suction_force: 4.0}
+    - name: pair                 # a tool: the scenario's `tool:` key
+      tool:
+        cups:
+        - {pose: {translation: [0.04, 0, 0]}, points: 4}
+        - {pose: {translation: [-0.04, 0, 0]}, points: 4}
     trials: 20
     seed: 0
     variants: [constrained, unconstrained, speed_sweep]
+
+An entry of ``cups`` is a cup (its :class:`CupParameters` fields) or a tool
+of several cups (``tool``, the schema of a scenario's ``tool`` key, checked
+by the scenario's own :func:`~rt_drake.scenario.check_tool`), never both;
+its ``name`` names the rows of either.
 
 ``yaml_load_typed`` rejects misspelled keys; :func:`load_campaign` turns every
 error into a one-line :class:`CampaignError` naming the file, key and value.
@@ -39,7 +49,7 @@ from rt_drake.experiments.campaign.catalogue import (
 )
 from rt_drake.experiments.campaign.errors import CampaignError
 from rt_drake.experiments.campaign.rows import Variant
-from rt_drake.scenario import MAX_SCENARIO_BYTES
+from rt_drake.scenario import MAX_SCENARIO_BYTES, ToolConfig, check_tool
 from rt_drake.scenario_yaml import check_schema, locate, read_yaml
 
 
@@ -68,12 +78,15 @@ class ObjectEntry:
 
 @dataclasses.dataclass
 class CupEntry(CupParameters):
-    """A cup of the campaign: a name and the CupParameters fields.
+    """A cup of the campaign (a name and the CupParameters fields), or a tool.
 
     Fields left out take the paper's cup values (:class:`CupParameters`).
+    ``tool``: a tool of several cups instead (a scenario's ``tool`` key);
+    then the entry has a name and the tool only.
     """
 
     name: str = ""
+    tool: ToolConfig | None = None
 
 
 #: The variants of a campaign file without ``variants``: the paper's Table I
@@ -129,30 +142,63 @@ def read_campaign_file(path: Path) -> CampaignFile:
         check_schema(path, raw, CampaignFile)
     except ScenarioError as error:
         raise CampaignError(str(error)) from None
+    _check_cup_or_tool(path, raw.get("cups"))
     try:
         return yaml_load_typed(schema=CampaignFile, data=text)
     except (RuntimeError, ValueError, TypeError) as error:
         raise CampaignError(locate(path, raw, str(error))) from None
 
 
-def parse_cups(path: Path, entries: list[CupEntry]) -> tuple[CampaignCup, ...]:
-    """Named, validated cups.
+def _check_cup_or_tool(path: Path, entries: object) -> None:
+    """A ``cups`` entry with ``tool`` has no cup parameter beside it.
 
     Raises:
-        CampaignError: no cup, a cup without a name or with a duplicate
-            name, or a parameter out of range (naming ``cups[i]``).
+        CampaignError: naming ``cups[i].<field>`` and its value.
+    """
+    if not isinstance(entries, list):
+        return  # no cups, or a wrong type already refused by check_schema
+    for index, entry in enumerate(entries):
+        if not isinstance(entry, dict) or entry.get("tool") is None:
+            continue
+        extra = sorted(str(key) for key in entry if key not in ("name", "tool"))
+        if extra:
+            raise CampaignError(
+                f"{path}: key 'cups[{index}].{extra[0]}': a tool entry takes "
+                f"'name' and 'tool' only (each cup's parameters go in "
+                f"tool.cups), got {extra[0]}: {entry[extra[0]]}"
+            )
+
+
+def parse_cups(path: Path, entries: list[CupEntry]) -> tuple[CampaignCup, ...]:
+    """Named, validated cups and tools.
+
+    A tool is checked by the scenario's :func:`~rt_drake.scenario.check_tool`
+    (at least one cup, each in range, fixed poses).
+
+    Raises:
+        CampaignError: no cup, a cup or tool without a name or with a
+            duplicate name, or a parameter out of range (naming ``cups[i]``,
+            or ``cups[i].tool.cups[j].<field>``).
     """
     if not entries:
         raise CampaignError(f"{path}: key 'cups': list at least one cup")
     cups: list[CampaignCup] = []
     for index, entry in enumerate(entries):
         where = f"{path}: key 'cups[{index}]"
+        what = "a cup" if entry.tool is None else "a tool"
         if not entry.name:
-            raise CampaignError(f"{where}.name': a cup needs a name")
+            raise CampaignError(f"{where}.name': {what} needs a name")
         if entry.name in (cup.name for cup in cups):
             raise CampaignError(f"{where}.name': duplicate cup name '{entry.name}'")
+        if entry.tool is not None:
+            try:
+                check_tool(path, entry.tool, key=f"cups[{index}].tool")
+            except ScenarioError as error:
+                raise CampaignError(str(error)) from None
+            cups.append(CampaignCup(entry.name, CupParameters(), entry.tool))
+            continue
         fields = {f.name: getattr(entry, f.name) for f in dataclasses.fields(entry)}
-        del fields["name"]
+        del fields["name"], fields["tool"]
         try:
             parameters = CupParameters(**fields)
         except InputError as error:

@@ -10,8 +10,10 @@ per worker and kept for all its tasks:
   and the MOVE optimiser's if the campaign runs the ``optimized`` variant
   (:func:`rt_drake.planning.shape.warm_up`), so that no row's optimisation
   time counts a compilation;
-- the exact wrench polytope of every cup (computed once, then in the
-  on-disk cache that each task's retimer reads in milliseconds);
+- the exact wrench polytope of every cup or tool, the one its MOVEs are
+  retimed under (computed once, then in the on-disk cache that each task's
+  retimer reads in milliseconds; a set that cannot be made is left for its
+  rows to record as infeasible);
 - the code version (rt_drake's version and git commit) and ``host:pid``.
 
 The cache :data:`_CONTEXTS` is the campaign package's one module-level
@@ -32,13 +34,14 @@ import time
 from pathlib import Path
 
 from rt_drake._version import __version__
-from rt_drake.contact import cached_wrench_polytope
+from rt_drake.errors import RtDrakeError
 from rt_drake.experiments.campaign.campaign import Campaign, load_campaign
 from rt_drake.experiments.campaign.errors import CampaignMismatchError
 from rt_drake.experiments.campaign.rows import Outcome, RowKey, Variant
 from rt_drake.experiments.campaign.variants import run_variant
 from rt_drake.planning.shape import warm_up as warm_up_optimizer
 from rt_drake.retiming import warm_up
+from rt_drake.simulation.online_motions import move_polytope
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -106,7 +109,10 @@ def build_context(campaign_path: str, content_hash: str) -> WorkerContext:
     if Variant.OPTIMIZED in campaign.variants:
         warm_up_optimizer()
     for cup in campaign.cups:
-        cached_wrench_polytope(cup.parameters)
+        try:
+            move_polytope(campaign.cup_scenario(cup))
+        except RtDrakeError:  # e.g. a tool's set too large: its rows say so
+            pass
     return WorkerContext(
         campaign, code_version(), f"{socket.gethostname()}:{os.getpid()}"
     )
