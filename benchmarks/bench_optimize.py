@@ -130,6 +130,7 @@ def main() -> None:
     parser.add_argument("--clock", choices=["wall", "process"], default="wall")
     parser.add_argument("--evaluations", type=int, default=None)
     parser.add_argument("--starts", type=int, default=None)
+    parser.add_argument("--search-gridpoints", type=int, default=None)
     parser.add_argument("--discretization", action="store_true")
     parser.add_argument("--json", type=Path, default=None)
     args = parser.parse_args()
@@ -143,6 +144,7 @@ def main() -> None:
         clock=Clock(args.clock),
         max_evaluations=args.evaluations,
         starts=defaults.starts if args.starts is None else args.starts,
+        search_gridpoints=args.search_gridpoints or defaults.search_gridpoints,
     )
     optimizer = MoveOptimizer(setup.plant, setup.limits, options, setup.cup)
     planner, plant, limits = setup.planner, setup.plant, setup.limits

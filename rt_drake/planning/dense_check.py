@@ -118,7 +118,7 @@ def check_path(scene: PlanningScene, path: GeometricPath) -> DenseCheck:
     body_bound = _Rows(moved)
     lever_bound = _Rows(scene.bounds.pair_levers() @ travel)
     summed_bound = _Rows(moved[first] + moved[second])
-    pair_index = {pair: k for k, pair in enumerate(scene.bounds.self_pairs)}
+    tables = _Tables(scene)
     last = len(s) - 1
     queries = 0
     i = 0
@@ -128,7 +128,7 @@ def check_path(scene: PlanningScene, path: GeometricPath) -> DenseCheck:
         distances = np.asarray(clearance.distances())
         if distances.size and distances.min() <= 0.0:
             return DenseCheck(False, s[i], "collision", q[i], len(s), queries)
-        body_budget, pair_budget = _budgets(scene, clearance, distances, pair_index)
+        body_budget, pair_budget = tables.budgets(clearance, distances)
         pair_reach = np.maximum(
             lever_bound.last_within(i, pair_budget),
             summed_bound.last_within(i, pair_budget),
@@ -157,23 +157,50 @@ class _Rows:
         return self._flat.searchsorted(targets, side="right") - 1 - self._start
 
 
-def _budgets(scene: PlanningScene, clearance, distances, pair_index):
-    """Distances the bounds must stay below: per body (environment), per pair.
+class _Tables:
+    """Column and pair lookups of a scene's clearance rows (Python lists).
 
-    Unreported pairs are at least ``INFLUENCE`` apart.
+    A query reports ten to twenty rows: a loop over Python objects reduces
+    them faster than NumPy's per-call overhead would.
     """
-    lookup = scene.bounds.column_lookup
-    body = np.full(len(scene.bounds.bodies), INFLUENCE)
-    pair = np.full(len(pair_index), INFLUENCE)
-    robot, other = clearance.robot_indices(), clearance.other_indices()
-    for a, o, d in zip(robot, other, distances.tolist(), strict=True):
-        column_a, column_o = lookup[int(a)], lookup[int(o)]
-        if column_o < 0:
-            body[column_a] = min(body[column_a], d)
-        else:
-            k = pair_index[min(column_a, column_o), max(column_a, column_o)]
-            pair[k] = min(pair[k], d)
-    return body, pair
+
+    def __init__(self, scene: PlanningScene) -> None:
+        bounds = scene.bounds
+        #: Per plant body index, its column, or -1 (not part of the robot).
+        self.column = list(bounds.column_lookup)
+        columns = len(bounds.bodies)
+        #: ``pair[a][o]`` (either order): the index in ``self_pairs``, or -1.
+        self.pair = [[-1] * columns for _ in range(columns)]
+        for k, (a, o) in enumerate(bounds.self_pairs):
+            self.pair[a][o] = self.pair[o][a] = k
+        self.pairs = len(bounds.self_pairs)
+
+    def budgets(self, clearance, distances: np.ndarray):
+        """Distances the bounds must stay below: per body (environment), per pair.
+
+        The smallest distance of each body's environment rows and of each
+        robot pair's rows; unreported ones are at least ``INFLUENCE`` apart.
+        """
+        column, table = self.column, self.pair
+        body = [INFLUENCE] * len(table)
+        pair = [INFLUENCE] * self.pairs
+        for a, o, d in zip(
+            clearance.robot_indices(),
+            clearance.other_indices(),
+            distances.tolist(),
+            strict=True,
+        ):
+            column_a, column_o = column[int(a)], column[int(o)]
+            if column_o < 0:
+                if d < body[column_a]:
+                    body[column_a] = d
+                continue
+            k = table[column_a][column_o]
+            if k < 0:
+                raise ValueError("clearance row of a filtered robot pair")
+            if d < pair[k]:
+                pair[k] = d
+        return np.array(body), np.array(pair)
 
 
 __all__ = ["DenseCheck", "GRID_STEP", "INFLUENCE", "check_path", "grid"]

@@ -40,14 +40,15 @@ SPACING = 1.5
 def _spheres(shape, X_CG: RigidTransform) -> list[tuple[np.ndarray, float]]:
     """Spheres (centre in C, radius) standing in for ``shape`` at X_CG."""
     if isinstance(shape, Sphere):
-        points, radius = [np.zeros(3)], shape.radius()
+        points, radius = np.zeros((1, 3)), shape.radius()
     elif isinstance(shape, Cylinder | Capsule):
         radius = shape.radius()
         half = 0.5 * shape.length()
         if isinstance(shape, Cylinder):
             half = max(0.0, half - radius)
         count = int(math.ceil(2.0 * half / (SPACING * radius))) + 1
-        points = [np.array([0.0, 0.0, z]) for z in np.linspace(-half, half, count)]
+        points = np.zeros((count, 3))
+        points[:, 2] = np.linspace(-half, half, count)
     elif isinstance(shape, Box):
         size = np.asarray(shape.size(), float)
         thin = int(np.argmin(size))
@@ -58,15 +59,13 @@ def _spheres(shape, X_CG: RigidTransform) -> list[tuple[np.ndarray, float]]:
             half = max(0.0, 0.5 * size[k] - radius)
             count = int(math.ceil(2.0 * half / (SPACING * radius))) + 1
             spans.append(np.linspace(-half, half, count))
-        points = []
-        for u in spans[0]:
-            for v in spans[1]:
-                point = np.zeros(3)
-                point[axes[0]], point[axes[1]] = u, v
-                points.append(point)
+        u, v = np.meshgrid(spans[0], spans[1], indexing="ij")
+        points = np.zeros((u.size, 3))
+        points[:, axes[0]], points[:, axes[1]] = u.ravel(), v.ravel()
     else:
         return []
-    return [(X_CG.multiply(p), radius) for p in points]
+    centres = X_CG.rotation().matrix() @ points.T + X_CG.translation()[:, None]
+    return [(centre, radius) for centre in centres.T]
 
 
 def _bounding_box(shape) -> np.ndarray | None:

@@ -32,6 +32,7 @@ between grid points). Measured against 1000 uniform points with the current
 from __future__ import annotations
 
 import numpy as np
+from numba import njit
 from pydrake.multibody.plant import MultibodyPlant
 
 from rt_drake.cup_frame import CupFrame
@@ -75,13 +76,21 @@ def adaptive_grid(
     # At most ten times finer than the uniform grid: TOPP-RA's safeguards
     # can fail on much finer steps at the end of a MOVE (as on a 4000-point
     # uniform grid); retime_adaptive falls back then.
-    step = 0.1 / points
-    kept = [0.0]
+    return _thin(grid, 0.1 / points)
+
+
+@njit(cache=True)
+def _thin(grid: np.ndarray, step: float) -> np.ndarray:
+    """0, each inner point of ``grid`` ``step`` past the last kept and before 1, 1."""
+    kept = np.empty(len(grid))
+    kept[0] = 0.0
+    count = 1
     for value in grid[1:-1]:
-        if value - kept[-1] >= step and 1.0 - value >= step:
-            kept.append(float(value))
-    kept.append(1.0)
-    return np.array(kept)
+        if value - kept[count - 1] >= step and 1.0 - value >= step:
+            kept[count] = value
+            count += 1
+    kept[count] = 1.0
+    return kept[: count + 1].copy()
 
 
 def coarse_profile(

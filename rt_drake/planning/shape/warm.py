@@ -14,6 +14,7 @@ import numpy as np
 
 from rt_drake.planning.shape import _fk
 from rt_drake.planning.shape.clearance import _clearance
+from rt_drake.planning.shape.finish import _thin
 from rt_drake.planning.shape.spline import evaluate_splines
 from rt_drake.planning.shape.surrogate import _batch_durations
 from rt_drake.retiming import warm_up as warm_up_retimer
@@ -31,6 +32,10 @@ def warm_up() -> None:
     z, o = np.empty((points, n, 3)), np.empty((points, n, 3))
     R, p = np.empty((points, 3, 3)), np.empty((points, 3))
     _fk.frames(q, steps, steps, index, axis, np.eye(4), z, o, R, p)
+    _fk.solve_poses(
+        q.copy(), R.copy(), p.copy(), steps, steps, index, axis, np.eye(4), index, 2,
+        1e-10, np.empty(points),
+    )  # fmt: skip
     out = np.empty((4, points, 3))
     _fk.accelerations(z, o, R, p, q, q, np.zeros(3), out)
     dq, ddq = evaluate_splines(np.arange(6.0).reshape(1, 3, 2), np.linspace(0, 1, 3))[
@@ -45,6 +50,7 @@ def warm_up() -> None:
         np.inf, np.empty(1), np.zeros(1, dtype=np.bool_),
         np.zeros((1, 12), dtype=np.bool_), np.zeros((1, points)),
     )  # fmt: skip
+    _thin(np.linspace(0.0, 1.0, points), 0.01)
     boxes = np.ones((1, 3))
     _clearance(
         R, p, np.zeros((1, 3)), np.ones(1), np.eye(3)[None], boxes, boxes, 1.0, 0.1,
