@@ -88,41 +88,7 @@ def lp_residual(
     Raises:
         InputError: a shape other than (..., 6), NaN or inf, a bad cup or tool.
     """
-    wrenches = np.asarray(wrenches, dtype=float)
-    if wrenches.shape[-1:] != (6,):
-        raise InputError(f"{wrenches.shape=}: need (..., 6) wrenches")
-    if not np.all(np.isfinite(wrenches)):
-        raise InputError("wrenches must be finite, got NaN or inf")
-    cup.validate()
-    G, polygon, bounds, suction = _point_forces(cup)
-    forces = G.shape[1]
-    ones = np.ones((6, 1))
-    A_ub = np.vstack(
-        [
-            np.hstack([polygon, np.zeros((len(polygon), 1))]),
-            np.hstack([G, -ones]),
-            np.hstack([-G, -ones]),
-        ]
-    )
-    bounds = [*bounds, (0.0, None)]
-    cost = np.zeros(forces + 1)
-    cost[-1] = 1.0
-    flat = wrenches.reshape(-1, 6) - suction
-    residuals = np.empty(len(flat))
-    for row, target in enumerate(flat):
-        b_ub = np.concatenate([np.zeros(len(polygon)), target, -target])
-        result = linprog(
-            cost,
-            A_ub=A_ub,
-            b_ub=b_ub,
-            bounds=bounds,
-            method="highs",
-            options=_HIGHS_OPTIONS,
-        )
-        if result.status != 0:
-            raise ArithmeticError(f"HiGHS failed on wrench {row}: {result.message}")
-        residuals[row] = result.fun
-    return residuals.reshape(wrenches.shape[:-1])
+    return _residuals(wrenches, cup, springs=False)
 
 
 def shared_load_residual(wrenches: np.ndarray, tool: ToolParameters) -> np.ndarray:
@@ -136,38 +102,57 @@ def shared_load_residual(wrenches: np.ndarray, tool: ToolParameters) -> np.ndarr
     rows: it uses the pyramids' H-form and no split matrix. Every cup must
     lie in T's z = 0 plane with its axis along T's z.
     """
+    if not isinstance(tool, ToolParameters):
+        raise InputError(
+            f"shared_load_residual needs a ToolParameters, got {type(tool).__name__}"
+        )
+    return _residuals(wrenches, tool, springs=True)
+
+
+def _residuals(
+    wrenches: np.ndarray, source: CupParameters | ToolParameters, springs: bool
+) -> np.ndarray:
+    """The residual LP of :func:`lp_residual`, with the spring rows if asked.
+
+    Variables: every rim force, then (``springs``) the displacement c (3),
+    then the residual t; ``springs`` adds ``(f_i)_z - A_i c = 0`` per point.
+    """
     wrenches = np.asarray(wrenches, dtype=float)
     if wrenches.shape[-1:] != (6,):
         raise InputError(f"{wrenches.shape=}: need (..., 6) wrenches")
     if not np.all(np.isfinite(wrenches)):
         raise InputError("wrenches must be finite, got NaN or inf")
-    tool.validate()
-    G, polygon, bounds, suction = _point_forces(tool)
+    source.validate()
+    G, polygon, bounds, suction = _point_forces(source)
     forces = G.shape[1]
-    points = forces // 3
-    xy = np.vstack(
-        [
-            m.p_TC[:2] + contact_positions(m.cup)[:, :2] @ m.R_TC[:2, :2].T
-            for m in tool.cups
-        ]
-    )
-    # Variables: forces, c (3), residual t.
-    A_eq = np.zeros((points, forces + 4))
-    A_eq[np.arange(points), 3 * np.arange(points) + 2] = 1.0
-    A_eq[:, forces : forces + 3] = -np.column_stack(
-        [xy[:, 1], -xy[:, 0], np.ones(points)]
-    )
+    extra = 3 if springs else 0
+    A_eq, b_eq = None, None
+    if springs:
+        assert isinstance(source, ToolParameters)
+        points = forces // 3
+        xy = np.vstack(
+            [
+                m.p_TC[:2] + contact_positions(m.cup)[:, :2] @ m.R_TC[:2, :2].T
+                for m in source.cups
+            ]
+        )
+        A_eq = np.zeros((points, forces + extra + 1))
+        A_eq[np.arange(points), 3 * np.arange(points) + 2] = 1.0
+        A_eq[:, forces : forces + 3] = -np.column_stack(
+            [xy[:, 1], -xy[:, 0], np.ones(points)]
+        )
+        b_eq = np.zeros(points)
     ones = np.ones((6, 1))
-    zeros3 = np.zeros((6, 3))
+    free = np.zeros((6, extra))
     A_ub = np.vstack(
         [
-            np.hstack([polygon, np.zeros((len(polygon), 4))]),
-            np.hstack([G, zeros3, -ones]),
-            np.hstack([-G, zeros3, -ones]),
+            np.hstack([polygon, np.zeros((len(polygon), extra + 1))]),
+            np.hstack([G, free, -ones]),
+            np.hstack([-G, free, -ones]),
         ]
     )
-    all_bounds = [*bounds, (None, None), (None, None), (None, None), (0.0, None)]
-    cost = np.zeros(forces + 4)
+    all_bounds = [*bounds, *[(None, None)] * extra, (0.0, None)]
+    cost = np.zeros(forces + extra + 1)
     cost[-1] = 1.0
     flat = wrenches.reshape(-1, 6) - suction
     residuals = np.empty(len(flat))
@@ -178,7 +163,7 @@ def shared_load_residual(wrenches: np.ndarray, tool: ToolParameters) -> np.ndarr
             A_ub=A_ub,
             b_ub=b_ub,
             A_eq=A_eq,
-            b_eq=np.zeros(points),
+            b_eq=b_eq,
             bounds=all_bounds,
             method="highs",
             options=_HIGHS_OPTIONS,
