@@ -27,7 +27,7 @@ from pydrake.common.schema import Transform
 from pydrake.common.yaml import yaml_load_typed
 from pydrake.multibody.parsing import ModelDirective
 
-from rt_drake.contact import CupMount, CupParameters, ToolParameters
+from rt_drake.contact import CupMount, CupParameters, LoadSharing, ToolParameters
 from rt_drake.contact.tool import is_identity_pose
 from rt_drake.cup_frame import DEFAULT_CUP_FRAME
 from rt_drake.errors import InputError, ScenarioError
@@ -409,7 +409,7 @@ def check_tool(path: Path, tool: ToolConfig, key: str = "tool") -> None:
     """
     if not tool.cups:
         raise ScenarioError(f"{path}: key '{key}.cups': a tool needs at least one cup")
-    choices = ("elastic", "any")
+    choices = tuple(m.value for m in LoadSharing)
     if tool.load_sharing not in choices:
         raise ScenarioError(
             f"{path}: key '{key}.load_sharing': must be one of "
@@ -428,7 +428,7 @@ def check_tool(path: Path, tool: ToolConfig, key: str = "tool") -> None:
             name = message.split(" ", 1)[0]
             raise ScenarioError(f"{where}.{name}': {message}") from None
     parameters = tool.parameters()
-    if tool.load_sharing == "elastic" and len(parameters.cups) > 1:
+    if tool.load_sharing == LoadSharing.ELASTIC.value and len(parameters.cups) > 1:
         from rt_drake.contact.load_sharing import rim_springs
 
         try:

@@ -30,7 +30,12 @@ import importlib
 from typing import TYPE_CHECKING
 
 from rt_drake.contact.cup import CupParameters, grasp_matrices, suction_wrench
-from rt_drake.contact.tool import CupMount, ToolParameterError, ToolParameters
+from rt_drake.contact.tool import (
+    CupMount,
+    LoadSharing,
+    ToolParameterError,
+    ToolParameters,
+)
 
 if TYPE_CHECKING:  # the lazy names below, for type checkers
     from rt_drake.contact.adjacency import TooManyFacetsError
@@ -45,11 +50,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers
         load_polytope,
         save_polytope,
     )
-    from rt_drake.contact.load_sharing import (
-        LoadSharing,
-        SharedLoadSet,
-        shared_load_polytope,
-    )
+    from rt_drake.contact.load_sharing import SharedLoadSet, shared_load_polytope
     from rt_drake.contact.lp import (
         is_realizable_lp,
         lp_residual,
@@ -82,7 +83,6 @@ _LAZY = {
     "is_realizable_lp": "lp",
     "lp_residual": "lp",
     "shared_load_residual": "lp",
-    "LoadSharing": "load_sharing",
     "SharedLoadSet": "load_sharing",
     "shared_load_polytope": "load_sharing",
     "object_wrench_sampler": "samplers",

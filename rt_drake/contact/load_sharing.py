@@ -47,7 +47,6 @@ g`` is a signed distance in raw wrench units.
 from __future__ import annotations
 
 import dataclasses
-import enum
 
 import numpy as np
 
@@ -60,20 +59,6 @@ from rt_drake.contact.wrench_polytope import is_realizable
 _PLANAR_TOL = 1e-9
 #: Directions closer than this (unit vectors) are one direction.
 _SAME_DIRECTION = 1e-9
-
-
-class LoadSharing(enum.Enum):
-    """How the cups of a tool split the load between them.
-
-    ``ELASTIC``: rigid tool and object on equal rim springs (this module;
-    the default for several cups). ``ANY``: any split the cups' sets allow
-    (the Minkowski sum of :func:`~rt_drake.contact.tool_wrench_polytope`);
-    it over-claims for a rigid tool: the two-cup carton slipped in 8 of 20
-    simulated transports retimed under it.
-    """
-
-    ELASTIC = "elastic"
-    ANY = "any"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -261,7 +246,6 @@ def _unique_directions(directions: np.ndarray) -> np.ndarray:
 
 
 __all__ = [
-    "LoadSharing",
     "RimSprings",
     "SharedLoadSet",
     "facet_directions",

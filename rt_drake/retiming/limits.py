@@ -18,7 +18,8 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 
 from rt_drake.contact import CupParameters, ToolParameters, cached_wrench_polytope
-from rt_drake.contact.load_sharing import LoadSharing, SharedLoadSet
+from rt_drake.contact.load_sharing import SharedLoadSet
+from rt_drake.contact.tool import LoadSharing
 from rt_drake.contact.tool_polytope import DEFAULT_MAX_FACETS
 from rt_drake.contact.worst_cup import worst_cup_polytope
 from rt_drake.contact.wrench_polytope import check_h_representation
