@@ -22,6 +22,7 @@ from rt_drake.contact import (
     shared_load_residual,
 )
 from rt_drake.contact.load_sharing import rim_springs
+from rt_drake.errors import InputError
 
 PAPER = CupParameters()
 #: Two paper cups 0.12 m apart on T's x axis (scenarios/carton_two_cups.yaml).
@@ -121,6 +122,11 @@ def test_a_tilted_or_lifted_cup_is_refused_with_its_index():
     tilted = ToolParameters(cups=(CupMount(PAPER, tilt, [0.06, 0, 0]), TWO.cups[1]))
     with pytest.raises(ToolParameterError, match="cup 0: elastic load sharing"):
         SharedLoadSet.of(tilted)
+
+
+def test_the_spring_lp_refuses_a_cup_that_is_not_a_tool():
+    with pytest.raises(InputError, match="needs a ToolParameters, got CupParameters"):
+        shared_load_residual(np.zeros(6), PAPER)  # type: ignore[arg-type]
 
 
 def test_load_sharing_names_its_choices():

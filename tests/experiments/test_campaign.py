@@ -132,12 +132,7 @@ def test_bad_uncertainty_file_is_one_line_naming_it(tmp_path, text, words):
     path.write_text(
         good.replace("notebook.sdf\n", "notebook.sdf\n  uncertainty: set.yaml\n")
     )
-    with pytest.raises(CampaignError) as error:
-        load_campaign(path)
-    message = str(error.value)
-    assert "\n" not in message
-    for word in words:
-        assert word in message, (word, message)
+    _assert_refused(path, words)
 
 
 def test_uncertainty_file_reaches_the_robust_row_only(tmp_path):
@@ -162,12 +157,7 @@ def test_bad_campaign_is_one_line_naming_file_key_value(tmp_path, old, new, word
     assert old in text, old
     path = tmp_path / "bad.yaml"
     path.write_text(text.replace(old, new, 1))
-    with pytest.raises(CampaignError) as error:
-        load_campaign(path)
-    message = str(error.value)
-    assert "\n" not in message
-    for word in words:
-        assert word in message, (word, message)
+    _assert_refused(path, words)
 
 
 def test_a_tool_entry_names_its_rows_and_sets_the_trial_scenarios_tool(tmp_path):
@@ -256,12 +246,7 @@ def test_bad_tool_entry_is_one_line_naming_file_key_value(tmp_path, old, new, wo
         bad = text.replace(old, new, 1)
     assert bad != text, old
     path.write_text(bad)
-    with pytest.raises(CampaignError) as error:
-        load_campaign(path)
-    message = str(error.value)
-    assert "\n" not in message
-    for word in words:
-        assert word in message, (word, message)
+    _assert_refused(path, words)
 
 
 def _outcome(key: RowKey, result: RowResult) -> Outcome:
@@ -517,3 +502,13 @@ def test_without_variants_the_campaign_runs_table_one_comparisons(tmp_path):
         "unconstrained",
         "speed_sweep",
     ]
+
+
+def _assert_refused(path, words) -> None:
+    """Loading ``path`` raises a one-line CampaignError holding every word."""
+    with pytest.raises(CampaignError) as error:
+        load_campaign(path)
+    message = str(error.value)
+    assert "\n" not in message
+    for word in words:
+        assert word in message, (word, message)
