@@ -122,4 +122,45 @@ def accelerations(z, o, R, p, dq, ddq, p_CS, out):  # noqa: D417
         out[3, i, 0], out[3, i, 1], out[3, i, 2] = a0, a1, a2
 
 
-__all__ = ["accelerations", "compose", "frames"]
+@njit(cache=True)
+def wrench_terms(R, motion, mass, p, inertia, g_W, a_w, b_w, c_w):  # noqa: D417
+    """Newton-Euler in C split into u, x and constant terms (rt_drake.chain).
+
+    ``motion = (w, v, al, a)`` of Scm in W from :func:`accelerations`; each
+    row i is rotated into C by ``R[i]^T``, then::
+
+        a_w = [I w + m p x v;  m v]
+        b_w = [I al + w x (I w) + m p x a;  m a]
+        c_w = [-m p x g;  -m g]
+    """
+    x = np.empty((5, 3))  # w, v, al, a, g in C
+    Iw = np.empty(3)
+    Ial = np.empty(3)
+    for i in range(R.shape[0]):
+        for k in range(5):
+            for r in range(3):
+                if k < 4:
+                    y0, y1, y2 = motion[k, i, 0], motion[k, i, 1], motion[k, i, 2]
+                else:
+                    y0, y1, y2 = g_W[0], g_W[1], g_W[2]
+                x[k, r] = R[i, 0, r] * y0 + R[i, 1, r] * y1 + R[i, 2, r] * y2
+        for r in range(3):
+            Iw[r] = inertia[r, 0] * x[0, 0] + inertia[r, 1] * x[0, 1]
+            Iw[r] += inertia[r, 2] * x[0, 2]
+            Ial[r] = inertia[r, 0] * x[2, 0] + inertia[r, 1] * x[2, 1]
+            Ial[r] += inertia[r, 2] * x[2, 2]
+        for r in range(3):
+            r1, r2 = (r + 1) % 3, (r + 2) % 3
+            p_v = p[r1] * x[1, r2] - p[r2] * x[1, r1]
+            p_a = p[r1] * x[3, r2] - p[r2] * x[3, r1]
+            p_g = p[r1] * x[4, r2] - p[r2] * x[4, r1]
+            gyro = x[0, r1] * Iw[r2] - x[0, r2] * Iw[r1]
+            a_w[i, r] = Iw[r] + mass * p_v
+            a_w[i, 3 + r] = mass * x[1, r]
+            b_w[i, r] = Ial[r] + gyro + mass * p_a
+            b_w[i, 3 + r] = mass * x[3, r]
+            c_w[i, r] = -mass * p_g
+            c_w[i, 3 + r] = -mass * x[4, r]
+
+
+__all__ = ["accelerations", "compose", "frames", "wrench_terms"]

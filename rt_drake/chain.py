@@ -47,7 +47,7 @@ import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import Frame, RevoluteJoint, WeldJoint
 
-from rt_drake._chain_kernels import accelerations, frames
+from rt_drake._chain_kernels import accelerations, frames, wrench_terms
 from rt_drake.errors import InputError
 
 if TYPE_CHECKING:
@@ -172,7 +172,15 @@ class SerialChain:
             J q'`` and ``[al; a] = J q'' + Jdot q'`` of S (module docstring).
         """
         q = np.asarray(q, float)
-        shape, n = q.shape[:-1], q.shape[-1]
+        shape = q.shape[:-1]
+        R, out = self._motion(q, dq, ddq, p_CoS_C)
+        return (R.reshape(*shape, 3, 3), *(x.reshape(*shape, 3) for x in out))
+
+    def _motion(
+        self, q: np.ndarray, dq: np.ndarray, ddq: np.ndarray, p_CoS_C: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """R_WC (count, 3, 3) and ``(w, v, al, a)`` (4, count, 3), q flattened."""
+        n = q.shape[-1]
         flat = [
             kernel_array(np.broadcast_to(x, q.shape).reshape(-1, n))
             for x in (q, dq, ddq)
@@ -192,7 +200,7 @@ class SerialChain:
             kernel_array(p_CoS_C),
             out,
         )
-        return (R.reshape(*shape, 3, 3), *(x.reshape(*shape, 3) for x in out))
+        return R, out
 
     def wrench_coefficients(
         self,
@@ -209,20 +217,24 @@ class SerialChain:
         under gravity ``gravity_W`` (m/s^2, in W; default: the plant's when
         the chain was built).
         """
-        m, p, inertia = held.mass, held.p_CoScm_C, held.I_Scm_C
-        g_W = self.gravity_W if gravity_W is None else np.asarray(gravity_W, float)
-        R_WC, w, v, al, a = self.path_accelerations(q, dq, ddq, p)
-        to_C = np.swapaxes(R_WC, -1, -2)
-        w_C, v_C, al_C, a_C = (to_C @ x[..., None] for x in (w, v, al, a))
-        w_C, v_C, al_C, a_C = (x[..., 0] for x in (w_C, v_C, al_C, a_C))
-        g_C = to_C @ g_W
-        Iw = w_C @ inertia.T
-        a_w = np.concatenate([Iw + m * cross(p, v_C), m * v_C], -1)
-        b_w = np.concatenate(
-            [al_C @ inertia.T + cross(w_C, Iw) + m * cross(p, a_C), m * a_C], -1
+        g_W = self.gravity_W if gravity_W is None else gravity_W
+        q = np.asarray(q, float)
+        shape = q.shape[:-1]
+        R_WC, motion = self._motion(q, dq, ddq, held.p_CoScm_C)
+        count = len(R_WC)
+        a_w, b_w, c_w = (np.empty((count, 6)) for _ in range(3))
+        wrench_terms(
+            R_WC,
+            motion,
+            held.mass,
+            kernel_array(held.p_CoScm_C),
+            kernel_array(held.I_Scm_C),
+            kernel_array(g_W),
+            a_w,
+            b_w,
+            c_w,
         )
-        c_w = np.concatenate([-m * cross(p, g_C), -m * g_C], -1)
-        return a_w, b_w, c_w
+        return a_w.reshape(*shape, 6), b_w.reshape(*shape, 6), c_w.reshape(*shape, 6)
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -71,7 +71,12 @@ def warm_up() -> None:
     R, p = np.empty((3, 3, 3)), np.empty((3, 3))
     index, axis = np.arange(2, dtype=np.int64), np.tile([0.0, 0.0, 1.0], (2, 1))
     _chain_kernels.frames(q, steps, steps, index, axis, np.eye(4), z, o, R, p)
-    _chain_kernels.accelerations(z, o, R, p, q, q, np.zeros(3), np.empty((4, 3, 3)))
+    motion = np.empty((4, 3, 3))
+    _chain_kernels.accelerations(z, o, R, p, q, q, np.zeros(3), motion)
+    a_w, b_w, c_w = (np.empty((3, 6)) for _ in range(3))
+    _chain_kernels.wrench_terms(
+        R, motion, 1.0, np.zeros(3), np.eye(3), np.zeros(3), a_w, b_w, c_w
+    )
 
 
 __all__ = ["warm_up"]
