@@ -9,7 +9,7 @@ part (about 20 us per point), so a refined grid evaluates only its new
 points (:func:`with_points`), and when the plant is the cup's serial chain
 alone (``cup.chain``, :mod:`rt_drake.chain`) the object wrench comes from
 that chain's batched kinematics instead (the same quantities to rounding,
-about 1 us per point). Torques, and a plant with other joints (a second
+about 1.4 us per point). Torques, and a plant with other joints (a second
 arm, a turntable), take Drake's route.
 
 For a set of objects (a robust grasp, :mod:`rt_drake.inertial_set`) the
