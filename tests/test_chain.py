@@ -3,8 +3,8 @@
 Each arm's object-wrench coefficients from :mod:`rt_drake.chain` equal
 Drake's Jacobian-and-bias route (:func:`path_wrench_coefficients`) on random
 paths: the Denso arm, the UR5e, and an arm on a turntable (a 7-joint chain).
-A plant with joints outside the cup's chain has no chain. The retimer, given
-the chain, returns what it returns with Drake's route.
+The retimer, given the chain, returns what it returns with Drake's route
+(plants with joints outside the cup's chain: ``tests/test_cup_frame.py``).
 """
 
 from __future__ import annotations
@@ -90,28 +90,6 @@ def test_batched_wrench_coefficients_equal_drakes(name):
     for mine, theirs in zip(batched, drake, strict=True):
         scale = np.abs(theirs).max(axis=0)
         assert np.all(np.abs(mine - theirs) <= 1e-9 * scale), np.abs(mine - theirs)
-
-
-def test_a_plant_with_joints_outside_the_cups_chain_has_no_chain():
-    """A turntable beside the arm: the retimer must take Drake's route."""
-    plant = MultibodyPlant(0.0)
-    table = plant.AddRigidBody(
-        "turntable", SpatialInertia(5.0, np.zeros(3), UnitInertia.SolidBox(1, 1, 0.1))
-    )
-    plant.AddJoint(
-        RevoluteJoint(
-            "turntable_joint", plant.world_frame(), table.body_frame(), [0, 0, 1.0]
-        )
-    )
-    parser = make_parser(plant)
-    (arm,) = parser.AddModels(url="package://rt_drake/robot/vs060.urdf")
-    plant.WeldFrames(plant.world_frame(), plant.GetFrameByName("base_link", arm))
-    (tool,) = parser.AddModels(url="package://rt_drake/tool/suction_tool.urdf")
-    plant.WeldFrames(
-        plant.GetFrameByName("link6", arm), plant.GetFrameByName("tool", tool)
-    )
-    plant.Finalize()
-    assert CupFrame.of(plant).chain is None
 
 
 def test_retime_on_the_chain_equals_retime_on_drakes_route(notebook):
