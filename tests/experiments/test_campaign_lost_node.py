@@ -88,11 +88,13 @@ class _Cluster:
         )
         self.address: str = self.cluster.address
         self.directories: list[str] = []
+        self.added = 0
 
     def add_node(self, own_directory: bool) -> Any:
         """A node; ``own_directory``: its own temporary directory (short: sockets)."""
         options: dict[str, Any] = {"num_cpus": 1, "include_dashboard": False}
-        options["node_ip_address"] = f"127.0.0.{2 + len(self.cluster.worker_nodes)}"
+        self.added += 1
+        options["node_ip_address"] = f"127.0.0.{1 + self.added}"
         if own_directory:
             self.directories.append(tempfile.mkdtemp(prefix="rtd-ray-"))
             options["temp_dir"] = self.directories[-1]
