@@ -12,6 +12,9 @@ A task whose worker or node dies is started again once by the executor
 (not by Ray's ``max_retries``, so that the row records its starts in
 ``attempts``); if it dies again the row is recorded as ``crashed``. A Ray
 task runs in one worker process, so the row whose worker died is known.
+If the node of the driver itself is lost (its raylet dies), no task can run
+any more: the run stops with an ExecutorUnavailableError, no row blamed,
+and the same command resumes it.
 Every node needs rt-drake installed and the campaign's files at the same
 paths (a shared file system, or the same checkout on each node).
 
@@ -132,6 +135,9 @@ class RayExecutor:
 
         None if its worker (or node) died and it may start again; after
         :data:`MAX_ATTEMPTS` deaths, a ``crashed`` row.
+
+        Raises:
+            ExecutorUnavailableError: the driver's own node died.
         """
         exceptions = self._ray.exceptions
         try:
@@ -141,6 +147,11 @@ class RayExecutor:
             if isinstance(cause, RtDrakeError):
                 raise cause from None
             raise
+        except exceptions.LocalRayletDiedError:  # every task would fail so
+            raise ExecutorUnavailableError(
+                "lost the Ray node this command runs on (its raylet died); the "
+                "finished rows are stored: run the same command to resume"
+            ) from None
         except exceptions.RayError as error:  # worker or node died
             if starts < MAX_ATTEMPTS:
                 return None
