@@ -573,12 +573,12 @@ def cli_cases() -> list[Case]:
         _scenario_case(
             "attach_text",
             scenario(("attach_s: 1.0", "attach_s: soon")),
-            ("timing.attach_s", "soon"),
+            ("vacuum.attach_s", "soon"),
         ),
         _scenario_case(
             "attach_nan",
             scenario(("attach_s: 1.0", "attach_s: .nan")),
-            ("timing.attach_s", "nan"),
+            ("vacuum.attach_s", "nan"),
         ),
         _scenario_case(
             "approach_offset_list",

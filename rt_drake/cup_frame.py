@@ -16,6 +16,12 @@ gravity in C is read from that joint's Jacobian column, ``g_C = (g_W . k_W)
 J_w[:, k]``, instead of a rotation query per point
 (:func:`vertical_base_joint`). Only joints that move C count: a joint of
 another arm or of a turntable in the same plant has a zero column for C.
+
+When the plant's positions are exactly the revolute joints from the world to
+C, it also holds that chain (:class:`rt_drake.chain.SerialChain`), and the
+retimer samples the object wrench with it, batched, instead of from Drake
+point by point; any other plant (a second arm, a turntable beside the arm)
+has none and takes Drake's route.
 """
 
 from __future__ import annotations
@@ -25,6 +31,7 @@ import dataclasses
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import Frame, ModelInstanceIndex
 
+from rt_drake.chain import SerialChain
 from rt_drake.errors import InputError
 
 #: The cup frame's name in the shipped tool (models/tool/suction_tool.urdf).
@@ -40,10 +47,13 @@ class CupFrame:
         base_axes: ``(velocity index, k_W)`` of each revolute joint of C's
             chain whose parent body is welded to the world, ``k_W`` its
             axis in W (unit, fixed).
+        chain: The serial chain from the world to C if the plant's
+            positions are exactly its revolute joints, else None.
     """
 
     frame: Frame
     base_axes: tuple[tuple[int, tuple[float, float, float]], ...]
+    chain: SerialChain | None = None
 
     @classmethod
     def of(
@@ -85,7 +95,11 @@ class CupFrame:
             R_WF = joint.frame_on_parent().CalcRotationMatrixInWorld(context)
             k_W = R_WF.multiply(joint.revolute_axis())
             axes.append((joint.velocity_start(), (k_W[0], k_W[1], k_W[2])))
-        return cls(frame=cup_frame, base_axes=tuple(axes))
+        return cls(
+            frame=cup_frame,
+            base_axes=tuple(axes),
+            chain=SerialChain.of(plant, cup_frame),
+        )
 
 
 def vertical_base_joint(

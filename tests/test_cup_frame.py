@@ -114,6 +114,12 @@ def test_only_a_joint_of_the_cups_chain_gives_gravity(case):
     assert vertical_base_joint(plant, cup) == (first, pytest.approx(-9.81))
 
 
+def test_a_joint_outside_the_cups_chain_sends_the_retimer_to_drake(case):
+    """No batched chain (rt_drake.chain) for these plants: Drake's route."""
+    plant, _, _ = case
+    assert CupFrame.of(plant).chain is None
+
+
 def test_wrench_coefficients_equal_newton_euler_from_body_accelerations(case):
     plant, first, grasp = case
     knots = np.array([0.0, 0.4, 1.0])

@@ -6,7 +6,11 @@ and, from Drake (:mod:`rt_drake.dynamics`), the coefficients of the joint
 torques ``tau = a u + b x + c`` (if torques are limited) and of the object
 wrench ``w = a u + b x + c`` (if an object is held). Drake is the expensive
 part (about 20 us per point), so a refined grid evaluates only its new
-points (:func:`with_points`).
+points (:func:`with_points`), and when the plant is the cup's serial chain
+alone (``cup.chain``, :mod:`rt_drake.chain`) the object wrench comes from
+that chain's batched kinematics instead (the same quantities to rounding,
+about 1.4 us per point). Torques, and a plant with other joints (a second
+arm, a turntable), take Drake's route.
 
 For a set of objects (a robust grasp, :mod:`rt_drake.inertial_set`) the
 wrench is linear in the inertial parameters (:mod:`rt_drake.regressor`):
@@ -103,12 +107,25 @@ def sample_path(
         if torque
         else None
     )
-    wrench = (
-        None
-        if held is None
-        else path_wrench_coefficients(plant, held, q, dq, ddq, context, cup)
-    )
+    wrench = None if held is None else _wrench(plant, held, q, dq, ddq, context, cup)
     return PathSamples(s, q, dq, ddq, x_cap, tau, wrench)
+
+
+def _wrench(
+    plant: MultibodyPlant,
+    held: HeldObject,
+    q: np.ndarray,
+    dq: np.ndarray,
+    ddq: np.ndarray,
+    context: Context,
+    cup: CupFrame,
+) -> PathCoefficients:
+    """The object wrench's coefficients: batched on the cup's chain, else Drake."""
+    chain = cup.chain
+    if chain is None or chain.num_joints != plant.num_positions():
+        return path_wrench_coefficients(plant, held, q, dq, ddq, context, cup)
+    gravity_W = plant.gravity_field().gravity_vector()  # read now: it may change
+    return PathCoefficients(*chain.wrench_coefficients(held, q, dq, ddq, gravity_W))
 
 
 def with_points(samples: PathSamples, new: PathSamples) -> PathSamples:

@@ -14,6 +14,7 @@ import functools
 
 import numpy as np
 
+from rt_drake import _chain_kernels
 from rt_drake.dynamics import PathCoefficients
 from rt_drake.retiming import between, rows
 from rt_drake.retiming.between_kernels import position_excess
@@ -64,6 +65,18 @@ def warm_up() -> None:
     segments.enforced_wrenches(coefficients, x, u)
     between.grasp_midpoint_rows(segments, coefficients, F, np.ones(12))
     position_excess(grid, path, path, path, -np.ones(1), np.ones(1), 1e-9)
+    # The object wrench on a serial chain (rt_drake.chain): two joints.
+    q, steps = np.zeros((3, 2)), np.tile(np.eye(4), (2, 1, 1))
+    z, o = np.empty((3, 2, 3)), np.empty((3, 2, 3))
+    R, p = np.empty((3, 3, 3)), np.empty((3, 3))
+    index, axis = np.arange(2, dtype=np.int64), np.tile([0.0, 0.0, 1.0], (2, 1))
+    _chain_kernels.frames(q, steps, steps, index, axis, np.eye(4), z, o, R, p)
+    motion = np.empty((4, 3, 3))
+    _chain_kernels.accelerations(z, o, R, p, q, q, np.zeros(3), motion)
+    a_w, b_w, c_w = (np.empty((3, 6)) for _ in range(3))
+    _chain_kernels.wrench_terms(
+        R, motion, 1.0, np.zeros(3), np.eye(3), np.zeros(3), a_w, b_w, c_w
+    )
 
 
 __all__ = ["warm_up"]

@@ -249,13 +249,20 @@ def test_kernels_only_take_the_layout_warm_up_compiles(moves):
     """
     from numba.core import types
 
-    from rt_drake.planning.shape import _fk
+    from rt_drake import _chain_kernels
     from rt_drake.planning.shape.clearance import _clearance
     from rt_drake.planning.shape.spline import _splines
     from rt_drake.planning.shape.surrogate import _batch_durations
 
     warm_up()
-    kernels = (_fk.frames, _fk.accelerations, _splines, _batch_durations, _clearance)
+    kernels = (
+        _chain_kernels.frames,
+        _chain_kernels.accelerations,
+        _chain_kernels.wrench_terms,
+        _splines,
+        _batch_durations,
+        _clearance,
+    )
     for kernel in kernels:
         assert kernel.signatures, kernel
         for signature in kernel.signatures:

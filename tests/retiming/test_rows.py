@@ -109,6 +109,7 @@ def test_wrench_ratios_equal_numpy(polytope, seed, scale, floor, exact):
 
 def test_warm_up_compiles_what_retime_uses(plant, scenario, polytope):
     """After warm_up a retime with a grasp adds no compiled specialisation."""
+    from rt_drake import _chain_kernels
     from rt_drake.dynamics import HeldObject
     from rt_drake.retiming import (
         GraspConstraint,
@@ -126,6 +127,7 @@ def test_warm_up_compiles_what_retime_uses(plant, scenario, polytope):
         rows._rest_and_rays,
         between._lagrange_kernel,
         *(getattr(between_kernels, name) for name in between_kernels.__all__),
+        *(getattr(_chain_kernels, name) for name in _chain_kernels.__all__),
     ]
     warm_up()
     before = [len(kernel.signatures) for kernel in kernels]

@@ -12,6 +12,7 @@ import functools
 
 import numpy as np
 
+from rt_drake import _chain_kernels
 from rt_drake.planning.shape import _fk
 from rt_drake.planning.shape.clearance import _clearance
 from rt_drake.planning.shape.finish import _thin
@@ -31,13 +32,13 @@ def warm_up() -> None:
     axis = np.tile([0.0, 0.0, 1.0], (n, 1))
     z, o = np.empty((points, n, 3)), np.empty((points, n, 3))
     R, p = np.empty((points, 3, 3)), np.empty((points, 3))
-    _fk.frames(q, steps, steps, index, axis, np.eye(4), z, o, R, p)
+    _chain_kernels.frames(q, steps, steps, index, axis, np.eye(4), z, o, R, p)
     _fk.solve_poses(
         q.copy(), R.copy(), p.copy(), steps, steps, index, axis, np.eye(4), index, 2,
         1e-10, np.empty(points),
     )  # fmt: skip
     out = np.empty((4, points, 3))
-    _fk.accelerations(z, o, R, p, q, q, np.zeros(3), out)
+    _chain_kernels.accelerations(z, o, R, p, q, q, np.zeros(3), out)
     dq, ddq = evaluate_splines(np.arange(6.0).reshape(1, 3, 2), np.linspace(0, 1, 3))[
         1:
     ]
