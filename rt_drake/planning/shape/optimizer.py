@@ -4,7 +4,7 @@ Stages (wall time of each in :attr:`OptimizedMove.timings`, s):
 
 1. ``setup``: the scene with the load (the planner's ``prepare``), the
    clearance model; after the baseline, the coarse retimer (its grid placed
-   at equal steps of the baseline's time, :meth:`MoveOptimizer._search_grid`)
+   at equal steps of the baseline's time, :meth:`MoveOptimizer.search_grid`)
    and its first grasp rows, the path family (:mod:`.family`), the warm
    starts (:mod:`.starts`).
 2. ``baseline``: the spline path retimed by :func:`~.finish.retime_adaptive`,
@@ -141,7 +141,7 @@ class MoveOptimizer:
             retime_cost = clock() - before
         with watch("setup"):
             surrogate = CoarseRetimer(
-                chain, self.limits, grasp, self._search_grid(baseline)
+                chain, self.limits, grasp, self.search_grid(baseline)
             )
             surrogate.select_rows(spline.path.waypoints[None])
 
@@ -211,7 +211,7 @@ class MoveOptimizer:
             spline.path, baseline, False, evaluations, rejected, baseline_wall
         )
 
-    def _search_grid(self, baseline: RetimeResult) -> int | np.ndarray:
+    def search_grid(self, baseline: RetimeResult) -> int | np.ndarray:
         """The search's grid: its points at equal steps of the spline's time.
 
         ``search_gridpoints`` points placed by the spline path's retimed
