@@ -33,6 +33,7 @@ from rt_drake.phase import Phase
 from rt_drake.planning import PlanTiming, sample_transports
 from rt_drake.planning.shape import (
     Clock,
+    MoveOptimizer,
     MoveOptimizerOptions,
     optimize_move,
     retime_adaptive,
@@ -236,6 +237,35 @@ def test_no_faster_path_returns_the_spline_path(setup):
     assert not result.improved
     assert result.path is straight.path
     assert result.duration == result.spline_duration
+
+
+def test_search_grid_is_at_equal_steps_of_the_spline_paths_time(setup, moves):
+    """The search's grid points are reached at equal times by the retimed spline.
+
+    The times are read off the retimed trajectory (Drake's q(t), sampled
+    every 0.1 ms) at the configurations nearest the path's at the grid
+    points, not from the profile's quadrature that places them.
+    """
+    optimizer = MoveOptimizer(setup.plant, setup.limits, OPTIONS)
+    uniform = dataclasses.replace(OPTIONS, search_grid_weight=None)
+    for _, spline, _, _, result in moves:
+        baseline = result.spline_retimed
+        grid = optimizer.search_grid(baseline)
+        assert (
+            MoveOptimizer(setup.plant, setup.limits, uniform).search_grid(baseline)
+            == OPTIONS.search_gridpoints
+        )
+        assert grid[0] == 0.0 and grid[-1] == 1.0 and np.all(np.diff(grid) > 0.0)
+        assert len(grid) == OPTIONS.search_gridpoints
+        t = np.arange(0.0, baseline.duration, 1e-4)
+        q_t = np.array([baseline.trajectory.value(tk).ravel() for tk in t])
+        q_s = spline.path.value(grid)
+        nearest = np.argmin(
+            np.linalg.norm(q_s[:, None, :] - q_t[None, :, :], axis=2), axis=1
+        )
+        steps = np.diff(t[nearest])
+        expected = baseline.duration / (len(grid) - 1)
+        np.testing.assert_allclose(steps, expected, rtol=0.05, atol=2e-4)
 
 
 def test_kernels_only_take_the_layout_warm_up_compiles(moves):

@@ -11,7 +11,8 @@ from rt_drake.planning.shape import MoveOptimizerError, MoveOptimizerOptions
 @pytest.mark.parametrize(
     ("field", "value"),
     [("max_tilt_deg", -1.0), ("max_tilt_deg", 90.0), ("budget_s", 0.0),
-     ("via_points", 0), ("sigma", 0.0)],
+     ("via_points", 0), ("sigma", 0.0), ("search_grid_weight", 1.5),
+     ("search_grid_weight", -0.1)],
 )  # fmt: skip
 def test_bad_options_are_rejected_with_the_name(field, value):
     with pytest.raises(MoveOptimizerError, match=field) as error:

@@ -2,9 +2,11 @@
 
 Stages (wall time of each in :attr:`OptimizedMove.timings`, s):
 
-1. ``setup``: the scene with the load (the planner's ``prepare``), the path
-   family (:mod:`.family`), the coarse retimer and its first grasp rows, the
-   clearance model, the warm starts (:mod:`.starts`).
+1. ``setup``: the scene with the load (the planner's ``prepare``), the
+   clearance model; after the baseline, the coarse retimer (its grid placed
+   at equal steps of the baseline's time, :meth:`MoveOptimizer.search_grid`)
+   and its first grasp rows, the path family (:mod:`.family`), the warm
+   starts (:mod:`.starts`).
 2. ``baseline``: the spline path retimed by :func:`~.finish.retime_adaptive`,
    the duration to beat (the same scheme as the returned path's).
 3. ``search``: CMA-ES (:mod:`.search`) from the best of x = 0 and the warm
@@ -38,7 +40,11 @@ from rt_drake.planning.path import GeometricPath
 from rt_drake.planning.result import PlannedPath
 from rt_drake.planning.shape.clearance import ClearanceModel
 from rt_drake.planning.shape.family import FamilyError, PathFamily, corners
-from rt_drake.planning.shape.finish import retime_adaptive, vertical_drift
+from rt_drake.planning.shape.finish import (
+    adaptive_grid,
+    retime_adaptive,
+    vertical_drift,
+)
 from rt_drake.planning.shape.kinematics import CupChain
 from rt_drake.planning.shape.objective import Objective
 from rt_drake.planning.shape.options import (
@@ -60,6 +66,8 @@ TILT_SAMPLES = 1000
 EXTRA_VIA_POINTS = 2
 #: Candidates the finish may try, best first.
 KEEP = 6
+#: The finish's estimated cost: this times the spline path's retime and check.
+FINISH_MARGIN = 1.2
 
 
 class MoveOptimizer:
@@ -126,11 +134,16 @@ class MoveOptimizer:
             scene = planner.prepare(
                 Phase.MOVE, spline.object, spline.q_start, spline.X_OC
             )
+            clearance = ClearanceModel(scene, chain)
+        with watch("baseline"):
+            before = clock()
+            baseline = self.retime(spline.path, grasp)
+            retime_cost = clock() - before
+        with watch("setup"):
             surrogate = CoarseRetimer(
-                chain, self.limits, grasp, options.search_gridpoints
+                chain, self.limits, grasp, self.search_grid(baseline)
             )
             surrogate.select_rows(spline.path.waypoints[None])
-            clearance = ClearanceModel(scene, chain)
 
             def objective_for(via: int) -> Objective:
                 return Objective(
@@ -143,10 +156,6 @@ class MoveOptimizer:
                 objective: Objective | None = objective_for(options.via_points)
             except FamilyError as error:
                 objective, family_error = None, str(error)
-        with watch("baseline"):
-            before = clock()
-            baseline = self.retime(spline.path, grasp)
-            retime_cost = clock() - before
         baseline_wall = watch.timings["baseline"]
 
         def result(path, retimed, improved, evaluations, rejected, retime_wall):
@@ -162,9 +171,11 @@ class MoveOptimizer:
                 spline.path, baseline, False, 0, [family_error], baseline_wall
             )
         # The finish retimes a candidate and checks it densely: the baseline's
-        # retime, and the planner's dense check (wall time, scaled to the clock).
+        # retime, and the planner's dense check (wall time, scaled to the
+        # clock), with a margin: a candidate's check and retime cost up to
+        # 20 % more than the spline path's (BENCHMARKS.md).
         to_clock = retime_cost / max(baseline_wall, 1e-9)
-        finish_cost = 1.1 * (retime_cost + to_clock * spline.timing.check_s)
+        finish_cost = FINISH_MARGIN * (retime_cost + to_clock * spline.timing.check_s)
         with watch("search"):
             candidates, evaluations = self._search(
                 objective, objective_for, spline,
@@ -199,6 +210,21 @@ class MoveOptimizer:
         return result(
             spline.path, baseline, False, evaluations, rejected, baseline_wall
         )
+
+    def search_grid(self, baseline: RetimeResult) -> int | np.ndarray:
+        """The search's grid: its points at equal steps of the spline's time.
+
+        ``search_gridpoints`` points placed by the spline path's retimed
+        profile (:func:`~.finish.adaptive_grid` with weight
+        ``search_grid_weight``), or uniform if that weight is None.
+        """
+        options = self.options
+        if options.search_grid_weight is None:
+            return options.search_gridpoints
+        return adaptive_grid(
+            baseline.gridpoints, baseline.sd, options.search_gridpoints,
+            options.search_grid_weight,
+        )  # fmt: skip
 
     def _family(self, spline: PlannedPath, via: int) -> PathFamily:
         options = self.options

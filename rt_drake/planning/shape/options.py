@@ -77,7 +77,11 @@ class MoveOptimizerOptions:
         joint_scale: rad per unit of the search's parameters (one for all
             joints, or one per joint).
         sigma: CMA-ES's initial step size (units of the parameters).
-        search_gridpoints: Uniform grid of the search's TOPP-RA.
+        search_gridpoints: Points of the search's TOPP-RA grid.
+        search_grid_weight: Where they are: at equal steps of the measure
+            of :func:`~.finish.adaptive_grid` with this weight w (1: equal
+            steps of time) along the spline path's retimed profile; None:
+            uniform in s.
         final_gridpoints: Points of the final adaptive grid
             (:func:`~.finish.retime_adaptive`).
         starts: Warm starts from the library (:mod:`.starts`) evaluated
@@ -97,6 +101,7 @@ class MoveOptimizerOptions:
     joint_scale: float | tuple[float, ...] = 0.1
     sigma: float = 0.5
     search_gridpoints: int = 24
+    search_grid_weight: float | None = 1.0
     final_gridpoints: int = 400
     clearance_margin: float = 0.01
     population: int | None = None
@@ -115,6 +120,8 @@ class MoveOptimizerOptions:
             "joint_scale": bool(np.all(np.asarray(self.joint_scale) > 0.0)),
             "sigma": self.sigma > 0.0,
             "search_gridpoints": self.search_gridpoints >= 4,
+            "search_grid_weight": self.search_grid_weight is None
+            or 0.0 <= self.search_grid_weight <= 1.0,
             "final_gridpoints": self.final_gridpoints >= 4,
             "clearance_margin": self.clearance_margin >= 0.0,
             "max_evaluations": self.max_evaluations is None
