@@ -200,7 +200,7 @@ def joint_cuts(
     limits: JointLimits,
     tolerance: float,
 ) -> StageRows | None:
-    """Cuts at the worst sub-point of every joint limit exceeded in a segment.
+    """Cuts where each joint limit is exceeded most in a segment (see joint_excess).
 
     Args:
         segments: The grid's segments.
@@ -217,6 +217,7 @@ def joint_cuts(
     count, n = len(u), dq.shape[2]
     worst = np.empty((3, count, n), dtype=np.int64)
     excess = np.empty((3, count, n))
+    vertex = np.zeros((3, count, n))
     K.joint_excess(
         dq,
         ddq,
@@ -227,6 +228,7 @@ def joint_cuts(
         kernel_array(limits.acceleration),
         worst,
         excess,
+        vertex,
     )
     exceeded = excess > tolerance  # (3, N, n)
     if not exceeded.any():
@@ -239,13 +241,13 @@ def joint_cuts(
     with np.errstate(divide="ignore"):
         cap = limits.velocity**2 / q1**2
     columns.append((step[rows, worst[0]], np.ones_like(q1), -cap, exceeded[0]))
-    # Acceleration, each sign: sign ((q' + 2 theta ds q'') u + q'' x) - a <= 0.
+    # Acceleration, each sign: sign ((q' + 2 theta ds q'') u + q'' x) - a <= 0,
+    # at the worst sub-point or at the parabola's vertex between them.
     for kind, sign in ((1, 1.0), (2, -1.0)):
-        q1 = dq[rows, worst[kind], joints]
-        q2 = ddq[rows, worst[kind], joints]
+        q1, q2, to_x = _at_worst(segments, worst[kind], vertex[kind])
         columns.append(
             (
-                sign * (q1 + step[rows, worst[kind]] * q2),
+                sign * (q1 + to_x * q2),
                 sign * q2,
                 -np.broadcast_to(limits.acceleration, q1.shape),
                 exceeded[kind],
@@ -257,6 +259,36 @@ def joint_cuts(
     return StageRows(
         np.where(active, A, 0.0), np.where(active, B, 0.0), np.where(active, C, -1.0)
     )
+
+
+def _at_worst(
+    segments: Segments, worst: np.ndarray, vertex: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """q', q'' and ``2 theta ds`` (each (N, n)) where :func:`joint_cuts` cuts.
+
+    At sub-point ``worst``; where ``worst`` is -1, at theta = ``vertex``:
+    q' through sub-points 0, 3, 6 (theta = 1/8, 1/2, 7/8) by its quadratic,
+    q'' through 0 and 6 by its line (exact inside a cubic piece).
+    """
+    dq, ddq = segments.dq, segments.ddq
+    rows = np.arange(dq.shape[0])[:, None]
+    joints = np.arange(dq.shape[2])
+    index = np.maximum(worst, 0)
+    q1, q2 = dq[rows, index, joints], ddq[rows, index, joints]
+    theta = _THETA[index]
+    between = worst < 0
+    if between.any():
+        r = (vertex - 0.5) / (_THETA[3] - _THETA[0])
+        weights = (0.5 * r * (r - 1.0), 1.0 - r * r, 0.5 * r * (r + 1.0))
+        nodes = [dq[:, j, :] for j in (0, 3, 6)]
+        quadratic = sum(w * v for w, v in zip(weights, nodes, strict=True))
+        line = ddq[:, 0, :] + (vertex - _THETA[0]) / (_THETA[6] - _THETA[0]) * (
+            ddq[:, 6, :] - ddq[:, 0, :]
+        )
+        q1 = np.where(between, quadratic, q1)
+        q2 = np.where(between, line, q2)
+        theta = np.where(between, vertex, theta)
+    return q1, q2, 2.0 * theta * segments.ds[:, None]
 
 
 def subpoint_x(segments: Segments, x: np.ndarray, u: np.ndarray) -> np.ndarray:

@@ -64,12 +64,22 @@ def interior_rows(sub_dq, sub_ddq, step, points, velocity, acceleration, big, A,
 
 
 @njit(cache=True)
-def joint_excess(sub_dq, sub_ddq, step, x, u, velocity, acceleration, worst, excess):  # noqa: D417
-    """Worst sub-point and ratio of each joint limit in each segment.
+def joint_excess(  # noqa: D417
+    sub_dq, sub_ddq, step, x, u, velocity, acceleration, worst, excess, vertex
+):
+    """Worst point and ratio of each joint limit in each segment.
 
     ``worst``, ``excess``: (3, N, n) for velocity, +acceleration and
-    -acceleration: the sub-point index and ``ratio - 1`` there.
+    -acceleration: the sub-point index and ``ratio - 1`` there. Inside one
+    cubic piece the acceleration ``q' u + q'' x`` is a quadratic in theta
+    (q' quadratic, q'' and x linear), so its extreme can fall between
+    sub-points (a segment that starts from rest climbs from 0 to the limit
+    and back); where the parabola through theta = 1/8, 1/2, 7/8 peaks higher
+    than every sub-point, ``worst`` is -1 and ``vertex`` (3, N, n) holds its
+    theta.
     """
+    h = 3.0 / 8.0  # the parabola's nodes: sub-points 0, 3, 6
+    nodes = np.empty(3)
     for i in range(sub_dq.shape[0]):
         for k in range(sub_dq.shape[2]):
             for kind in range(3):
@@ -81,10 +91,26 @@ def joint_excess(sub_dq, sub_ddq, step, x, u, velocity, acceleration, worst, exc
                     excess[0, i, k], worst[0, i, k] = value, j
                 a_j = sub_dq[i, j, k] * u[i] + sub_ddq[i, j, k] * x_j
                 a_j /= acceleration[k]
+                if j % 3 == 0:
+                    nodes[j // 3] = a_j
                 if a_j - 1.0 > excess[1, i, k]:
                     excess[1, i, k], worst[1, i, k] = a_j - 1.0, j
                 if -a_j - 1.0 > excess[2, i, k]:
                     excess[2, i, k], worst[2, i, k] = -a_j - 1.0, j
+            curvature = nodes[0] - 2.0 * nodes[1] + nodes[2]
+            if curvature == 0.0:
+                continue
+            slope = (nodes[2] - nodes[0]) / (2.0 * h)
+            offset = -slope * h * h / curvature  # theta - 1/2 at the vertex
+            if not -0.5 < offset < 0.5:
+                continue
+            peak = nodes[1] + 0.5 * slope * offset
+            kind = 1 if curvature < 0.0 else 2
+            sign = 1.0 if curvature < 0.0 else -1.0
+            if sign * peak - 1.0 > excess[kind, i, k]:
+                excess[kind, i, k] = sign * peak - 1.0
+                worst[kind, i, k] = -1
+                vertex[kind, i, k] = 0.5 + offset
 
 
 @njit(cache=True)
