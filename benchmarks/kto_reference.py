@@ -25,10 +25,14 @@ with no time budget, one KTO per transport:
   in [0, tau_up]; the same above the place;
 - cup tilt <= 45 deg (the optimiser's bound) at the samples.
 
-Initial guess: the optimiser's path, retimed (its adaptive 400-point retime),
-fitted by least squares. Collisions are not constrained: the result is checked
-afterwards with the planner's dense check, the carried object included
-(``check_path``). The KTO path is then retimed exactly (``rt_drake.retime``,
+Initial guess: the optimiser's path (``--guess spline``: the spline path),
+retimed (the adaptive 400-point retime), fitted by least squares. With
+``--collision-samples K``, a ``MinimumDistanceLowerBoundConstraint`` on the
+planner's checker (carried object attached) of ``--clearance`` m at K samples
+between the vertical segments; either way the result is checked afterwards
+with the planner's dense check, the carried object included (``check_path``).
+The rows are re-selected at most ``--rounds`` times; ``--time-limit`` is
+SNOPT's per solve (s). The KTO path is then retimed exactly (``rt_drake.retime``,
 1000 uniform points, and the optimiser's adaptive scheme) as a clamped
 chord-length spline through 200 samples of r; both the KTO trajectory and the
 retimed one are checked at 1 kHz (``check_trajectory``).
@@ -40,7 +44,7 @@ retimed exactly (adaptive; ``kto1k`` at 1000 points), the ratios to spl100,
 the collision verdict, tilt, drift and the solve's CPU time.
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/kto_reference.py --seed 1 \\
-        --indices 6 17 0 15 19
+        --collision-samples 40 --indices 6 17 0 15 19
 """
 
 from __future__ import annotations
