@@ -116,6 +116,26 @@ seed: 0
     return path
 
 
+def write_notebook_campaign(path: Path, cup: str = "paper", trials: int = 2) -> Path:
+    """The notebook on one cup called ``cup`` (paper's parameters), one variant.
+
+    ``trials`` transports: one row each.
+    """
+    path.write_text(
+        f"""\
+scenario: random_transport
+objects:
+- model: package://rt_drake/objects/notebook.sdf
+cups:
+- name: {cup}
+trials: {trials}
+seed: 0
+variants: [constrained]
+"""
+    )
+    return path
+
+
 def write_tool_campaign(path: Path) -> Path:
     """The kindle box (2.06 N) on a weak cup (1.8 N of suction) and on a tool of two.
 

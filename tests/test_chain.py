@@ -13,9 +13,9 @@ import dataclasses
 
 import numpy as np
 import pytest
+from plant_helpers import add_turntable
 from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.plant import MultibodyPlant
-from pydrake.multibody.tree import RevoluteJoint, SpatialInertia, UnitInertia
 
 from rt_drake import CupFrame, GraspConstraint, HeldObject, JointLimits, retime
 from rt_drake.dynamics import path_wrench_coefficients
@@ -29,17 +29,7 @@ HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 def arm_on_turntable() -> MultibodyPlant:
     """The Denso arm and tool mounted off-centre on a tilted turntable joint."""
     plant = MultibodyPlant(0.0)
-    table = plant.AddRigidBody(
-        "turntable", SpatialInertia(5.0, np.zeros(3), UnitInertia.SolidBox(1, 1, 0.1))
-    )
-    plant.AddJoint(
-        RevoluteJoint(
-            "turntable_joint",
-            plant.world_frame(),
-            table.body_frame(),
-            [0.1, 0.0, 1.0],
-        )
-    )
+    table = add_turntable(plant, [0.1, 0.0, 1.0])
     parser = make_parser(plant)
     (arm,) = parser.AddModels(url="package://rt_drake/robot/vs060.urdf")
     X_TB = RigidTransform(RollPitchYaw(0.0, 0.0, 0.3), [0.2, -0.1, 0.05])

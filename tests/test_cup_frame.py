@@ -13,15 +13,11 @@ import re
 
 import numpy as np
 import pytest
+from plant_helpers import add_turntable
 from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import Parser
 from pydrake.multibody.plant import MultibodyPlant
-from pydrake.multibody.tree import (
-    ModelInstanceIndex,
-    RevoluteJoint,
-    SpatialInertia,
-    UnitInertia,
-)
+from pydrake.multibody.tree import ModelInstanceIndex
 from scipy.interpolate import CubicSpline
 
 from rt_drake import (
@@ -74,17 +70,7 @@ def two_arms() -> MultibodyPlant:
 def turntable_and_arm() -> MultibodyPlant:
     """A turntable on a vertical joint welded to the world, then the arm."""
     plant = MultibodyPlant(0.0)
-    table = plant.AddRigidBody(
-        "turntable", SpatialInertia(5.0, np.zeros(3), UnitInertia.SolidBox(1, 1, 0.1))
-    )
-    plant.AddJoint(
-        RevoluteJoint(
-            "turntable_joint",
-            plant.world_frame(),
-            table.body_frame(),
-            [0.0, 0.0, 1.0],
-        )
-    )
+    add_turntable(plant, [0.0, 0.0, 1.0])
     _arm(plant, make_parser(plant), RigidTransform(), with_tool=True)
     plant.Finalize()
     return plant

@@ -25,7 +25,14 @@ import warnings
 from pathlib import Path
 
 import pytest
-from campaign_helpers import BESIDE_S, CRASH_DIR, crash_once, killed_beside, no_init
+from campaign_helpers import (
+    BESIDE_S,
+    CRASH_DIR,
+    crash_once,
+    killed_beside,
+    no_init,
+    write_notebook_campaign,
+)
 
 from rt_drake.experiments.campaign import Status, load_campaign, run_campaign
 from rt_drake.experiments.campaign.local_executor import LocalExecutor
@@ -35,20 +42,7 @@ pytestmark = pytest.mark.slow
 
 def _campaign(directory: Path, cup: str):
     """One object, one cup called ``cup``, two trials, one variant: 2 rows."""
-    path = directory / f"{cup}.yaml"
-    path.write_text(
-        f"""\
-scenario: random_transport
-objects:
-- model: package://rt_drake/objects/notebook.sdf
-cups:
-- name: {cup}
-trials: 2
-seed: 0
-variants: [constrained]
-"""
-    )
-    return load_campaign(path)
+    return load_campaign(write_notebook_campaign(directory / f"{cup}.yaml", cup))
 
 
 def _rows(db: Path) -> list[tuple]:

@@ -36,6 +36,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from campaign_helpers import write_notebook_campaign
 
 from rt_drake.experiments.campaign import Status
 
@@ -43,23 +44,6 @@ pytestmark = pytest.mark.slow
 
 #: Longest wait for a row to start, and for a command to finish, s.
 TIMEOUT_S = 600.0
-
-
-def _campaign(path: Path, trials: int) -> Path:
-    """The notebook on the paper cup, ``trials`` transports: one row each."""
-    path.write_text(
-        f"""\
-scenario: random_transport
-objects:
-- model: package://rt_drake/objects/notebook.sdf
-cups:
-- name: paper
-trials: {trials}
-seed: 0
-variants: [constrained]
-"""
-    )
-    return path
 
 
 def _command(campaign: Path, db: Path, address: str) -> list[str]:
@@ -167,7 +151,8 @@ def test_a_row_lost_with_its_node_runs_again_elsewhere_and_none_is_lost(
 ):
     node = cluster.add_node(own_directory=True)
     db = tmp_path / "campaign.db"
-    command = _command(_campaign(tmp_path / "two.yaml", 2), db, cluster.address)
+    campaign = write_notebook_campaign(tmp_path / "two.yaml", trials=2)
+    command = _command(campaign, db, cluster.address)
     log = tmp_path / "campaign.log"
     code, killed = _run_and_lose(cluster, node, command, log, new_node=True)
     assert code == 0, log.read_text()
@@ -190,7 +175,8 @@ def test_a_row_lost_with_its_node_runs_again_elsewhere_and_none_is_lost(
 def test_losing_the_drivers_own_node_stops_the_run_and_blames_no_row(cluster, tmp_path):
     node = cluster.add_node(own_directory=False)  # the driver connects to it
     db = tmp_path / "campaign.db"
-    command = _command(_campaign(tmp_path / "one.yaml", 1), db, cluster.address)
+    campaign = write_notebook_campaign(tmp_path / "one.yaml", trials=1)
+    command = _command(campaign, db, cluster.address)
     log = tmp_path / "campaign.log"
     code, _ = _run_and_lose(cluster, node, command, log, new_node=False)
     output = log.read_text()
