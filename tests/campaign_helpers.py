@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 import signal
+import sqlite3
 import time
 from pathlib import Path
 
@@ -114,6 +115,14 @@ seed: 0
 {line}"""
     )
     return path
+
+
+def rollout_rows(db: Path, columns: str) -> list[tuple]:
+    """The ``columns`` (comma-separated) of every row of ``db``, by trial."""
+    with sqlite3.connect(db) as connection:
+        return connection.execute(
+            f"SELECT {columns} FROM rollouts ORDER BY trial"
+        ).fetchall()
 
 
 def write_notebook_campaign(path: Path, cup: str = "paper", trials: int = 2) -> Path:

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import io
 import os
-import sqlite3
 import warnings
 from pathlib import Path
 
@@ -31,6 +30,7 @@ from campaign_helpers import (
     crash_once,
     killed_beside,
     no_init,
+    rollout_rows,
     write_notebook_campaign,
 )
 
@@ -46,11 +46,10 @@ def _campaign(directory: Path, cup: str):
 
 
 def _rows(db: Path) -> list[tuple]:
-    with sqlite3.connect(db) as connection:
-        return connection.execute(
-            "SELECT object, cup, seed, trial, variant, status, attempts, error, "
-            "finished_at FROM rollouts ORDER BY trial"
-        ).fetchall()
+    return rollout_rows(
+        db,
+        "object, cup, seed, trial, variant, status, attempts, error, finished_at",
+    )
 
 
 def _deaths(directory: Path, cup: str) -> int:

@@ -26,7 +26,6 @@ running when its node was removed, and the rows in the database.
 from __future__ import annotations
 
 import shutil
-import sqlite3
 import subprocess
 import sys
 import tempfile
@@ -36,7 +35,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from campaign_helpers import write_notebook_campaign
+from campaign_helpers import rollout_rows, write_notebook_campaign
 
 from rt_drake.experiments.campaign import Status
 
@@ -55,11 +54,11 @@ def _command(campaign: Path, db: Path, address: str) -> list[str]:
 
 
 def _rows(db: Path) -> list[tuple]:
-    with sqlite3.connect(db) as connection:
-        return connection.execute(
-            "SELECT object, cup, seed, trial, variant, status, attempts, worker, "
-            "error, finished_at FROM rollouts ORDER BY trial"
-        ).fetchall()
+    return rollout_rows(
+        db,
+        "object, cup, seed, trial, variant, status, attempts, worker, error, "
+        "finished_at",
+    )
 
 
 class _Cluster:
