@@ -10,7 +10,9 @@ import os
 import signal
 import sqlite3
 import time
+import warnings
 from pathlib import Path
+from typing import Any
 
 from rt_drake.experiments.campaign.rows import Outcome, RowResult, Status
 from rt_drake.experiments.campaign.worker import Task
@@ -115,6 +117,20 @@ seed: 0
 {line}"""
     )
     return path
+
+
+def init_local_ray(ray: Any, env: dict[str, str] | None = None) -> None:
+    """Start a 2-CPU Ray here; its workers see tests/ (and ``env``)."""
+    tests = str(Path(__file__).resolve().parent)
+    path = os.pathsep.join(p for p in (tests, os.environ.get("PYTHONPATH")) if p)
+    with warnings.catch_warnings():  # Ray's notices of future changes
+        warnings.simplefilter("ignore", FutureWarning)
+        ray.init(
+            num_cpus=2,
+            include_dashboard=False,
+            log_to_driver=False,
+            runtime_env={"env_vars": {"PYTHONPATH": path, **(env or {})}},
+        )
 
 
 def rollout_rows(db: Path, columns: str) -> list[tuple]:

@@ -19,8 +19,6 @@ file each doomed task leaves just before it kills its process.
 from __future__ import annotations
 
 import io
-import os
-import warnings
 from pathlib import Path
 
 import pytest
@@ -28,6 +26,7 @@ from campaign_helpers import (
     BESIDE_S,
     CRASH_DIR,
     crash_once,
+    init_local_ray,
     killed_beside,
     no_init,
     rollout_rows,
@@ -99,18 +98,8 @@ def ray_crash_dir(tmp_path_factory):
     """A Ray instance started here; its workers see tests/ and the marker dir."""
     ray = pytest.importorskip("ray")
     directory = tmp_path_factory.mktemp("ray_crash")
-    tests = str(Path(__file__).resolve().parents[1])
-    path = os.pathsep.join(p for p in (tests, os.environ.get("PYTHONPATH")) if p)
     # A Ray task is not killed with its neighbour's worker: no need to wait.
-    env = {"PYTHONPATH": path, CRASH_DIR: str(directory), BESIDE_S: "0"}
-    with warnings.catch_warnings():  # Ray's notices of future changes
-        warnings.simplefilter("ignore", FutureWarning)
-        ray.init(
-            num_cpus=2,
-            include_dashboard=False,
-            log_to_driver=False,
-            runtime_env={"env_vars": env},
-        )
+    init_local_ray(ray, {CRASH_DIR: str(directory), BESIDE_S: "0"})
     try:
         yield directory
     finally:

@@ -22,7 +22,6 @@ import sqlite3
 import subprocess
 import sys
 import time
-import warnings
 from pathlib import Path
 
 import pytest
@@ -30,6 +29,7 @@ from campaign_helpers import (
     CRASH_DIR,
     crash_always,
     crash_once,
+    init_local_ray,
     no_init,
     write_campaign,
     write_tool_campaign,
@@ -97,16 +97,7 @@ def killed_and_resumed(campaign_file, tmp_path_factory):
 def ray_run(campaign_file, tmp_path_factory):
     """The Ray run, on a Ray instance started here (tests/ on the workers' path)."""
     ray = pytest.importorskip("ray")
-    tests = str(Path(__file__).resolve().parents[1])
-    path = os.pathsep.join(p for p in (tests, os.environ.get("PYTHONPATH")) if p)
-    with warnings.catch_warnings():  # Ray's notices of future changes
-        warnings.simplefilter("ignore", FutureWarning)
-        ray.init(
-            num_cpus=2,
-            include_dashboard=False,
-            log_to_driver=False,
-            runtime_env={"env_vars": {"PYTHONPATH": path}},
-        )
+    init_local_ray(ray)
     try:
         db = tmp_path_factory.mktemp("ray") / "campaign.db"
         argv = ["experiment", "campaign", str(campaign_file), "--out", str(db)]
