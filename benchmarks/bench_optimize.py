@@ -77,6 +77,16 @@ class Setup:
         self.planner = CyclePlanner(self.scenario, seed=seed)
         warm_up()
 
+    def optimize(self, optimizer: MoveOptimizer, index: int, X_start, X_goal):
+        """Transport ``index``: its spline MOVE (planner seeded ``seed + index``),
+        grasp and optimised MOVE, and the spline MOVE's planning time (s)."""
+        self.planner.seed = self.seed + index
+        _, move, plan_s = grasp_configuration(
+            self.planner, self.name, X_start, X_goal, self.free_space
+        )
+        grasp = self.grasp(move)
+        return move, grasp, optimizer.optimize(self.planner, move, grasp), plan_s
+
     def transports(self, n: int):
         return sample_transports(self.scenario, n, self.seed)
 
@@ -147,16 +157,11 @@ def main() -> None:
         search_gridpoints=args.search_gridpoints or defaults.search_gridpoints,
     )
     optimizer = MoveOptimizer(setup.plant, setup.limits, options, setup.cup)
-    planner, plant, limits = setup.planner, setup.plant, setup.limits
+    plant, limits = setup.plant, setup.limits
     transports = setup.transports(args.n)
 
     def run(index, X_start, X_goal):
-        planner.seed = args.seed + index
-        _, move, plan_s = grasp_configuration(
-            planner, setup.name, X_start, X_goal, setup.free_space
-        )
-        grasp = setup.grasp(move)
-        return move, grasp, optimizer.optimize(planner, move, grasp), plan_s
+        return setup.optimize(optimizer, index, X_start, X_goal)
 
     run(0, *transports[0])  # compile and load caches before anything is timed
     print(f"{setup.path.name}, n={args.n}, seed={args.seed}, {options}")

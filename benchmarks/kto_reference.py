@@ -65,7 +65,7 @@ from pydrake.trajectories import BsplineTrajectory
 from scipy.interpolate import BSpline
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from bench_optimize import Setup, grasp_configuration  # noqa: E402
+from bench_optimize import Setup  # noqa: E402
 
 from rt_drake import PlanningError, RetimeError, check_trajectory, retime  # noqa: E402
 from rt_drake.phase import Phase  # noqa: E402
@@ -418,17 +418,12 @@ def main() -> None:
     setup = Setup(args.scenario, args.seed)
     options = MoveOptimizerOptions(clock=Clock.PROCESS)
     optimizer = MoveOptimizer(setup.plant, setup.limits, options, setup.cup)
-    planner, plant, limits = setup.planner, setup.plant, setup.limits
+    plant, limits = setup.plant, setup.limits
     kw = {"context": setup.context, "cup": setup.cup}
     transports = setup.transports(args.n)
 
     def run(index, X_start, X_goal):
-        planner.seed = args.seed + index
-        _, move, _ = grasp_configuration(
-            planner, setup.name, X_start, X_goal, setup.free_space
-        )
-        grasp = setup.grasp(move)
-        return move, grasp, optimizer.optimize(planner, move, grasp)
+        return setup.optimize(optimizer, index, X_start, X_goal)[:3]
 
     run(0, *transports[0])  # as bench_optimize.py: compile, load caches
     print(
