@@ -31,6 +31,7 @@ from rt_drake.retiming.check import (
 )
 from rt_drake.retiming.errors import (
     GraspUnstableAtRestError,
+    LimitsBetweenGridPointsError,
     PathNotControllableError,
     RetimeError,
     RetimeInputError,
@@ -56,6 +57,7 @@ __all__ = [
     "GraspConstraint",
     "GraspUnstableAtRestError",
     "JointLimits",
+    "LimitsBetweenGridPointsError",
     "PathNotControllableError",
     "RetimeError",
     "RetimeInputError",

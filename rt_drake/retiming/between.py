@@ -21,7 +21,8 @@ between, they can be exceeded (by several percent at 100 grid points). So:
 - after solving, :func:`joint_cuts` evaluates the joint limits exactly at
   the sub-points; where one still exceeds its limit by more than the
   tolerance, its row at the worst sub-point becomes a cut (solve again, no
-  new grid point);
+  new grid point); if the cuts do not converge, :func:`joint_split_points`
+  splits those segments in two;
 - :func:`refinement_points` evaluates torques and grasp at the sub-points;
   a segment exceeding a limit by ``e`` is split into ``ceil(sqrt(e /
   tolerance))`` equal parts (an overshoot shrinks with the square of the
@@ -213,23 +214,9 @@ def joint_cuts(
         The cut rows (one per exceeded joint, kind and segment; inactive
         rows elsewhere), or None if no joint limit is exceeded.
     """
-    dq, ddq, step = segments.dq, segments.ddq, segments.step
+    dq, step = segments.dq, segments.step
     count, n = len(u), dq.shape[2]
-    worst = np.empty((3, count, n), dtype=np.int64)
-    excess = np.empty((3, count, n))
-    vertex = np.zeros((3, count, n))
-    K.joint_excess(
-        dq,
-        ddq,
-        step,
-        kernel_array(x),
-        kernel_array(u),
-        kernel_array(limits.velocity),
-        kernel_array(limits.acceleration),
-        worst,
-        excess,
-        vertex,
-    )
+    worst, excess, vertex = _joint_excess(segments, x, u, limits)
     exceeded = excess > tolerance  # (3, N, n)
     if not exceeded.any():
         return None
@@ -259,6 +246,73 @@ def joint_cuts(
     return StageRows(
         np.where(active, A, 0.0), np.where(active, B, 0.0), np.where(active, C, -1.0)
     )
+
+
+def joint_split_points(
+    segments: Segments,
+    x: np.ndarray,
+    u: np.ndarray,
+    limits: JointLimits,
+    tolerance: float,
+) -> np.ndarray:
+    """Midpoints (sorted s) of the segments where a joint limit is exceeded.
+
+    For when cuts (:func:`joint_cuts`) have not converged: a segment split
+    in two has its sub-points at half the step, and an excess between grid
+    points shrinks with the square of the step.
+
+    Args:
+        segments: The grid's segments.
+        x: (G,) ``s'^2`` at the grid points.
+        u: (G-1,) ``s''`` per segment.
+        limits: Joint limits.
+        tolerance: Relative excess allowed.
+    """
+    excess = _joint_excess(segments, x, u, limits)[1]
+    split = np.flatnonzero((excess > tolerance).any(axis=(0, 2)))
+    return segments.s[split] + 0.5 * segments.ds[split]
+
+
+def joint_excess_max(
+    segments: Segments, x: np.ndarray, u: np.ndarray, limits: JointLimits
+) -> tuple[float, float]:
+    """(largest relative excess of a joint limit between grid points, its s).
+
+    The excess is ``|value| / limit - 1`` over the joints' velocities and
+    accelerations at the sub-points and the acceleration's vertex
+    (:func:`.between_kernels.joint_excess`); s is the start of its segment.
+    """
+    excess = _joint_excess(segments, x, u, limits)[1]
+    _, segment, _ = np.unravel_index(int(np.argmax(excess)), excess.shape)
+    return float(excess.max()), float(segments.s[segment])
+
+
+def _joint_excess(
+    segments: Segments, x: np.ndarray, u: np.ndarray, limits: JointLimits
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(worst, excess, vertex), each (3, N, n): :func:`.between_kernels.joint_excess`.
+
+    For velocity, acceleration up and down (axis 0), per segment and joint:
+    the worst sub-point (-1: the acceleration parabola's vertex between
+    them), its relative excess over the limit, and the vertex's theta.
+    """
+    count, n = len(u), segments.dq.shape[2]
+    worst = np.empty((3, count, n), dtype=np.int64)
+    excess = np.empty((3, count, n))
+    vertex = np.zeros((3, count, n))
+    K.joint_excess(
+        segments.dq,
+        segments.ddq,
+        segments.step,
+        kernel_array(x),
+        kernel_array(u),
+        kernel_array(limits.velocity),
+        kernel_array(limits.acceleration),
+        worst,
+        excess,
+        vertex,
+    )
+    return worst, excess, vertex
 
 
 def _at_worst(

@@ -15,6 +15,7 @@ class RetimeStatus(enum.Enum):
     GRASP_UNSTABLE_AT_REST = "object slips at rest"
     TORQUE_LIMIT_AT_REST = "torque limit exceeded at rest"
     NOT_CONTROLLABLE = "path not controllable"
+    LIMITS_BETWEEN_GRID_POINTS = "limit exceeded between grid points"
 
 
 class RetimeError(RtDrakeError):
@@ -59,6 +60,19 @@ class TorqueLimitAtRestError(RetimeError):
     status = RetimeStatus.TORQUE_LIMIT_AT_REST
 
 
+class LimitsBetweenGridPointsError(RetimeError):
+    """A limit stays exceeded between grid points after the last refinement.
+
+    The retimer adds cuts and grid points until every joint, torque and
+    grasp limit holds between grid points within the contract (a relative
+    excess of 1e-3, :data:`rt_drake.retiming.check.DEFAULT_TOLERANCE`); if
+    its refinements run out first, it refuses rather than return a
+    trajectory that exceeds a limit.
+    """
+
+    status = RetimeStatus.LIMITS_BETWEEN_GRID_POINTS
+
+
 class PathNotControllableError(RetimeError):
     """TOPP-RA found no admissible path velocity from some s to the end."""
 
@@ -67,6 +81,7 @@ class PathNotControllableError(RetimeError):
 
 __all__ = [
     "GraspUnstableAtRestError",
+    "LimitsBetweenGridPointsError",
     "PathNotControllableError",
     "RetimeError",
     "RetimeInputError",

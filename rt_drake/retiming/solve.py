@@ -36,6 +36,13 @@ The robot must be able to stop anywhere on the path: the object must be held
 by gravity's wrench alone (``F c(s) < g``) and the arm's gravity torques must
 be within limits at every grid point, else a typed error says where (for a
 set, naming its worst object).
+
+Between grid points (:mod:`.between`): joint limits are held by cuts (up to
+:data:`MAX_CUT_ROUNDS` rounds per grid), torques and grasp by new grid points;
+where cuts do not converge, the segments are split as well. If a limit is
+still exceeded beyond the 1e-3 contract after :data:`MAX_REFINEMENTS`
+refinements, :class:`.errors.LimitsBetweenGridPointsError` says where: the
+retimer never returns a trajectory it knows exceeds a limit.
 """
 
 from __future__ import annotations
@@ -56,10 +63,14 @@ from rt_drake.retiming.between import (
     Segments,
     interior_rows,
     joint_cuts,
+    joint_excess_max,
+    joint_split_points,
     refinement_points,
 )
 from rt_drake.retiming.between_kernels import position_excess
+from rt_drake.retiming.check import DEFAULT_TOLERANCE
 from rt_drake.retiming.errors import (
+    LimitsBetweenGridPointsError,
     PathNotControllableError,
     RetimeInputError,
     RetimeStatus,
@@ -90,7 +101,8 @@ MAX_REFINEMENTS = 8
 #: Where a non-cubic path is checked against the position limits, in
 #: fractions of each segment.
 _DENSE = np.arange(1, 16) / 16
-#: Rounds of cuts for the joint limits inside segments, at most.
+#: Rounds of cuts for the joint limits inside segments, at most, per grid;
+#: then the segments still exceeded are split (a refinement).
 MAX_CUT_ROUNDS = 4
 
 
@@ -179,6 +191,8 @@ def retime(
         GraspUnstableAtRestError: gravity alone breaks the grasp somewhere.
         TorqueLimitAtRestError: holding the arm still exceeds a torque limit.
         PathNotControllableError: no admissible speed reaches the end.
+        LimitsBetweenGridPointsError: a limit is still exceeded between grid
+            points, beyond the 1e-3 contract, after the last refinement.
     """
     _check_arguments(sd_start, sd_end, start_time)
     spline = as_joint_path(path)  # checks the path
@@ -243,22 +257,28 @@ def retime(
             segments, samples, x, u, limits, normals, row_max, BETWEEN_TOLERANCE,
             between,
         )  # fmt: skip
-        if points.size and refinements < MAX_REFINEMENTS:
-            added = sample(points)
-            hold_at_rest(added)
-            samples = merge_samples(samples, added)
-            segments = Segments(samples, knots, spline)
-            joints = _joint_constraints(samples, segments, limits)
-            refinements += 1
-            cuts = None  # made for the old segments
-            set_cut_rounds = 0
-            continue
-        new_cuts = joint_cuts(segments, x, u, limits, BETWEEN_TOLERANCE)
-        if new_cuts is None or cut_rounds == MAX_CUT_ROUNDS:
+        if not points.size:
+            new_cuts = joint_cuts(segments, x, u, limits, BETWEEN_TOLERANCE)
+            if new_cuts is None:
+                break
+            if cut_rounds < MAX_CUT_ROUNDS:
+                cuts = new_cuts if cuts is None else _stacked(cuts, new_cuts)
+                cut_rounds += 1
+                total_cuts += 1
+                continue
+            # The cuts have not converged: split the segments they are in.
+            points = joint_split_points(segments, x, u, limits, BETWEEN_TOLERANCE)
+        if refinements == MAX_REFINEMENTS:
+            _refuse_excess(segments, samples, x, u, limits, normals, row_max, between)
             break
-        cuts = new_cuts if cuts is None else _stacked(cuts, new_cuts)
-        cut_rounds += 1
-        total_cuts += 1
+        added = sample(points)
+        hold_at_rest(added)
+        samples = merge_samples(samples, added)
+        segments = Segments(samples, knots, spline)
+        joints = _joint_constraints(samples, segments, limits)
+        refinements += 1
+        cuts = None  # made for the old segments
+        cut_rounds = set_cut_rounds = 0
     s = samples.s
     trajectory = TimedPath(spline, s, profile.x, start_time)
     u = (profile.x[1:] - profile.x[:-1]) / (2.0 * np.diff(s))
@@ -293,6 +313,48 @@ def retime(
         grasp_objects=0 if family is None else family.object_count,
         cuts=total_cuts,
     )
+
+
+def _refuse_excess(
+    segments: Segments,
+    samples: PathSamples,
+    x: np.ndarray,
+    u: np.ndarray,
+    limits: JointLimits,
+    normals: np.ndarray | None,
+    row_max: np.ndarray | None,
+    between: np.ndarray | None,
+) -> None:
+    """Raise if a limit is still exceeded beyond the contract between grid points.
+
+    Called after the last refinement; the contract is a relative excess of
+    :data:`.check.DEFAULT_TOLERANCE`. An excess above
+    :data:`BETWEEN_TOLERANCE` but within the contract is accepted, as the
+    trajectory check accepts it.
+
+    Raises:
+        LimitsBetweenGridPointsError: naming the limit kind and where (s).
+    """
+    joint, s_joint = joint_excess_max(segments, x, u, limits)
+    if joint > DEFAULT_TOLERANCE:
+        raise LimitsBetweenGridPointsError(
+            f"a joint velocity or acceleration exceeds its limit by "
+            f"{100.0 * joint:.2f} % between grid points near s = {s_joint:.4f} "
+            f"after {MAX_REFINEMENTS} refinements and {MAX_CUT_ROUNDS} rounds "
+            f"of cuts",
+            s_joint,
+        )
+    beyond = refinement_points(
+        segments, samples, x, u, limits, normals, row_max, DEFAULT_TOLERANCE,
+        between,
+    )  # fmt: skip
+    if beyond.size:
+        raise LimitsBetweenGridPointsError(
+            f"the grasp or a torque exceeds its limit by more than "
+            f"{100.0 * DEFAULT_TOLERANCE:.1f} % between grid points near "
+            f"s = {beyond[0]:.4f} after {MAX_REFINEMENTS} refinements",
+            float(beyond[0]),
+        )
 
 
 def check_position_limits(

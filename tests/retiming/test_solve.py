@@ -21,6 +21,7 @@ from rt_drake.retiming import (
     GraspConstraint,
     GraspUnstableAtRestError,
     JointLimits,
+    LimitsBetweenGridPointsError,
     PathNotControllableError,
     RetimeError,
     RetimeInputError,
@@ -30,6 +31,7 @@ from rt_drake.retiming import (
     retime,
     rows,
 )
+from rt_drake.retiming import solve as solve_module
 from rt_drake.retiming.between import Segments, grasp_midpoint_rows, interior_rows
 from rt_drake.retiming.joint_path import as_joint_path
 from rt_drake.retiming.passes import AffineConstraint
@@ -309,6 +311,45 @@ def test_acceleration_peaking_between_sub_points_holds_at_1khz(plant, limits):
     result = retime(plant, data["waypoints"], limits, None, data["grid"])
     check = check_trajectory(plant, result.trajectory, limits, None)
     assert check.excess["acceleration"].value <= 1e-3, check.summary()
+
+
+def test_cuts_that_do_not_converge_split_the_segment(plant, limits, monkeypatch):
+    """With no rounds of cuts allowed, the retimer splits the segments where a
+    joint limit is exceeded (it used to stop and return the excess): the
+    acceleration peak of the test above holds at 1 kHz by Drake's route."""
+    data = np.load(Path(__file__).parent / "data" / "peak_between_sub_points.npz")
+    monkeypatch.setattr(solve_module, "MAX_CUT_ROUNDS", 0)
+    result = retime(plant, data["waypoints"], limits, None, data["grid"])
+    assert result.cuts == 0 and result.refinements >= 1
+    assert len(result.gridpoints) > len(np.unique(data["grid"]))
+    check = check_trajectory(plant, result.trajectory, limits, None)
+    assert check.excess["acceleration"].value <= 1e-3, check.summary()
+
+
+def test_a_limit_exceeded_after_the_last_refinement_is_refused(
+    plant, limits, monkeypatch
+):
+    """No cuts and no refinements allowed: the acceleration peaks in the end
+    segments, from and to rest (+0.22 % at 1 kHz in the first before the
+    vertex check), are beyond the 1e-3 contract, so the retimer refuses,
+    naming where, instead of returning them. A path whose excess stays within
+    the contract passes."""
+    data = np.load(Path(__file__).parent / "data" / "peak_between_sub_points.npz")
+    monkeypatch.setattr(solve_module, "MAX_CUT_ROUNDS", 0)
+    monkeypatch.setattr(solve_module, "MAX_REFINEMENTS", 0)
+    with pytest.raises(LimitsBetweenGridPointsError) as caught:
+        retime(plant, data["waypoints"], limits, None, data["grid"])
+    message = str(caught.value)
+    assert "acceleration exceeds its limit by" in message, message
+    assert caught.value.status is RetimeStatus.LIMITS_BETWEEN_GRID_POINTS
+    s = caught.value.s
+    assert s is not None and f"near s = {s:.4f}" in message
+    assert min(s, 1.0 - s) < 1e-3, s  # in an end segment
+    # A gentle path on 400 points: its joint excess between grid points is
+    # within the contract without any cut (checked at 1 kHz by Drake's route).
+    result = retime(plant, np.array(PATHS["swing"]), limits, None, 400)
+    check = check_trajectory(plant, result.trajectory, limits, None)
+    assert check.passed(), check.summary()
 
 
 def test_a_path_leaving_the_position_limits_is_refused(plant, limits):
