@@ -76,7 +76,7 @@ from rt_drake.retiming.errors import (
     RetimeStatus,
 )
 from rt_drake.retiming.grasp_rows import ROW_TOLERANCE, ObjectRows
-from rt_drake.retiming.grid import initial_grid
+from rt_drake.retiming.grid import bound_steps, initial_grid
 from rt_drake.retiming.joint_path import JointPath, ToppraPath, as_joint_path
 from rt_drake.retiming.limits import GraspConstraint, JointLimits
 from rt_drake.retiming.passes import (
@@ -173,7 +173,8 @@ def retime(
         limits: Joint limits (torques limited if ``limits.torque``).
         grasp: Held object and grasp polytope; None: no object.
         gridpoints: Number of uniform grid points in s (>= 2), to which the
-            path's knots are added and, where the limits would be exceeded
+            path's knots are added, points so that no step is longer than
+            0.05 rad in joint space and, where the limits would be exceeded
             between grid points, more points (:mod:`.grid`); or an explicit
             grid, refined likewise.
         sd_start: Path velocity ds/dt at the start (1/s; 0 = rest).
@@ -226,7 +227,7 @@ def retime(
         if family is not None:
             family.add(samples)
 
-    samples = sample(initial_grid(gridpoints, knots))
+    samples = sample(bound_steps(initial_grid(gridpoints, knots), spline))
     check_position_limits(plant, samples, spline)
     hold_at_rest(samples)
     # The compiled passes do not need the path; toppra's TOPPRA class does.
@@ -257,20 +258,22 @@ def retime(
             segments, samples, x, u, limits, normals, row_max, BETWEEN_TOLERANCE,
             between,
         )  # fmt: skip
-        if not points.size:
+        if not points.size or refinements == MAX_REFINEMENTS:
             new_cuts = joint_cuts(segments, x, u, limits, BETWEEN_TOLERANCE)
-            if new_cuts is None:
-                break
-            if cut_rounds < MAX_CUT_ROUNDS:
+            if new_cuts is not None and cut_rounds < MAX_CUT_ROUNDS:
                 cuts = new_cuts if cuts is None else _stacked(cuts, new_cuts)
                 cut_rounds += 1
                 total_cuts += 1
                 continue
+            if new_cuts is None and not points.size:
+                break  # every limit holds between grid points
+            if refinements == MAX_REFINEMENTS:
+                _refuse_excess(
+                    segments, samples, x, u, limits, normals, row_max, between
+                )
+                break
             # The cuts have not converged: split the segments they are in.
             points = joint_split_points(segments, x, u, limits, BETWEEN_TOLERANCE)
-        if refinements == MAX_REFINEMENTS:
-            _refuse_excess(segments, samples, x, u, limits, normals, row_max, between)
-            break
         added = sample(points)
         hold_at_rest(added)
         samples = merge_samples(samples, added)
