@@ -30,7 +30,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).parent))
 
-from bench_optimize import Setup, grasp_configuration  # noqa: E402
+from bench_optimize import Setup  # noqa: E402
 
 from rt_drake import PlanningError  # noqa: E402
 from rt_drake.planning.shape import Clock, MoveOptimizer, MoveOptimizerOptions  # noqa: E402
@@ -50,11 +50,8 @@ def learn(args: argparse.Namespace) -> None:
     chain = optimizer.chain
     entries = []
     for index, (X_start, X_goal) in enumerate(setup.transports(args.n)):
-        setup.planner.seed = args.seed + index
         try:
-            _, move, _ = grasp_configuration(
-                setup.planner, setup.name, X_start, X_goal, setup.free_space
-            )
+            move, _ = setup.spline_move(index, X_start, X_goal)
         except PlanningError as error:
             print(f"{index:3d} planning failed: {error}")
             continue
