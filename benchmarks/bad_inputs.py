@@ -970,6 +970,15 @@ def api_cases() -> list[Case]:
             ("joints",),
         ),
         (
+            "retime.path_jumps",
+            plant
+            + "from pydrake.trajectories import CompositeTrajectory, PiecewisePolynomial\n"
+            "a = PiecewisePolynomial.CubicShapePreserving([0.0, 0.5], W0[:2].T, True)\n"
+            "b = PiecewisePolynomial.CubicShapePreserving([0.5, 1.0], W0[1:].T + 0.3, True)\n"
+            "result = retime(plant, CompositeTrajectory([a, b]), limits)",
+            ("continuous|jumps", "s = 0.5"),
+        ),
+        (
             "limits.wrong_length",
             "from rt_drake import JointLimits\nresult = JointLimits(np.ones(6), np.ones(5))",
             ("length|differ", "5"),

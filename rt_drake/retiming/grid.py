@@ -43,6 +43,9 @@ MIN_STEP = 1e-9
 #: interpolation error); grids of 100 points on paths up to 5 rad long are
 #: unchanged by it.
 MAX_JOINT_STEP = 0.05
+#: A step in s shorter than this that still moves more than MAX_JOINT_STEP
+#: (a joint speed |q'(s)| above 5e4 rad per unit of s) is a jump in q.
+JUMP_STEP = 1e-6
 #: Most grid points accepted (the dynamics and the passes are linear in
 #: them: 100 000 take about 4 s and 0.6 GB with the grasp constraint).
 MAX_GRIDPOINTS = 100_000
@@ -110,7 +113,9 @@ def bound_steps(s: np.ndarray, path: Callable[[np.ndarray], np.ndarray]) -> np.n
 
     Raises:
         RetimeInputError: the bounded grid would exceed
-            :data:`MAX_GRIDPOINTS` (a path too long in joint space).
+            :data:`MAX_GRIDPOINTS` (a path too long in joint space), or q
+            jumps (a step shorter than :data:`JUMP_STEP` in s still moves
+            more than the bound).
     """
     while True:
         step = np.linalg.norm(np.diff(path(s), axis=0), axis=1)
@@ -118,6 +123,13 @@ def bound_steps(s: np.ndarray, path: Callable[[np.ndarray], np.ndarray]) -> np.n
         long = np.flatnonzero(parts > 1)
         if not long.size:
             return s
+        jumps = long[np.diff(s)[long] < JUMP_STEP]
+        if jumps.size:
+            i = int(jumps[np.argmax(step[jumps])])
+            raise RetimeInputError(
+                f"the path is not continuous: q jumps by {step[i]:.3g} rad "
+                f"at s = {s[i]:.6f}"
+            )
         if s.size + float(np.sum(parts[long] - 1)) > MAX_GRIDPOINTS:
             raise RetimeInputError(
                 f"the path is {step.sum():.1f} rad long in joint space: steps "
@@ -141,6 +153,7 @@ def _merge(*grids: np.ndarray) -> np.ndarray:
 
 
 __all__ = [
+    "JUMP_STEP",
     "MAX_GRIDPOINTS",
     "MAX_JOINT_STEP",
     "MIN_PIECE_SEGMENTS",

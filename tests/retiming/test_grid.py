@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from pydrake.trajectories import CompositeTrajectory, PiecewisePolynomial
 
-from rt_drake.retiming import RetimeInputError
+from rt_drake.retiming import JointLimits, RetimeInputError, retime
 from rt_drake.retiming.grid import (
     MAX_JOINT_STEP,
     MIN_PIECE_SEGMENTS,
@@ -59,3 +60,19 @@ def test_a_path_too_long_for_the_grid_is_refused():
     path = as_joint_path(waypoints)
     with pytest.raises(RetimeInputError, match=r"rad long in joint space"):
         bound_steps(initial_grid(100, path.breaks), path)
+
+
+def test_a_path_that_jumps_is_refused_not_split_forever(plant):
+    """Two cubic pieces 0.3 rad apart per joint at s = 0.5 (a Drake
+    CompositeTrajectory): no number of grid points makes that step short, so
+    the retimer names the jump instead of splitting it until it hangs."""
+    first = PiecewisePolynomial.CubicShapePreserving(
+        [0.0, 0.5], np.array([[0.0] * 6, [0.2] * 6]).T, True
+    )
+    second = PiecewisePolynomial.CubicShapePreserving(
+        [0.5, 1.0], np.array([[0.5] * 6, [0.7] * 6]).T, True
+    )
+    path = CompositeTrajectory([first, second])
+    limits = JointLimits(np.full(6, 2.0), np.full(6, 10.0))
+    with pytest.raises(RetimeInputError, match=r"jumps by 0.735 rad at s = 0.5000"):
+        retime(plant, path, limits)
