@@ -184,7 +184,7 @@ def move_from_the_cup(
     """
     planner = motions.planner
     error: PlanningError | None = None
-    best: Motion | None = None
+    best: tuple[float, Motion] | None = None
     for X_OC in planner.grasps(obj.name):
         try:
             planner.prepare(Phase.MOVE, obj.name, planner.q_home, X_OC)
@@ -194,17 +194,12 @@ def move_from_the_cup(
             error = exc
             continue
         assert motion.retimed is not None
-        if best is None or motion.retimed.duration < _duration(best):
-            best = motion
+        if best is None or motion.retimed.duration < best[0]:
+            best = (motion.retimed.duration, motion)
     if best is None:
         assert error is not None
         raise error
-    return best
-
-
-def _duration(motion: Motion) -> float:
-    assert motion.retimed is not None
-    return motion.retimed.duration
+    return best[1]
 
 
 def _pose_list(X: RigidTransform) -> list[float]:
