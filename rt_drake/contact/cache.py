@@ -23,6 +23,7 @@ from typing import Any, BinaryIO
 
 import numpy as np
 
+from rt_drake import arguments
 from rt_drake.atomic_file import write_atomically
 from rt_drake.contact.cup import CupParameters
 from rt_drake.contact.exact_cost import DEFAULT_MAX_MEMORY
@@ -199,6 +200,13 @@ def cached_wrench_polytope(
         InputError: a bad parameter; TooLargeError (an InputError) when the
             set is estimated or found to be too large.
     """
+    where = "cached_wrench_polytope"
+    arguments.instance(cup, "cup", (CupParameters, ToolParameters), where=where)
+    if directory is not None:
+        arguments.path(directory, "directory", where=where)
+    arguments.number(max_memory, "max_memory", where=where, above=0.0)
+    if max_facets is not None:
+        arguments.integer(max_facets, "max_facets", where=where, low=1)
     cup.validate()
     path = cache_path(cup, directory)
     if use_cache:

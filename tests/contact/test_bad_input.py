@@ -58,9 +58,9 @@ def test_the_range_edges_are_accepted():
 @pytest.mark.parametrize(
     "wrench,words",
     [
-        (np.full(6, np.nan), ["wrenches must be finite", "nan"]),
+        (np.full(6, np.nan), ["wrenches must be a (..., 6) array of finite", "nan"]),
         ([0, 0, 0, 0, 0, np.inf], ["finite", "inf"]),
-        (np.zeros(5), ["(..., 6)"]),
+        (np.zeros(5), ["wrenches", "(..., 6)", "shape (5,)"]),
     ],
 )
 def test_is_realizable_refuses_what_it_cannot_answer(W, wrench, words):
@@ -73,14 +73,18 @@ def test_is_realizable_refuses_what_it_cannot_answer(W, wrench, words):
 def test_is_realizable_refuses_a_corrupted_h_representation(W):
     F = W.F.copy()
     F[3] = 0.0  # 0 <= g accepts every wrench: not a constraint
-    with pytest.raises(InputError, match="F row 3 is zero"):
+    with pytest.raises(InputError, match="is_realizable: F row 3 is zero"):
         is_realizable(np.zeros(6), F, W.g)
     F[3, 0] = np.nan
-    with pytest.raises(InputError, match="F must be finite, got row 3"):
+    with pytest.raises(
+        InputError, match=r"F must be a \(rows, 6\) array of finite .* nan at \(3, 0\)"
+    ):
         is_realizable(np.zeros(6), F, W.g)
-    with pytest.raises(InputError, match="g must be finite"):
+    with pytest.raises(InputError, match="g must be a .* finite numbers"):
         is_realizable(np.zeros(6), W.F, np.full_like(W.g, np.nan))
-    with pytest.raises(InputError, match="tol must be finite and >= 0"):
+    with pytest.raises(
+        InputError, match="tol must be a finite number >= 0, got float nan"
+    ):
         is_realizable(np.zeros(6), W.F, W.g, tol=np.nan)
 
 
