@@ -151,8 +151,27 @@ def instance(
     """Return ``value`` if it is an instance of ``types``, or raise ``error``."""
     if not isinstance(value, types):
         kinds = types if isinstance(types, tuple) else (types,)
-        expected = "a " + " or a ".join(kind.__name__ for kind in kinds)
+        expected = " or ".join(_article(kind.__name__) for kind in kinds)
         raise fail(where, name, expected, value, error)
+    return value
+
+
+def having(
+    value: Any,
+    name: str,
+    kind: str,
+    attributes: tuple[str, ...],
+    *,
+    where: str,
+    error: type[InputError] = InputError,
+) -> Any:
+    """Return ``value`` if it has ``attributes`` (duck typing), or raise ``error``.
+
+    For a family of classes behind one protocol (the grasp constraints):
+    ``kind`` names it in the message, e.g. ``"GraspConstraint"``.
+    """
+    if value is None or not all(hasattr(value, a) for a in attributes):
+        raise fail(where, name, _article(kind), value, error)
     return value
 
 
@@ -163,6 +182,10 @@ def path(
     if not isinstance(value, (str, os.PathLike)) or not str(value):
         raise fail(where, name, "a file path (str or Path)", value, error)
     return Path(value)
+
+
+def _article(noun: str) -> str:
+    return f"an {noun}" if noun[0] in "AEIOUaeiou" else f"a {noun}"
 
 
 def _shape_text(shape: Shape) -> str:
@@ -203,6 +226,7 @@ __all__ = [
     "array",
     "describe",
     "fail",
+    "having",
     "instance",
     "integer",
     "number",

@@ -10,6 +10,7 @@ list of objects (:meth:`GraspConstraint.for_objects`).
 from __future__ import annotations
 
 import dataclasses
+import functools
 from collections.abc import Sequence
 
 import numpy as np
@@ -17,6 +18,7 @@ from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 
+from rt_drake import arguments
 from rt_drake.contact import CupParameters, ToolParameters, cached_wrench_polytope
 from rt_drake.contact.load_sharing import SharedLoadSet
 from rt_drake.contact.tool import LoadSharing
@@ -46,11 +48,21 @@ class JointLimits:
     def __post_init__(self) -> None:
         for name in ("velocity", "acceleration", "torque"):
             value = getattr(self, name)
-            if value is None:
+            if value is None and name == "torque":
                 continue
-            value = np.array(value, dtype=float).reshape(-1)
-            if not (np.all(np.isfinite(value)) and np.all(value > 0)):
-                raise RetimeInputError(f"{name} limits must be finite and > 0: {value}")
+            value = np.array(
+                arguments.array(
+                    value,
+                    name,
+                    ("joints",),
+                    where="JointLimits",
+                    error=RetimeInputError,
+                )
+            )
+            if not np.all(value > 0):
+                raise RetimeInputError(
+                    f"JointLimits: {name} limits must be > 0, got {value.tolist()}"
+                )
             value.setflags(write=False)
             object.__setattr__(self, name, value)
         sizes = {
@@ -96,6 +108,13 @@ class JointLimits:
             RetimeInputError: a limit the model lacks and nobody gave,
                 naming the joint and how to give it.
         """
+        where = "JointLimits.from_plant"
+        check = functools.partial(
+            arguments.instance, where=where, error=RetimeInputError
+        )
+        check(plant, "plant", MultibodyPlant)
+        if robot is not None:
+            check(robot, "robot", RobotConfig)
         n = plant.num_velocities()
         model = {
             "velocity": plant.GetVelocityUpperLimits(),
@@ -144,6 +163,31 @@ def _check_single_cup(cup: object, method: str) -> None:
             f"GraspConstraint.{method} needs one cup (CupParameters), got "
             f"{type(cup).__name__}"
         )
+
+
+def _check_grip(cup: object, where: str) -> None:
+    """A cup (or every cup of a tool) with friction > 0, which can hold an object.
+
+    A frictionless rim exerts no tangential force, so its wrench set has no
+    interior: the grasp constraint would need g > 0 on rows whose g is 0.
+    """
+    arguments.instance(
+        cup,
+        "cup",
+        (CupParameters, ToolParameters),
+        where=where,
+        error=RetimeInputError,
+    )
+    cups = [m.cup for m in cup.cups] if isinstance(cup, ToolParameters) else [cup]
+    for index, one in enumerate(cups):
+        which = f"cups[{index}]." if isinstance(cup, ToolParameters) else "cup."
+        for name in ("friction", "friction_min"):
+            value = getattr(one, name)
+            if value is not None and not value > 0.0:
+                raise RetimeInputError(
+                    f"{where}: {which}{name} must be > 0 to hold an object "
+                    f"(a frictionless rim exerts no sideways force), got {value!r}"
+                )
 
 
 def _effort_limits(plant: MultibodyPlant) -> np.ndarray:
@@ -198,15 +242,22 @@ class GraspConstraint:
     worst_cup: bool = False
 
     def __post_init__(self) -> None:
-        F = np.array(self.F, dtype=float)
-        g = np.array(self.g, dtype=float).reshape(-1)
-        try:  # shapes, NaN or inf, an all-zero row (it would constrain nothing)
-            check_h_representation(F, g)
+        where = "GraspConstraint"
+        arguments.instance(
+            self.held, "held", HeldObject, where=where, error=RetimeInputError
+        )
+        if self.cup is not None:
+            _check_grip(self.cup, where)
+        try:  # shapes, no rows, NaN or inf, an all-zero row (constrains nothing)
+            F, g = check_h_representation(self.F, self.g, where)
         except InputError as error:
-            raise RetimeInputError(f"grasp constraint: {error}") from None
+            raise RetimeInputError(str(error)) from None
+        F, g = F.copy(), g.copy()
         if np.any(g <= 0.0):
+            row = int(np.argmin(g))
             raise RetimeInputError(
-                f"grasp constraint needs g > 0 (zero wrench inside), min g = {g.min()}"
+                f"{where}: g must be > 0 (the zero wrench strictly inside), "
+                f"got g[{row}] = {g[row]!r}"
             )
         F.setflags(write=False)
         g.setflags(write=False)
@@ -216,6 +267,7 @@ class GraspConstraint:
     @classmethod
     def for_cup(cls, held: HeldObject, cup: CupParameters) -> GraspConstraint:
         """The exact polytope of ``cup`` (cached on disk by rt_drake.contact)."""
+        _check_grip(cup, "GraspConstraint.for_cup")
         polytope = cached_wrench_polytope(cup)
         return cls(held=held, F=polytope.F, g=polytope.g, cup=cup)
 
@@ -243,6 +295,22 @@ class GraspConstraint:
             R_CO: (3, 3) the object's axes in C (default identity).
         """
         _check_single_cup(cup, "robust")
+        _check_grip(cup, "GraspConstraint.robust")
+        arguments.instance(
+            uncertainty,
+            "uncertainty",
+            ObjectUncertainty,
+            where="GraspConstraint.robust",
+            error=RetimeInputError,
+        )
+        if R_CO is not None:
+            R_CO = arguments.array(
+                R_CO,
+                "R_CO",
+                (3, 3),
+                where="GraspConstraint.robust",
+                error=RetimeInputError,
+            )
         F, g = worst_cup_polytope(cup)
         objects = uncertain_object(held, uncertainty, R_CO)
         return cls(
@@ -265,6 +333,19 @@ class GraspConstraint:
         from below.
         """
         _check_single_cup(cup, "for_objects")
+        _check_grip(cup, "GraspConstraint.for_objects")
+        if (
+            not isinstance(objects, (list, tuple))
+            or not objects
+            or not all(isinstance(o, HeldObject) for o in objects)
+        ):
+            raise arguments.fail(
+                "GraspConstraint.for_objects",
+                "objects",
+                "a non-empty list of HeldObject",
+                objects,
+                RetimeInputError,
+            )
         F, g = worst_cup_polytope(cup)
         return cls(
             held=objects[0],
@@ -347,6 +428,7 @@ class GraspConstraint:
             raise RetimeInputError(
                 f"for_tool needs a ToolParameters, got {type(tool).__name__}"
             )
+        _check_grip(tool, "GraspConstraint.for_tool")
         try:
             sharing = LoadSharing(load_sharing)
         except ValueError:
@@ -385,7 +467,14 @@ class GraspConstraint:
             raise RetimeInputError(
                 f"inner_for_tool needs a ToolParameters, got {type(tool).__name__}"
             )
-        samples = np.vstack([np.zeros(6), np.asarray(guiding_samples, float)])
+        guiding_samples = arguments.array(
+            guiding_samples,
+            "guiding_samples",
+            ("count", 6),
+            where="GraspConstraint.inner_for_tool",
+            error=RetimeInputError,
+        )
+        samples = np.vstack([np.zeros(6), guiding_samples])
         inner = guided_approximation(
             ToolWrenchSet(tool), samples, max_vertices, seed=seed
         )
@@ -406,4 +495,7 @@ class GraspConstraint:
         return text
 
 
-__all__ = ["GraspConstraint", "JointLimits"]
+#: What every grasp constraint has (the retimer's duck-typed check).
+GRASP_ATTRIBUTES = ("held", "F", "g", "is_robust")
+
+__all__ = ["GRASP_ATTRIBUTES", "GraspConstraint", "JointLimits"]

@@ -16,6 +16,7 @@ import toppra
 from pydrake.trajectories import PiecewisePolynomial
 from scipy.interpolate import CubicSpline
 
+from rt_drake import arguments
 from rt_drake.retiming.errors import RetimeInputError
 
 #: Largest |q| of a waypoint (rad, or m for a prismatic joint): 16 turns, far
@@ -70,11 +71,28 @@ def path_waypoints_and_knots(path: Any) -> tuple[np.ndarray, np.ndarray]:
             equal consecutive waypoints, or knots not strictly increasing from
             0 to 1.
     """
+    where = "path"  # the argument of retime and of path_waypoints_and_knots
     if hasattr(path, "waypoints") and hasattr(path, "knots"):
-        waypoints = np.asarray(path.waypoints, dtype=float)
-        knots = np.asarray(path.knots, dtype=float)
+        waypoints = arguments.array(
+            path.waypoints,
+            "waypoints",
+            ("K", "n"),
+            where=where,
+            finite=False,
+            error=RetimeInputError,
+        )
+        knots = arguments.array(
+            path.knots, "knots", ("K",), where=where, error=RetimeInputError
+        )
     else:
-        waypoints = np.asarray(path, dtype=float)
+        waypoints = arguments.array(
+            path,
+            "waypoints",
+            ("K", "n"),
+            where=where,
+            finite=False,
+            error=RetimeInputError,
+        )
         knots = None
     if (
         waypoints.ndim != 2

@@ -48,6 +48,7 @@ retimer never returns a trajectory it knows exceeds a limit.
 from __future__ import annotations
 
 import dataclasses
+import functools
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -56,6 +57,7 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import Context
 from toppra.constraint import LinearConstraint
 
+from rt_drake import arguments
 from rt_drake.cup_frame import CupFrame
 from rt_drake.dynamics import PathCoefficients
 from rt_drake.retiming.at_rest import check_torque_at_rest
@@ -78,7 +80,7 @@ from rt_drake.retiming.errors import (
 from rt_drake.retiming.grasp_rows import ROW_TOLERANCE, ObjectRows
 from rt_drake.retiming.grid import bound_steps, initial_grid
 from rt_drake.retiming.joint_path import JointPath, ToppraPath, as_joint_path
-from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint, JointLimits
 from rt_drake.retiming.passes import (
     AffineConstraint,
     StageRows,
@@ -196,6 +198,7 @@ def retime(
             points, beyond the 1e-3 contract, after the last refinement.
     """
     _check_arguments(sd_start, sd_end, start_time)
+    _check_objects(plant, limits, grasp, context, cup)
     spline = as_joint_path(path)  # checks the path
     n = spline.num_joints
     if n != plant.num_positions() or n != limits.num_joints:
@@ -531,6 +534,30 @@ def _check_arguments(sd_start: float, sd_end: float, start_time: float) -> None:
         isinstance(start_time, (int, float, np.number)) and np.isfinite(start_time)
     ):
         raise RetimeInputError(f"start_time must be finite, got {start_time!r}")
+
+
+def _check_objects(
+    plant: object, limits: object, grasp: object, context: object, cup: object
+) -> None:
+    """Refuse arguments of the wrong type, naming them."""
+    check = functools.partial(
+        arguments.instance, where="retime", error=RetimeInputError
+    )
+    check(plant, "plant", MultibodyPlant)
+    check(limits, "limits", JointLimits)
+    if grasp is not None:
+        arguments.having(
+            grasp,
+            "grasp",
+            "GraspConstraint",
+            GRASP_ATTRIBUTES,
+            where="retime",
+            error=RetimeInputError,
+        )
+    if context is not None:
+        check(context, "context", Context)
+    if cup is not None:
+        check(cup, "cup", CupFrame)
 
 
 def _margins(

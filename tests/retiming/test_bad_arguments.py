@@ -7,6 +7,7 @@ import types
 import numpy as np
 import pytest
 
+from rt_drake.contact import CupParameters
 from rt_drake.dynamics import HeldObject
 from rt_drake.errors import InputError, TooLargeError
 from rt_drake.retiming import (
@@ -20,6 +21,7 @@ from rt_drake.retiming.path import MAX_ABS_POSITION
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 PATH = np.array([HOME, HOME + [-0.4, 0.1, -0.2, 0.0, 0.1, -0.5]])
+CUP = CupParameters()
 
 
 @pytest.fixture(scope="module")
@@ -72,7 +74,7 @@ def test_limits_of_the_wrong_length_name_the_key(plant, scenario):
 def test_a_grasp_constraint_with_a_zero_row_is_refused():
     held = HeldObject(mass=1.0, p_CoScm_C=np.zeros(3), I_Scm_C=np.eye(3) * 1e-3)
     F = np.vstack([np.eye(6), -np.eye(6), np.zeros((1, 6))])
-    with pytest.raises(RetimeInputError, match="grasp constraint: F row 12 is zero"):
+    with pytest.raises(RetimeInputError, match="GraspConstraint: F row 12 is zero"):
         GraspConstraint(held, F, np.ones(13))
 
 
@@ -110,6 +112,6 @@ def test_sampling_a_trajectory_too_long_for_memory_is_refused(plant):
         duration=1e6, trajectory=types.SimpleNamespace(rows=lambda: 6)
     )
     with pytest.raises(TooLargeError, match="1e\\+06 s trajectory.*at most 1000000"):
-        sample_trajectory(plant, result, held, None, None, "x", PATH, [0.0, 1.0])
+        sample_trajectory(plant, result, held, None, CUP, "x", PATH, [0.0, 1.0])
     with pytest.raises(InputError, match="period"):
-        sample_trajectory(plant, result, held, None, None, "x", PATH, [0, 1], np.nan)
+        sample_trajectory(plant, result, held, None, CUP, "x", PATH, [0, 1], np.nan)
