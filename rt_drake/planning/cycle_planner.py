@@ -35,6 +35,7 @@ import zlib
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 
+from rt_drake import arguments
 from rt_drake.errors import InputError
 from rt_drake.phase import Phase
 from rt_drake.planning.connect import Attempt, describe, ik_line, through
@@ -105,6 +106,7 @@ class CyclePlanner:
         budget_s: float = BUDGET_S,
         scene: PlanningScene | None = None,
     ) -> None:
+        arguments.instance(scenario, "scenario", Scenario, where="CyclePlanner")
         if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)):
             raise InputError(f"planner seed must be an integer, got {seed!r}")
         if not (

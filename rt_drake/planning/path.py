@@ -20,6 +20,7 @@ import dataclasses
 import numpy as np
 from scipy.interpolate import CubicSpline
 
+from rt_drake import arguments
 from rt_drake.retiming.path import chord_knots
 
 
@@ -56,10 +57,20 @@ class GeometricPath:
     knots: np.ndarray
     spline: CubicSpline
 
+    def __post_init__(self) -> None:
+        where = "GeometricPath"
+        arguments.array(self.waypoints, "waypoints", ("N", "n"), where=where)
+        arguments.array(self.knots, "knots", ("N",), where=where)
+        arguments.instance(self.spline, "spline", CubicSpline, where=where)
+
     @classmethod
     def from_waypoints(cls, waypoints: np.ndarray) -> GeometricPath:
         """Fit the clamped chord-length spline through ``waypoints`` (N, n)."""
-        waypoints = np.array(waypoints, dtype=float)
+        waypoints = np.array(
+            arguments.array(
+                waypoints, "waypoints", ("N", "n"), where="GeometricPath.from_waypoints"
+            )
+        )
         knots = chord_knots(waypoints)
         spline = CubicSpline(knots, waypoints, bc_type="clamped")
         waypoints.setflags(write=False)
