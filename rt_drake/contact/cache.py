@@ -68,6 +68,9 @@ def cache_path(
     cup: CupParameters | ToolParameters, directory: Path | None = None
 ) -> Path:
     """Return where the wrench set of ``cup`` (or of a tool) is cached."""
+    arguments.instance(cup, "cup", (CupParameters, ToolParameters), where="cache_path")
+    if directory is not None:
+        arguments.path(directory, "directory", where="cache_path")
     directory = default_cache_dir() if directory is None else Path(directory)
     kind = "wrench_polytope"
     if isinstance(cup, ToolParameters):
@@ -92,6 +95,8 @@ def save_polytope(path: str | Path, polytope: WrenchPolytope, **extra: Any) -> N
     Raises:
         InputError: ``path`` cannot be written (a directory, under a file).
     """
+    arguments.path(path, "path", where="save_polytope")
+    arguments.instance(polytope, "polytope", WrenchPolytope, where="save_polytope")
     arrays: dict[str, Any] = {
         "F": polytope.F,
         "g": polytope.g,
@@ -145,7 +150,10 @@ def load_polytope(
             of this format version, written for other parameters (which) or
             another tool, or arrays that are not a consistent polytope.
     """
-    path = Path(path)
+    path = arguments.path(path, "path", where="load_polytope")
+    arguments.instance(
+        cup, "cup", (CupParameters, ToolParameters), where="load_polytope"
+    )
     if not path.is_file():
         raise InputError(f"wrench polytope file '{path}' does not exist")
     try:

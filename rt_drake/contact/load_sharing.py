@@ -178,6 +178,7 @@ def shared_load_polytope(tool: ToolParameters) -> tuple[np.ndarray, np.ndarray]:
         ToolParameterError: see :func:`rim_springs`; g <= 0 (the object at
             rest with no load would already lift a rim point).
     """
+    arguments.instance(tool, "tool", ToolParameters, where="shared_load_polytope")
     springs = rim_springs(tool)
     split, n0 = springs.split, -springs.split @ springs.suction  # n(0)
     normal_part = np.zeros((3, 6))

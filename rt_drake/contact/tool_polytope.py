@@ -61,6 +61,7 @@ def tool_summands(tool: ToolParameters) -> tuple[list[np.ndarray], np.ndarray]:
         (apex 0, then the k_i base vertices), and the (6,) wrench
         ``sum_i Ad_i [0, 0, 0, 0, 0, -P_i A_i]``.
     """
+    arguments.instance(tool, "tool", ToolParameters, where="tool_summands")
     summands, offset = [], np.zeros(6)
     for mount in tool.cups:
         adjoint = mount.adjoint()
@@ -94,6 +95,7 @@ def tool_symmetry(tool: ToolParameters) -> np.ndarray | None:
     of rim points down to 2; it is valid when it maps the set of rim pyramids
     (in T) onto itself and fixes the suction wrench.
     """
+    arguments.instance(tool, "tool", ToolParameters, where="tool_symmetry")
     summands, offset = tool_summands(tool)
     extent = max(float(np.abs(np.vstack(summands)).max()), float(np.abs(offset).max()))
     atol = _SYMMETRY_TOL * max(extent, 1.0)

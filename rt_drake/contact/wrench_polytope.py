@@ -184,6 +184,9 @@ def with_suction_force(
         InputError: ``suction_force`` not > 0 (the cup parameters' own check),
             or a multi-cup tool's set (each cup has its own suction force).
     """
+    where = "with_suction_force"
+    arguments.instance(polytope, "polytope", WrenchPolytope, where=where)
+    arguments.number(suction_force, "suction_force", where=where)
     if isinstance(polytope.cup, ToolParameters):
         raise InputError(
             "with_suction_force takes one cup's W_c, got a tool's set "

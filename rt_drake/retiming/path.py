@@ -44,7 +44,14 @@ def chord_knots(waypoints: np.ndarray) -> np.ndarray:
         RetimeInputError (a ValueError): fewer than two waypoints, or two
             consecutive ones equal (zero chord: the knots would not increase).
     """
-    waypoints = np.asarray(waypoints, dtype=float)
+    waypoints = arguments.array(
+        waypoints,
+        "waypoints",
+        ("N", "n"),
+        where="chord_knots",
+        finite=False,
+        error=RetimeInputError,
+    )
     if waypoints.ndim != 2 or waypoints.shape[0] < 2:
         raise RetimeInputError(f"need (N >= 2, n) waypoints, got {waypoints.shape=}")
     chords = np.linalg.norm(np.diff(waypoints, axis=0), axis=1)
