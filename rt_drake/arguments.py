@@ -41,11 +41,12 @@ def describe(value: Any) -> str:
         try:
             array = np.asarray(value, dtype=float)
         except (TypeError, ValueError):
-            return f"{type(value).__name__} of {len(value)} non-numbers"
+            return f"{type(value).__name__} of {len(value)} items, not a numeric array"
         text = f"{type(value).__name__} of shape {array.shape}"
-        bad = np.argwhere(~np.isfinite(array))
-        if bad.size:
-            index = tuple(int(i) for i in bad[0])
+        if array.ndim == 0 and not np.isfinite(array):
+            text += f" with {array.item()}"
+        elif not np.all(np.isfinite(array)):
+            index = tuple(int(i) for i in np.argwhere(~np.isfinite(array))[0])
             text += f" with {array[index]} at {index}"
         return text
     return type(value).__name__
@@ -209,16 +210,14 @@ def _shape_matches(actual: tuple[int, ...], shape: Shape) -> bool:
 
 
 def _range_text(low: float | None, high: float | None, above: float | None) -> str:
-    parts = []
-    if above is not None:
-        parts.append(f"> {above:g}")
+    parts = [] if above is None else [f"> {above:g}"]
     if low is not None and high is not None:
-        return f" in [{low:g}, {high:g}]"
-    if low is not None:
+        parts.append(f"in [{low:g}, {high:g}]")
+    elif low is not None:
         parts.append(f">= {low:g}")
-    if high is not None:
+    elif high is not None:
         parts.append(f"<= {high:g}")
-    return (" " + " and ".join(parts)) if parts else ""
+    return " " + " and ".join(parts) if parts else ""
 
 
 __all__ = [
