@@ -120,3 +120,23 @@ def test_the_approximation_refuses_sizes_it_cannot_afford(W, kwargs, words):
 def test_the_sampler_refuses_a_negative_seed():
     with pytest.raises(InputError, match="seed"):
         object_wrench_sampler(seed=-1)
+
+
+def test_is_realizable_takes_lists_as_numpy_would(W):
+    rng = np.random.default_rng(1)
+    wrenches = rng.normal(scale=[0.1, 0.1, 0.02, 3.0, 3.0, 15.0], size=(40, 6))
+    expected = np.all(wrenches @ W.F.T <= W.g + 1e-9, axis=1)  # F w <= g
+    assert 0 < expected.sum() < len(expected)
+    got = is_realizable(wrenches.tolist(), W.F.tolist(), W.g.tolist())
+    assert np.array_equal(got, expected)
+
+
+@pytest.mark.parametrize("cup", [None, "paper cup", {"radius": 0.0125}])
+def test_the_exact_polytope_of_something_not_a_cup_is_refused(cup):
+    from rt_drake.contact import contact_wrench_polytope
+
+    with pytest.raises(InputError) as info:
+        contact_wrench_polytope(cup)
+    message = str(info.value)
+    assert message.startswith("contact_wrench_polytope: cup must be a CupParameters")
+    assert type(cup).__name__ in message or "None" in message

@@ -7,7 +7,7 @@ import types
 import numpy as np
 import pytest
 
-from rt_drake.contact import CupParameters
+from rt_drake.contact import CupMount, CupParameters, ToolParameters
 from rt_drake.dynamics import HeldObject
 from rt_drake.errors import InputError, TooLargeError
 from rt_drake.retiming import (
@@ -18,6 +18,7 @@ from rt_drake.retiming import (
     sample_trajectory,
 )
 from rt_drake.retiming.path import MAX_ABS_POSITION
+from rt_drake.uncertainty import ObjectUncertainty
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 PATH = np.array([HOME, HOME + [-0.4, 0.1, -0.2, 0.0, 0.1, -0.5]])
@@ -115,3 +116,35 @@ def test_sampling_a_trajectory_too_long_for_memory_is_refused(plant):
         sample_trajectory(plant, result, held, None, CUP, "x", PATH, [0.0, 1.0])
     with pytest.raises(InputError, match="period"):
         sample_trajectory(plant, result, held, None, CUP, "x", PATH, [0, 1], np.nan)
+
+
+HELD = HeldObject(mass=1.0, p_CoScm_C=np.zeros(3), I_Scm_C=np.eye(3) * 1e-3)
+
+
+def test_a_grasp_constraint_with_no_rows_is_refused():
+    with pytest.raises(RetimeInputError, match=r"F must be a \(rows, 6\).*\(0, 6\)"):
+        GraspConstraint(HELD, np.zeros((0, 6)), np.zeros(0))
+
+
+@pytest.mark.parametrize(
+    "build,key",
+    [
+        (lambda: GraspConstraint.for_cup(HELD, CupParameters(friction=0.0)),
+         "for_cup: cup.friction"),
+        (lambda: GraspConstraint.robust(
+            HELD, ObjectUncertainty(), CupParameters(friction_min=0.0)),
+         "robust: cup.friction_min"),
+        (lambda: GraspConstraint.for_objects(
+            [HELD], CupParameters(friction_min=0.0)),
+         "for_objects: cup.friction_min"),
+        (lambda: GraspConstraint.for_tool(
+            HELD, ToolParameters((CupMount(CupParameters(friction=0.0)),))),
+         "for_tool: cups[0].friction"),
+    ],
+)  # fmt: skip
+def test_a_frictionless_cup_is_refused_naming_friction_and_value(build, key):
+    with pytest.raises(RetimeInputError) as info:
+        build()
+    message = str(info.value)
+    assert f"GraspConstraint.{key} must be > 0" in message
+    assert message.endswith("got 0.0") and "g > 0" not in message
