@@ -103,7 +103,7 @@ def _cup(args: argparse.Namespace, scenario: Path | None):
 
     cup = CupParameters()
     if scenario is not None:
-        from rt_drake.scenario import load_scenario
+        from rt_drake.model.scenario import load_scenario
 
         cup = load_scenario(scenario).single_cup("rt-drake constraint")
     overrides = {
@@ -131,7 +131,7 @@ def run(args: argparse.Namespace) -> int:
             raise InputError(f"{flag} must be in [{low}, {high}], got {value}")
     scenario = None
     if args.scenario is not None:
-        from rt_drake.resources import resolve_scenario_path
+        from rt_drake.model.resources import resolve_scenario_path
 
         scenario = resolve_scenario_path(args.scenario)
     output_file(args.out, "--out", ".npz", {"scenario file": scenario})

@@ -14,7 +14,7 @@ set, both played with a true object drawn from the set's hardest corners.
 ``rt-drake run``), into ``report.json``, ``report.md`` and ``replay.html``.
 
 ``campaign`` and ``report``: validation campaigns over many objects, cups
-and transports, into SQLite (see :mod:`rt_drake.cli.campaign`).
+and transports, into SQLite (see :mod:`rt_drake.cli.campaign_command`).
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from rt_drake.cli import campaign
+from rt_drake.cli import campaign_command as campaign
 from rt_drake.cli._args import add_optimize_flag, int_in, nonnegative_int
 
 #: Most random paths (each is planned, retimed twice and simulated ~12 times).
@@ -106,7 +106,7 @@ def run_transport(args: argparse.Namespace) -> int:
         transport_table,
         write_transport_report,
     )
-    from rt_drake.resources import resolve_scenario_path
+    from rt_drake.model.resources import resolve_scenario_path
 
     if args.robust:
         return run_robust_transport(args)
@@ -156,7 +156,7 @@ def run_robust_transport(args: argparse.Namespace) -> int:
         write_robust_report,
     )
     from rt_drake.experiments.robust_report import summary_lines
-    from rt_drake.resources import resolve_scenario_path
+    from rt_drake.model.resources import resolve_scenario_path
 
     if args.optimize:
         raise InputError(

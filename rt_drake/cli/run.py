@@ -90,10 +90,10 @@ def run(args: argparse.Namespace) -> int:
         table_markdown,
         write_report,
     )
-    from rt_drake.phase import Phase
-    from rt_drake.resources import resolve_scenario_path
-    from rt_drake.scenario import load_scenario
+    from rt_drake.model.resources import resolve_scenario_path
+    from rt_drake.model.scenario import load_scenario
     from rt_drake.simulation import OnlineMotions, StationOptions, run_cycle
+    from rt_drake.types.phase import Phase
 
     path = resolve_scenario_path(args.scenario)
     output_directory(

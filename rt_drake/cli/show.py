@@ -47,9 +47,9 @@ def run(args: argparse.Namespace) -> int:
     from pydrake.geometry import StartMeshcat
 
     from rt_drake.atomic_file import write_text_atomically
-    from rt_drake.resources import resolve_scenario_path
-    from rt_drake.scenario import load_scenario
-    from rt_drake.visualization import publish_scene
+    from rt_drake.model.resources import resolve_scenario_path
+    from rt_drake.model.scenario import load_scenario
+    from rt_drake.simulation.visualization import publish_scene
 
     path = resolve_scenario_path(args.scenario)
     if args.html is not None:

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 from pydrake.trajectories import Trajectory
 
-from rt_drake.retiming.errors import RetimeInputError
+from rt_drake.retiming.retime_errors import RetimeInputError
 
 
 class TimeScaled(Trajectory):
