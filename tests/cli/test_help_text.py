@@ -1,0 +1,85 @@
+"""Every `--help` reads as plain text for a user.
+
+No Sphinx markup, no private module paths, no issue numbers: the help a user
+reads is not the code's docstring conventions nor the project's tracker.
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+
+import pytest
+
+from rt_drake.cli import build_parser, main
+
+#: What a user should never read in --help, and why.
+FORBIDDEN = {
+    "``": "Sphinx double backticks",
+    ":mod:": "a Sphinx role",
+    ":func:": "a Sphinx role",
+    ":class:": "a Sphinx role",
+    "rt_drake.": "a module path",
+}
+ISSUE_NUMBER = re.compile(r"\bissue \d", re.IGNORECASE)
+
+
+def command_paths(
+    parser: argparse.ArgumentParser, path: tuple[str, ...] = ()
+) -> list[tuple[str, ...]]:
+    """Every (sub)command's words, the top-level command first."""
+    paths = [path]
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for name, subparser in action.choices.items():
+                paths += command_paths(subparser, (*path, name))
+    return paths
+
+
+def problems(text: str) -> list[str]:
+    """The forbidden pieces in `text`, whatever the line wrapping."""
+    flat = " ".join(text.split())  # argparse may wrap "issue 13" across lines
+    found = [f"{why}: {piece!r}" for piece, why in FORBIDDEN.items() if piece in flat]
+    found += [f"an issue number: {m.group()!r}" for m in ISSUE_NUMBER.finditer(flat)]
+    return found
+
+
+COMMANDS = command_paths(build_parser())
+
+
+def test_the_walk_reaches_every_subcommand():
+    # Guards the test below against passing on an empty walk.
+    assert {("run",), ("constraint",), ("plan",), ("retime",), ("show",)} <= set(
+        COMMANDS
+    )
+    assert {("experiment", name) for name in ("transport", "cycle", "campaign")} <= (
+        set(COMMANDS)
+    )
+    assert ("experiment", "report") in COMMANDS
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "``rt-drake run [SCENARIO]``: simulate",
+        "see :mod:`rt_drake.cli.campaign`",
+        "checked (``rt_drake.cli._output``: a directory)",
+        "shape each MOVE for speed (issue\n   13)",
+        "a :func:`retime` and a :class:`HeldObject`",
+    ],
+)
+def test_the_check_catches_what_the_old_help_said(text):
+    # Phrases the help text held before it was rewritten.
+    assert problems(text)
+
+
+def test_plain_text_passes_the_check():
+    assert not problems("retime MOVE with joint limits only (objects may slip)")
+
+
+@pytest.mark.parametrize("words", COMMANDS, ids=lambda w: " ".join(w) or "rt-drake")
+def test_help_is_plain_text(words, capsys):
+    assert main([*words, "--help"]) == 0
+    text = capsys.readouterr().out
+    assert text.startswith("usage: rt-drake")
+    assert not problems(text), f"rt-drake {' '.join(words)} --help: {problems(text)}"
