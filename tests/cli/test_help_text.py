@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import argparse
 import re
+import shlex
+from pathlib import Path
 
 import pytest
 
@@ -83,3 +85,63 @@ def test_help_is_plain_text(words, capsys):
     text = capsys.readouterr().out
     assert text.startswith("usage: rt-drake")
     assert not problems(text), f"rt-drake {' '.join(words)} --help: {problems(text)}"
+
+
+# The command-line reference (docs/reference/cli.md): every flag of every
+# command's parser has a row there, and each row's example parses and uses it.
+
+CLI_REFERENCE = Path(__file__).resolve().parents[2] / "docs" / "reference" / "cli.md"
+LEAVES = [words for words in COMMANDS if words and words != ("experiment",)]
+
+
+def reference_section(words: tuple[str, ...]) -> str:
+    """The text under `## rt-drake <words>`, up to the next section."""
+    text = CLI_REFERENCE.read_text()
+    start = text.index(f"\n## rt-drake {' '.join(words)}\n")
+    end = text.find("\n## ", start + 1)
+    return text[start : end if end >= 0 else len(text)]
+
+
+def flag_rows(section: str) -> list[tuple[list[str], str]]:
+    """(the flags or argument of the row, its example command) per table row."""
+    rows = []
+    for line in section.splitlines():
+        cells = [cell.strip() for cell in line.strip().strip("|").split(" | ")]
+        if len(cells) == 3 and cells[0].startswith("`") and cells[2].startswith("`"):
+            names = [name.strip("`").split()[0] for name in cells[0].split(", ")]
+            rows.append((names, cells[2].strip("`")))
+    return rows
+
+
+def subparser(words: tuple[str, ...]) -> argparse.ArgumentParser:
+    parser = build_parser()
+    for word in words:
+        action = next(
+            a for a in parser._actions if isinstance(a, argparse._SubParsersAction)
+        )
+        parser = action.choices[word]
+    return parser
+
+
+@pytest.mark.parametrize("words", LEAVES, ids=" ".join)
+def test_the_reference_has_a_row_per_flag(words):
+    rows = flag_rows(reference_section(words))
+    documented = {name for names, _ in rows for name in names}
+    for action in subparser(words)._actions:
+        if isinstance(action, argparse._HelpAction):
+            continue
+        names = action.option_strings or [action.dest]
+        assert set(names) <= documented, f"rt-drake {' '.join(words)}: {names}"
+
+
+@pytest.mark.parametrize("words", LEAVES, ids=" ".join)
+def test_each_example_parses_and_uses_its_flag(words):
+    parser = build_parser()
+    for names, example in flag_rows(reference_section(words)):
+        argv = shlex.split(example)
+        assert argv[: 1 + len(words)] == ["rt-drake", *words], example
+        args = parser.parse_args(argv[1:])  # a usage error exits: the test fails
+        assert args.run is not None
+        flags = [name for name in names if name.startswith("-")]
+        if flags:
+            assert any(flag in argv for flag in flags), example
