@@ -33,7 +33,8 @@ contact > types > errors.
   path optimisation: ``MoveOptimizer``, ``MoveOptimizerOptions``,
   ``OptimizedMove``;
 - simulation: ``MakeStation``, ``run_cycle``, ``OnlineMotions``;
-- scenarios: ``load_scenario``, ``Scenario``; phases: ``Phase``;
+- scenarios: ``load_scenario``, ``Scenario``, the shipped files'
+  ``scenarios_dir`` and ``models_dir``; phases: ``Phase``;
 - errors: ``RtDrakeError`` (the base of every error rt_drake raises on
   purpose), ``InputError``, ``ScenarioError``, ``TooLargeError``,
   ``RetimeError``, ``PlanningError``.
@@ -67,6 +68,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
     from rt_drake.errors import InputError, RtDrakeError, ScenarioError, TooLargeError
     from rt_drake.model.held import held_object_of
     from rt_drake.model.plant import make_arm_plant
+    from rt_drake.model.resources import models_dir, scenarios_dir
     from rt_drake.model.scenario import (
         Scenario,
         load_scenario,
@@ -150,6 +152,8 @@ _LAZY: dict[str, str] = {
     "save_trajectory": "rt_drake.retiming",
     "Scenario": "rt_drake.model.scenario",
     "load_scenario": "rt_drake.model.scenario",
+    "models_dir": "rt_drake.model.resources",
+    "scenarios_dir": "rt_drake.model.resources",
     "MakeStation": "rt_drake.simulation",
     "OnlineMotions": "rt_drake.simulation",
     "run_cycle": "rt_drake.simulation",
@@ -198,12 +202,14 @@ __all__ = [
     "held_object_of",
     "load_trajectory",
     "make_arm_plant",
+    "models_dir",
     "object_wrench",
     "path_waypoints_and_knots",
     "retime",
     "run_cycle",
     "sample_trajectory",
     "save_trajectory",
+    "scenarios_dir",
     "tool_wrench_polytope",
     "worst_cup_polytope",
 ]

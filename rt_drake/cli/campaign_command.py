@@ -1,16 +1,16 @@
-"""``rt-drake experiment campaign|report``: validation campaigns at scale.
+"""rt-drake experiment campaign|report: validation campaigns at scale.
 
-``campaign CAMPAIGN.yaml --out DB``: every (object, cup, trial, variant)
-row of the campaign, run locally (``--executor local``, ``--workers N``
-processes) or on Ray (``--executor ray``, ``--ray-address`` to join a
-cluster), committed one by one into the SQLite file DB. The same command
-resumes an interrupted campaign. Exit code 0 when every row is in the
-database (failed rows included: failures are data), 130 on Ctrl-C.
+campaign CAMPAIGN.yaml --out DB: every (object, cup, trial, variant) row of
+the campaign, run locally (--executor local, --workers N processes) or on
+Ray (--executor ray, --ray-address to join a cluster), committed one by one
+into the SQLite file DB. The same command resumes an interrupted campaign.
+Exit code 0 when every row is in the database (failed rows included:
+failures are data), 130 on Ctrl-C.
 
-``report DB --out DIR``: summary tables (``summary.md``, ``.csv``,
-``.json``) and plots from the database.
+report DB --out DIR: summary tables (summary.md, .csv, .json) and plots
+from the database.
 
-Registered under ``rt-drake experiment`` by :mod:`rt_drake.cli.experiment`.
+Both are subcommands of rt-drake experiment.
 """
 
 from __future__ import annotations

@@ -1,20 +1,20 @@
-"""``rt-drake experiment transport|cycle|campaign|report``: experiments in simulation.
+"""rt-drake experiment transport|cycle|campaign|report: experiments in simulation.
 
-``transport``: Table I. Random start and goal poses of one object, each MOVE
+transport: Table I. Random start and goal poses of one object, each MOVE
 retimed with and without the grasp constraint and played in the cycle's
-physics, plus a speed sweep to the slip. Writes ``results.json``,
-``report.md`` and PNG plots. With ``--optimize``, each trial also shapes its
-MOVE for speed from the same grasp to the same goal (issue 13), plays it in
-the same physics with its own sweep, and the report compares both (plus
-``optimized.png`` and ``optimized_replay.html``). With ``--robust``: each
-MOVE retimed for the nominal object and for every object of its uncertainty
-set, both played with a true object drawn from the set's hardest corners.
+physics, plus a speed sweep to the slip. Writes results.json, report.md and
+PNG plots. With --optimize, each trial also shapes its MOVE for speed from
+the same grasp to the same goal, plays it in the same physics with its own
+sweep, and the report compares both (plus optimized.png and
+optimized_replay.html). With --robust: each MOVE retimed for the nominal
+object and for every object of its uncertainty set, both played with a true
+object drawn from the set's hardest corners.
 
-``cycle``: Table II. The four-object cycle with its timing breakdown (as
-``rt-drake run``), into ``report.json``, ``report.md`` and ``replay.html``.
+cycle: Table II. The four-object cycle with its timing breakdown (as
+rt-drake run), into report.json, report.md and replay.html.
 
-``campaign`` and ``report``: validation campaigns over many objects, cups
-and transports, into SQLite (see :mod:`rt_drake.cli.campaign_command`).
+campaign and report: validation campaigns over many objects, cups and
+transports, into SQLite (see rt-drake experiment campaign --help).
 """
 
 from __future__ import annotations

@@ -1,21 +1,21 @@
-"""``rt-drake plan SCENARIO --object NAME``: collision-free paths of one cycle.
+"""rt-drake plan SCENARIO --object NAME: collision-free paths of one cycle.
 
 Plans APPROACH (from the robot's home), REACH and MOVE for object NAME from
 its start pose to its goal pose, prints each phase's timing breakdown and,
-with ``--out``, writes the chosen phase's joint waypoints as CSV (one row per
-waypoint, radians; ``#`` header). The clamped chord-length spline through
-those waypoints is the planned path (``rt_drake.planning.GeometricPath``),
-the input of ``rt-drake retime SCENARIO --waypoints FILE.csv --object NAME``.
+with --out, writes the chosen phase's joint waypoints as CSV (one row per
+waypoint, radians; # header). The planned path is the clamped cubic spline
+through those waypoints with chord-length knots, the input of
+rt-drake retime SCENARIO --waypoints FILE.csv --object NAME.
 
 Objects listed before NAME in the scenario are taken as already placed at
-their goals (the cycle's order); the others rest at their starts. ``--out``
-is checked before planning (``rt_drake.cli._output``: never the scenario
-file, a ``.csv``) and written atomically.
+their goals (the cycle's order); the others rest at their starts. --out is
+checked before planning (a .csv, never the scenario file) and written
+atomically.
 
-With ``--optimize`` (or the scenario's ``planning.optimize_move``), the MOVE
-is then shaped for speed under the grasp constraint (issue 13): the command
-prints the spline and the optimised MOVE's durations (both retimed on the
-optimiser's adaptive grid) and ``--out`` writes the optimised waypoints.
+With --optimize (or the scenario's planning.optimize_move), the MOVE is
+then shaped for speed under the grasp constraint: the command prints the
+spline and the optimised MOVE's durations (both retimed on the optimiser's
+adaptive grid) and --out writes the optimised waypoints.
 """
 
 from __future__ import annotations

@@ -1,21 +1,19 @@
-"""``rt-drake retime SCENARIO --waypoints FILE.csv --object NAME --out FILE.npz``.
+"""rt-drake retime SCENARIO --waypoints FILE.csv --object NAME --out FILE.npz.
 
 Retimes the clamped C2 spline through joint-space waypoints (one row per
-waypoint, one column per joint, rad; ``#`` starts a comment) time-optimally
-under the scenario's joint limits and, unless ``--no-grasp-constraint``, the
+waypoint, one column per joint, rad; # starts a comment) time-optimally
+under the scenario's joint limits and, unless --no-grasp-constraint, the
 grasp stability of the named object held by the scenario's cup, or by its
-multi-cup tool (``tool:``; its set for ``tool.load_sharing``, by default
-the rims' spring split, with ``robot.cup_frame`` as the tool frame T): of
-every object of its uncertainty set (and every cup of the cup's friction
-and suction range) if the scenario gives one or the flags
-``--mass-uncertainty``, ``--com-uncertainty``, ``--inertia-uncertainty``
-do (one cup only). Writes an
-``.npz`` from which anyone can re-check the result (the format of
-``rt_drake.save_trajectory``: samples every 1 ms of t, q, qd, qdd and the
-cup's pose X_WC, the object's inertia, the grasp constraint F, g, the cup,
-the path and its s'(s) profile). ``--out`` is checked before any work
-(``rt_drake.cli._output``: a ``.npz``, never an input) and written
-atomically.
+multi-cup tool (tool:; its set for tool.load_sharing, by default the rims'
+spring split, with robot.cup_frame as the tool frame T): of every object of
+its uncertainty set (and every cup of the cup's friction and suction range)
+if the scenario gives one or the flags --mass-uncertainty,
+--com-uncertainty, --inertia-uncertainty do (one cup only). Writes an .npz
+from which anyone can re-check the result (the trajectory file format:
+samples every 1 ms of t, q, qd, qdd and the cup's pose X_WC, the object's
+inertia, the grasp constraint F, g, the cup, the path and its s'(s)
+profile). --out is checked before any work (a .npz, never an input) and
+written atomically.
 """
 
 from __future__ import annotations

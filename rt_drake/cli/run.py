@@ -1,12 +1,11 @@
-"""``rt-drake run [SCENARIO]``: simulate the whole pick-and-place cycle.
+"""rt-drake run [SCENARIO]: simulate the whole pick-and-place cycle.
 
 Every object is approached, reached, attached, moved (planned and retimed
 online, critically fast under the grasp constraint) and detached, in a Drake
 simulation with suction physics. Prints the paper's Table II for this run
-and writes ``report.json``, ``report.md`` and ``replay.html`` (a Meshcat
-recording that plays offline) into ``--out``, checked before the
-simulation starts (``rt_drake.cli._output``: a directory, none of its files
-an input) and written atomically.
+and writes report.json, report.md and replay.html (a Meshcat recording that
+plays offline) into --out, checked before the simulation starts (a
+directory, none of its files an input) and written atomically.
 """
 
 from __future__ import annotations
@@ -62,7 +61,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="plan each motion when its phase starts, as the paper did, instead "
         "of during the motion and wait before it (the arm waits for all of it)",
     )
-    add_optimize_flag(parser, "shape each MOVE for speed (issue 13)")
+    add_optimize_flag(parser, "shape each MOVE for speed")
     parser.add_argument(
         "--time-step",
         type=float_in(1e-4, 0.01),

@@ -1,11 +1,10 @@
-"""``rt-drake show SCENARIO [--html FILE] [--wait]``: the cell in Meshcat.
+"""rt-drake show SCENARIO [--html FILE] [--wait]: the cell in Meshcat.
 
 Builds the scenario's plant (robot at home, objects at their start poses, or
-at their goals with ``--goals``), publishes it to Drake's Meshcat and, with
-``--html``, writes a self-contained HTML file of the scene that opens offline
-in a browser. ``--html`` is checked before anything is built
-(``rt_drake.cli._output``: an ``.html``, never the scenario file) and
-written atomically.
+at their goals with --goals), publishes it to Drake's Meshcat and, with
+--html, writes a self-contained HTML file of the scene that opens offline
+in a browser. --html is checked before anything is built (an .html, never
+the scenario file) and written atomically.
 """
 
 from __future__ import annotations
