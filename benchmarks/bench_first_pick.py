@@ -30,7 +30,7 @@ import time
 
 def measure(scenario: str, repeats: int) -> dict:
     """CPU and wall seconds of the first pick, and of ``repeats`` more."""
-    from rt_drake.scenario import load_scenario
+    from rt_drake.model.scenario import load_scenario
     from rt_drake.simulation.online_motions import OnlineMotions
 
     sc = load_scenario(scenario)

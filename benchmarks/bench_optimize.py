@@ -7,7 +7,7 @@ as in ``rt_drake.experiments.transport_trial`` (planner seed ``seed +
 index``); for a scenario whose ``random_transport.start_on_cup`` is set,
 from IK at the start pose with the object already on the cup (the grasp yaw
 flip whose MOVE plans). Then the planner's spline MOVE is planned and
-:class:`rt_drake.planning.shape.MoveOptimizer` shortens it.
+:class:`rt_drake.shaping.MoveOptimizer` shortens it.
 
 Printed per transport (durations in s, all under the exact grasp
 constraint, all by ``rt_drake.retime``): ``spline100`` the spline path
@@ -39,7 +39,6 @@ from rt_drake import (
     CupFrame,
     CyclePlanner,
     GraspConstraint,
-    HeldObject,
     JointLimits,
     PlanningError,
     cached_wrench_polytope,
@@ -47,15 +46,16 @@ from rt_drake import (
     make_arm_plant,
     retime,
 )
-from rt_drake.phase import Phase
+from rt_drake.model.held import held_object_of
+from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.planning import sample_transports
-from rt_drake.planning.shape import (
+from rt_drake.shaping import (
     Clock,
     MoveOptimizer,
     MoveOptimizerOptions,
     warm_up,
 )
-from rt_drake.resources import resolve_scenario_path
+from rt_drake.types.phase import Phase
 
 
 class Setup:
@@ -102,9 +102,7 @@ class Setup:
 
     def grasp(self, move) -> GraspConstraint:
         obj = self.scenario.object(self.name)
-        held = HeldObject.from_scenario_object(
-            dataclasses.replace(obj, grasp=Transform(move.X_OC))
-        )
+        held = held_object_of(dataclasses.replace(obj, grasp=Transform(move.X_OC)))
         return GraspConstraint(
             held, self.polytope.F, self.polytope.g, self.scenario.cup
         )
@@ -116,7 +114,7 @@ def spline_move(planner, name, X_start, X_goal, free_space, duration):
     From the bin: APPROACH and REACH from home, then the MOVE. In free space:
     the MOVE of every grasp yaw flip whose start has an IK solution, and the
     one whose ``duration(move)`` is shortest
-    (``rt_drake.experiments.transport.move_from_the_cup``); plan s counts
+    (``rt_drake.experiments.transport_experiment.move_from_the_cup``); plan s counts
     every flip's MOVE planning.
     """
     planner.set_object_pose(name, X_start)

@@ -31,13 +31,13 @@ except ImportError:  # a source checkout without `pip install -e .`
 
 from pydrake.math import RigidTransform  # noqa: E402
 
+from rt_drake.model.resources import scenarios_dir  # noqa: E402
+from rt_drake.model.scenario import load_scenario  # noqa: E402
 from rt_drake.planning import (  # noqa: E402
     CyclePlanner,
     UnreachablePoseError,
     sample_transports,
 )
-from rt_drake.resources import scenarios_dir  # noqa: E402
-from rt_drake.scenario import load_scenario  # noqa: E402
 
 PHASES = ("APPROACH", "REACH", "MOVE")
 STAGES = ("scene", "ik", "rrt", "shortcut", "spline", "check")

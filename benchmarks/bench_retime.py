@@ -46,22 +46,25 @@ from toppra.constraint import (  # noqa: E402
     SecondOrderConstraint,
 )
 
-from rt_drake.dynamics import (  # noqa: E402
-    HeldObject,
+from rt_drake.dynamics.wrench import (
     object_wrench,
     path_wrench_coefficients,
 )
-from rt_drake.planning.path import GeometricPath  # noqa: E402
-from rt_drake.plant import (
-    CUP_FRAME,  # noqa: E402
+from rt_drake.model.held import held_object_of
+from rt_drake.model.plant import (
+    CUP_FRAME,
     make_arm_plant,
 )
-from rt_drake.resources import scenarios_dir  # noqa: E402
+from rt_drake.model.resources import scenarios_dir  # noqa: E402
+from rt_drake.model.scenario import load_scenario  # noqa: E402
 from rt_drake.retiming import GraspConstraint, JointLimits, retime  # noqa: E402
 from rt_drake.retiming.passes import AffineConstraint  # noqa: E402
-from rt_drake.retiming.path import drake_path, path_waypoints_and_knots  # noqa: E402
-from rt_drake.scenario import load_scenario  # noqa: E402
-from rt_drake.uncertainty import ObjectUncertainty  # noqa: E402
+from rt_drake.types.object_uncertainty import ObjectUncertainty  # noqa: E402
+from rt_drake.types.path import (
+    GeometricPath,  # noqa: E402
+    drake_path,
+    path_waypoints_and_knots,
+)  # noqa: E402
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 
@@ -206,7 +209,7 @@ def main() -> None:
     plant = make_arm_plant(scenario)
     context = plant.CreateDefaultContext()
     limits = JointLimits.from_plant(plant, scenario.robot)
-    held = HeldObject.from_scenario_object(scenario.object(args.object))
+    held = held_object_of(scenario.object(args.object))
     grasp = GraspConstraint.for_cup(held, scenario.cup)
     grid = np.linspace(0.0, 1.0, args.gridpoints)
     paths = move_paths(args.paths)

@@ -30,11 +30,24 @@ ROOT = Path(__file__).resolve().parents[1]
 WORKER = r"""
 import inspect, json, sys, time
 import numpy as np
-from rt_drake.planning.path import GeometricPath
-from rt_drake.plant import make_arm_plant
-from rt_drake.resources import scenarios_dir
-from rt_drake.scenario import load_scenario
-from rt_drake.dynamics import HeldObject
+try:  # the layout since house 2
+    from rt_drake.model.held import held_object_of
+    from rt_drake.model.plant import make_arm_plant
+    from rt_drake.model.resources import scenarios_dir
+    from rt_drake.model.scenario import load_scenario
+    from rt_drake.types.path import GeometricPath
+    from rt_drake.dynamics.cup_frame import CupFrame
+except ImportError:  # before: root modules
+    from rt_drake.dynamics import HeldObject
+    from rt_drake.planning.path import GeometricPath
+    from rt_drake.plant import make_arm_plant
+    from rt_drake.resources import scenarios_dir
+    from rt_drake.scenario import load_scenario
+    held_object_of = HeldObject.from_scenario_object
+    try:
+        from rt_drake.cup_frame import CupFrame
+    except ImportError:
+        CupFrame = None
 try:
     from rt_drake.retiming import GraspConstraint, JointLimits, check_trajectory, retime
 except ImportError:
@@ -51,11 +64,10 @@ scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
 plant = make_arm_plant(scenario)
 context = plant.CreateDefaultContext()
 limits = JointLimits.from_plant(plant, scenario.robot)
-held = HeldObject.from_scenario_object(scenario.object("notebook"))
+held = held_object_of(scenario.object("notebook"))
 grasp = GraspConstraint.for_cup(held, scenario.cup)
 options = {}
 if "cup" in inspect.signature(retime).parameters:
-    from rt_drake.cup_frame import CupFrame
     options["cup"] = CupFrame.of(plant)
 out = {"times": [], "durations": [], "excess": []}
 for path in paths:

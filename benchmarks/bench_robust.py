@@ -10,7 +10,7 @@ suction known only down to 0.25 and 18 N), then:
 - sound: at 1 kHz, the wrench of each object of a dense sample (the set's
   corners and ``--random`` uniform draws, bodies only) by another route than the
   retimer's (Drake's body accelerations and Newton-Euler,
-  :func:`rt_drake.newton_euler.reference_object_wrenches`), against the
+  :func:`rt_drake.dynamics.newton_euler.reference_object_wrenches`), against the
   exact wrench sets of the cups at both ends of the suction range: the
   largest ``max_k F_k w / g_k - 1`` (the retimer's contract: <= 1e-3);
 - tight: the robust duration over the duration retimed with every object of
@@ -29,19 +29,22 @@ import numpy as np  # noqa: E402
 from bench_retime import move_paths  # noqa: E402
 
 from rt_drake.contact import cached_wrench_polytope  # noqa: E402
-from rt_drake.cup_frame import CupFrame  # noqa: E402
-from rt_drake.newton_euler import reference_object_wrenches  # noqa: E402
-from rt_drake.object_samples import (  # noqa: E402
+from rt_drake.dynamics.cup_frame import CupFrame  # noqa: E402
+from rt_drake.dynamics.newton_euler import reference_object_wrenches  # noqa: E402
+from rt_drake.model.plant import make_arm_plant  # noqa: E402
+from rt_drake.model.resources import scenarios_dir  # noqa: E402
+from rt_drake.model.scenario import load_scenario  # noqa: E402
+from rt_drake.retiming import GraspConstraint, JointLimits, retime  # noqa: E402
+from rt_drake.retiming.stage_rows import (
+    normalised_rows,
+    wrench_ratios,
+)  # noqa: E402
+from rt_drake.types.object_uncertainty import ObjectUncertainty  # noqa: E402
+from rt_drake.uncertainty.object_samples import (
     ObjectInertia,
     corners,
     random_objects,
 )
-from rt_drake.plant import make_arm_plant  # noqa: E402
-from rt_drake.resources import scenarios_dir  # noqa: E402
-from rt_drake.retiming import GraspConstraint, JointLimits, retime  # noqa: E402
-from rt_drake.retiming.rows import normalised_rows, wrench_ratios  # noqa: E402
-from rt_drake.scenario import load_scenario  # noqa: E402
-from rt_drake.uncertainty import ObjectUncertainty  # noqa: E402
 
 UNCERTAINTY = ObjectUncertainty(mass=0.2, com=[0.01, 0.01, 0.005], inertia=0.2)
 

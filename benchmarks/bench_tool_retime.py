@@ -44,7 +44,7 @@ from rt_drake import (  # noqa: E402
     retime,
     tool_wrench_polytope,
 )
-from rt_drake.plant import make_parser  # noqa: E402
+from rt_drake.model.parser import make_parser  # noqa: E402
 
 CUP = CupParameters(points=4, sides=3)
 TWO_CUPS = ToolParameters(

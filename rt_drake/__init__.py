@@ -5,7 +5,10 @@ The public API: import what you need from here, e.g.
 Names load on first use (PEP 562), so ``import rt_drake`` and the Drake-free
 :mod:`rt_drake.contact` stay light. Data flows one way through the layers:
 scenario -> plant -> (IK, planner) -> path -> (dynamics + grasp constraint)
--> retimer -> trajectory -> diagram simulation -> report.
+-> retimer -> trajectory -> diagram simulation -> report. The packages import
+downward only (checked by import-linter in CI): cli > experiments >
+simulation > shaping > planning | retiming > uncertainty > dynamics > model >
+contact > types > errors.
 
 - grasp stability (numpy, scipy, cdd; no Drake): ``CupParameters``,
   ``WrenchPolytope``, ``contact_wrench_polytope``, ``cached_wrench_polytope``,
@@ -16,8 +19,9 @@ scenario -> plant -> (IK, planner) -> path -> (dynamics + grasp constraint)
   W_T of any split), ``ToolWrenchSet`` (support function and LP, for inner
   approximations); retime under them with
   ``GraspConstraint.for_tool`` or ``GraspConstraint.inner_for_tool``;
-- dynamics: ``HeldObject``, ``CupFrame`` (the cup frame of a plant),
-  ``object_wrench``, ``make_arm_plant``;
+- dynamics: ``HeldObject`` (``held_object_of`` a scenario object),
+  ``CupFrame`` (the cup frame of a plant), ``object_wrench``,
+  ``make_arm_plant``;
 - what the robot does not know: ``ObjectUncertainty`` (an object's set),
   ``GraspConstraint.robust`` (hold every object of it, with the worst
   friction and suction: ``worst_cup_polytope``), ``ObjectInertia`` (objects
@@ -29,7 +33,8 @@ scenario -> plant -> (IK, planner) -> path -> (dynamics + grasp constraint)
   path optimisation: ``MoveOptimizer``, ``MoveOptimizerOptions``,
   ``OptimizedMove``;
 - simulation: ``MakeStation``, ``run_cycle``, ``OnlineMotions``;
-- scenarios: ``load_scenario``, ``Scenario``; phases: ``Phase``;
+- scenarios: ``load_scenario``, ``Scenario``, the shipped files'
+  ``scenarios_dir`` and ``models_dir``; phases: ``Phase``;
 - errors: ``RtDrakeError`` (the base of every error rt_drake raises on
   purpose), ``InputError``, ``ScenarioError``, ``TooLargeError``,
   ``RetimeError``, ``PlanningError``.
@@ -58,23 +63,22 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
         tool_wrench_polytope,
     )
     from rt_drake.contact.worst_cup import worst_cup_polytope
-    from rt_drake.cup_frame import CupFrame
-    from rt_drake.dynamics import HeldObject, object_wrench
+    from rt_drake.dynamics.cup_frame import CupFrame
+    from rt_drake.dynamics.wrench import object_wrench
     from rt_drake.errors import InputError, RtDrakeError, ScenarioError, TooLargeError
-    from rt_drake.object_samples import ObjectInertia
-    from rt_drake.phase import Phase
+    from rt_drake.model.held import held_object_of
+    from rt_drake.model.plant import make_arm_plant
+    from rt_drake.model.resources import models_dir, scenarios_dir
+    from rt_drake.model.scenario import (
+        Scenario,
+        load_scenario,
+    )
     from rt_drake.planning import (
         CyclePlanner,
         GeometricPath,
         PlannedPath,
         PlanningError,
     )
-    from rt_drake.planning.shape import (
-        MoveOptimizer,
-        MoveOptimizerOptions,
-        OptimizedMove,
-    )
-    from rt_drake.plant import make_arm_plant
     from rt_drake.retiming import (
         GraspConstraint,
         JointLimits,
@@ -89,9 +93,16 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
         sample_trajectory,
         save_trajectory,
     )
-    from rt_drake.scenario import Scenario, load_scenario
+    from rt_drake.shaping import (
+        MoveOptimizer,
+        MoveOptimizerOptions,
+        OptimizedMove,
+    )
     from rt_drake.simulation import MakeStation, OnlineMotions, run_cycle
-    from rt_drake.uncertainty import ObjectUncertainty
+    from rt_drake.types.held_object import HeldObject
+    from rt_drake.types.object_uncertainty import ObjectUncertainty
+    from rt_drake.types.phase import Phase
+    from rt_drake.uncertainty.object_samples import ObjectInertia
 
 #: Public name -> module defining it, imported on first access.
 _LAZY: dict[str, str] = {
@@ -108,24 +119,25 @@ _LAZY: dict[str, str] = {
     "is_realizable": "rt_drake.contact",
     "is_realizable_lp": "rt_drake.contact",
     "worst_cup_polytope": "rt_drake.contact",
-    "CupFrame": "rt_drake.cup_frame",
-    "HeldObject": "rt_drake.dynamics",
-    "object_wrench": "rt_drake.dynamics",
-    "ObjectInertia": "rt_drake.object_samples",
-    "ObjectUncertainty": "rt_drake.uncertainty",
+    "CupFrame": "rt_drake.dynamics.cup_frame",
+    "HeldObject": "rt_drake.types.held_object",
+    "held_object_of": "rt_drake.model.held",
+    "object_wrench": "rt_drake.dynamics.wrench",
+    "ObjectInertia": "rt_drake.uncertainty.object_samples",
+    "ObjectUncertainty": "rt_drake.types.object_uncertainty",
     "InputError": "rt_drake.errors",
     "RtDrakeError": "rt_drake.errors",
     "ScenarioError": "rt_drake.errors",
     "TooLargeError": "rt_drake.errors",
-    "Phase": "rt_drake.phase",
+    "Phase": "rt_drake.types.phase",
     "CyclePlanner": "rt_drake.planning",
-    "GeometricPath": "rt_drake.planning",
+    "GeometricPath": "rt_drake.types.path",
     "PlannedPath": "rt_drake.planning",
     "PlanningError": "rt_drake.planning",
-    "MoveOptimizer": "rt_drake.planning.shape",
-    "MoveOptimizerOptions": "rt_drake.planning.shape",
-    "OptimizedMove": "rt_drake.planning.shape",
-    "make_arm_plant": "rt_drake.plant",
+    "MoveOptimizer": "rt_drake.shaping",
+    "MoveOptimizerOptions": "rt_drake.shaping",
+    "OptimizedMove": "rt_drake.shaping",
+    "make_arm_plant": "rt_drake.model.plant",
     "GraspConstraint": "rt_drake.retiming",
     "JointLimits": "rt_drake.retiming",
     "RetimeError": "rt_drake.retiming",
@@ -134,12 +146,14 @@ _LAZY: dict[str, str] = {
     "TrajectoryCheck": "rt_drake.retiming",
     "check_trajectory": "rt_drake.retiming",
     "load_trajectory": "rt_drake.retiming",
-    "path_waypoints_and_knots": "rt_drake.retiming",
+    "path_waypoints_and_knots": "rt_drake.types.path",
     "retime": "rt_drake.retiming",
     "sample_trajectory": "rt_drake.retiming",
     "save_trajectory": "rt_drake.retiming",
-    "Scenario": "rt_drake.scenario",
-    "load_scenario": "rt_drake.scenario",
+    "Scenario": "rt_drake.model.scenario",
+    "load_scenario": "rt_drake.model.scenario",
+    "models_dir": "rt_drake.model.resources",
+    "scenarios_dir": "rt_drake.model.resources",
     "MakeStation": "rt_drake.simulation",
     "OnlineMotions": "rt_drake.simulation",
     "run_cycle": "rt_drake.simulation",
@@ -185,14 +199,17 @@ __all__ = [
     "is_realizable",
     "is_realizable_lp",
     "load_scenario",
+    "held_object_of",
     "load_trajectory",
     "make_arm_plant",
+    "models_dir",
     "object_wrench",
     "path_waypoints_and_knots",
     "retime",
     "run_cycle",
     "sample_trajectory",
     "save_trajectory",
+    "scenarios_dir",
     "tool_wrench_polytope",
     "worst_cup_polytope",
 ]

@@ -12,9 +12,12 @@ from pydrake.multibody.inverse_kinematics import InverseKinematics
 from pydrake.solvers import Solve
 from pydrake.trajectories import PiecewisePolynomial
 
-from rt_drake.phase import Phase
-from rt_drake.plant import CUP_FRAME, make_arm_plant
+from rt_drake.model.plant import (
+    CUP_FRAME,
+    make_arm_plant,
+)
 from rt_drake.simulation import Motion, PhasePart, PlanTimes
+from rt_drake.types.phase import Phase
 
 
 def min_jerk(

@@ -1,6 +1,6 @@
 """The batched serial-chain kinematics against Drake's, and the retimer on both.
 
-Each arm's object-wrench coefficients from :mod:`rt_drake.chain` equal
+Each arm's object-wrench coefficients from :mod:`rt_drake.dynamics.chain` equal
 Drake's Jacobian-and-bias route (:func:`path_wrench_coefficients`) on random
 paths: the Denso arm, the UR5e, and an arm on a turntable (a 7-joint chain).
 The retimer, given the chain, returns what it returns with Drake's route
@@ -18,10 +18,12 @@ from pydrake.math import RigidTransform, RollPitchYaw
 from pydrake.multibody.plant import MultibodyPlant
 
 from rt_drake import CupFrame, GraspConstraint, HeldObject, JointLimits, retime
-from rt_drake.dynamics import path_wrench_coefficients
-from rt_drake.plant import make_arm_plant, make_parser
-from rt_drake.resources import scenarios_dir
-from rt_drake.scenario import load_scenario
+from rt_drake.dynamics.wrench import path_wrench_coefficients
+from rt_drake.model.held import held_object_of
+from rt_drake.model.parser import make_parser
+from rt_drake.model.plant import make_arm_plant
+from rt_drake.model.resources import scenarios_dir
+from rt_drake.model.scenario import load_scenario
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 
@@ -86,7 +88,7 @@ def test_retime_on_the_chain_equals_retime_on_drakes_route(notebook):
     """The same path retimed with the chain and with Drake's per-point route."""
     obj, cup_config = notebook
     plant = _scenario_plant("stack_four_objects")
-    held = HeldObject.from_scenario_object(obj)
+    held = held_object_of(obj)
     grasp = GraspConstraint.for_cup(held, cup_config)
     limits = JointLimits.from_plant(plant)
     path = np.array(

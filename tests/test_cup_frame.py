@@ -23,19 +23,19 @@ from scipy.interpolate import CubicSpline
 from rt_drake import (
     CupFrame,
     GraspConstraint,
-    HeldObject,
     InputError,
     JointLimits,
     check_trajectory,
     retime,
 )
-from rt_drake.cup_frame import vertical_base_joint
-from rt_drake.dynamics import path_wrench_coefficients
-from rt_drake.newton_euler import reference_object_wrench
-from rt_drake.plant import make_parser
-from rt_drake.resources import models_dir
+from rt_drake.dynamics.cup_frame import vertical_base_joint
+from rt_drake.dynamics.newton_euler import reference_object_wrench
+from rt_drake.dynamics.wrench import path_wrench_coefficients
+from rt_drake.model.held import held_object_of
+from rt_drake.model.parser import make_parser
+from rt_drake.model.resources import models_dir
+from rt_drake.model.scenario import RobotConfig
 from rt_drake.retiming import RetimeInputError
-from rt_drake.scenario import RobotConfig
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 SWING = [
@@ -83,7 +83,7 @@ PLANTS = {"two arms": (two_arms, 6), "turntable": (turntable_and_arm, 1)}
 def case(request, scenario):
     build, first = PLANTS[request.param]
     plant = build()
-    held = HeldObject.from_scenario_object(scenario.object("notebook"))
+    held = held_object_of(scenario.object("notebook"))
     grasp = GraspConstraint.for_cup(held, scenario.cup)
     return plant, first, grasp
 
@@ -101,7 +101,7 @@ def test_only_a_joint_of_the_cups_chain_gives_gravity(case):
 
 
 def test_a_joint_outside_the_cups_chain_sends_the_retimer_to_drake(case):
-    """No batched chain (rt_drake.chain) for these plants: Drake's route."""
+    """No batched chain (rt_drake.dynamics.chain) for these plants: Drake's route."""
     plant, _, _ = case
     assert CupFrame.of(plant).chain is None
 
@@ -165,7 +165,7 @@ def test_two_arms_each_retime_with_their_own_cup(scenario):
     _arm(plant, parser, RigidTransform(), with_tool=True)
     plant.Finalize()
     tools = _instances(plant, "tool")
-    held = HeldObject.from_scenario_object(scenario.object("notebook"))
+    held = held_object_of(scenario.object("notebook"))
     grasp = GraspConstraint.for_cup(held, scenario.cup)
     limits = JointLimits.from_plant(plant)
     for first, tool in zip((0, 6), tools, strict=True):

@@ -1,4 +1,4 @@
-"""rt_drake.dynamics: the object wrench along a path, against finite differences.
+"""rt_drake.dynamics.wrench: the object wrench along a path, against finite differences.
 
 The reference is independent of Drake's Jacobians and bias terms: the cup
 pose X_WC(t) from forward kinematics along a timed path, finite-differenced
@@ -15,14 +15,19 @@ from pydrake.math import RigidTransform, RollPitchYaw, RotationMatrix
 from pydrake.multibody.plant import MultibodyPlant
 from scipy.interpolate import CubicSpline
 
-from rt_drake.dynamics import (
-    HeldObject,
+from rt_drake.dynamics.wrench import (
     joint_torques,
     object_wrench,
     path_torque_coefficients,
     path_wrench_coefficients,
 )
-from rt_drake.plant import CUP_FRAME, ObjectMode, add_scenario_models
+from rt_drake.model.held import held_object_of
+from rt_drake.model.plant import (
+    CUP_FRAME,
+    ObjectMode,
+    add_scenario_models,
+)
+from rt_drake.types.held_object import HeldObject
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 WAYPOINTS = np.array(
@@ -165,7 +170,7 @@ def test_object_load_adds_its_weight_to_the_shoulder(plant, held):
 
 def test_held_object_from_scenario(scenario):
     obj = scenario.object("notebook")
-    held = HeldObject.from_scenario_object(obj)
+    held = held_object_of(obj)
     assert held.mass == pytest.approx(0.551)
     # Grasp: cup 12.5 mm above the box centre, flipped: CoM 12.5 mm along +z_C.
     np.testing.assert_allclose(held.p_CoScm_C, [0, 0, 0.0125], atol=1e-12)
@@ -178,8 +183,8 @@ def test_held_object_from_plant_matches_model_file(scenario):
     add_scenario_models(plant, scenario, ObjectMode.FREE)
     plant.Finalize()
     for obj in scenario.objects:
-        a = HeldObject.from_scenario_object(obj, plant)
-        b = HeldObject.from_scenario_object(obj)
+        a = held_object_of(obj, plant)
+        b = held_object_of(obj)
         assert a.mass == b.mass
         np.testing.assert_allclose(a.p_CoScm_C, b.p_CoScm_C)
         np.testing.assert_allclose(a.I_Scm_C, b.I_Scm_C)
@@ -188,10 +193,8 @@ def test_held_object_from_plant_matches_model_file(scenario):
 def test_held_object_moves_inertia_through_the_grasp(scenario):
     obj = scenario.object("kindle_box")
     X_OC = RigidTransform(RollPitchYaw(np.pi, 0.3, np.pi / 2), [0.01, 0.02, 0.014])
-    held = HeldObject.from_scenario_object(
-        dataclasses.replace(obj, grasp=Transform(X_OC))
-    )
-    plain = HeldObject.from_scenario_object(obj)  # grasp with R_OC diagonal
+    held = held_object_of(dataclasses.replace(obj, grasp=Transform(X_OC)))
+    plain = held_object_of(obj)  # grasp with R_OC diagonal
     I_O = np.diag(np.abs(np.diag(plain.I_Scm_C)))  # principal moments in O
     R_CO = X_OC.rotation().inverse().matrix()
     np.testing.assert_allclose(held.I_Scm_C, R_CO @ I_O @ R_CO.T, atol=1e-12)
@@ -229,7 +232,10 @@ def test_gravity_term_is_the_cup_rotation_of_g(plant, held):
     in C from its Jacobian column; with a tilted gravity no joint fits and
     they take the cup's rotation. Both must equal the reference.
     """
-    from rt_drake.cup_frame import CupFrame, vertical_base_joint
+    from rt_drake.dynamics.cup_frame import (
+        CupFrame,
+        vertical_base_joint,
+    )
 
     spline = _path()
     s = np.linspace(0.0, 1.0, 25)

@@ -3,17 +3,17 @@
 import numpy as np
 import pytest
 
-from rt_drake.dynamics import HeldObject
-from rt_drake.inertial_set import (
+from rt_drake.retiming.robust_rows import Layout, vertex_weights
+from rt_drake.retiming.set_tables import parameter_columns
+from rt_drake.types.held_object import HeldObject
+from rt_drake.types.object_uncertainty import ObjectUncertainty
+from rt_drake.uncertainty.inertial_set import (
     held_object,
     inertial_parameters,
     object_list,
     parallel_axes,
     uncertain_object,
 )
-from rt_drake.retiming.robust_rows import Layout, vertex_weights
-from rt_drake.retiming.set_tables import parameter_columns
-from rt_drake.uncertainty import ObjectUncertainty
 
 NOTEBOOK = HeldObject(
     mass=0.551,

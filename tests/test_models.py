@@ -9,15 +9,15 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.plant import AddMultibodyPlantSceneGraph, MultibodyPlant
 from pydrake.systems.framework import DiagramBuilder
 
-from rt_drake.plant import (
+from rt_drake.model.object_model import OBJECT_BODY
+from rt_drake.model.parser import make_parser
+from rt_drake.model.plant import (
     CUP_FRAME,
-    OBJECT_BODY,
     add_scenario_models,
     home_configuration,
-    make_parser,
 )
-from rt_drake.resources import models_dir
-from rt_drake.scenario import load_scenario
+from rt_drake.model.resources import models_dir
+from rt_drake.model.scenario import load_scenario
 
 MODEL_FILES = sorted(
     p for ext in ("urdf", "sdf") for p in models_dir().glob(f"*/*.{ext}")

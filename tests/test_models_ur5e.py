@@ -18,7 +18,6 @@ from pydrake.multibody.plant import MultibodyPlant
 from rt_drake import (
     CyclePlanner,
     GraspConstraint,
-    HeldObject,
     JointLimits,
     OnlineMotions,
     check_trajectory,
@@ -26,8 +25,16 @@ from rt_drake import (
     retime,
     run_cycle,
 )
-from rt_drake.plant import CUP_FRAME, make_arm_plant, make_parser
-from rt_drake.resources import models_dir, scenarios_dir
+from rt_drake.model.held import held_object_of
+from rt_drake.model.parser import make_parser
+from rt_drake.model.plant import (
+    CUP_FRAME,
+    make_arm_plant,
+)
+from rt_drake.model.resources import (
+    models_dir,
+    scenarios_dir,
+)
 
 # UR's DH table, UR5e: (d, a, alpha) of joints 1..6 (m, rad); theta = q.
 DH = [
@@ -165,7 +172,7 @@ def test_scenario_plans_a_move_and_retimes_it_under_grasp_and_torques(scenario):
 
     limits = JointLimits.from_plant(plant, scenario.robot)
     np.testing.assert_allclose(limits.torque, EFFORT)  # robot.limit_torques
-    grasp = GraspConstraint.for_cup(HeldObject.from_scenario_object(obj), scenario.cup)
+    grasp = GraspConstraint.for_cup(held_object_of(obj), scenario.cup)
     # TOPP-RA constrains the grid points only. At the cycle's 100 points this
     # path overshoots the shoulder-lift torque by about 8 % between them (the
     # check's 5 % tolerance was measured on VS-060 paths); at 400, by about 3 %.

@@ -6,8 +6,12 @@ import numpy as np
 import pytest
 
 from rt_drake.errors import InputError
-from rt_drake.object_model import check_inertia, model_file, read_model_inertia
-from rt_drake.resources import models_dir
+from rt_drake.model.object_model import (
+    model_file,
+    read_model_inertia,
+)
+from rt_drake.model.resources import models_dir
+from rt_drake.types.held_object import check_inertia
 
 SDF = (models_dir() / "objects" / "notebook.sdf").read_text()
 INERTIA = "<ixx>0.000928</ixx><iyy>0.00211</iyy><izz>0.00298</izz>"

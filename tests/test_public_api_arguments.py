@@ -257,6 +257,11 @@ CASES = [
     # planning, scenario, simulation
     ("GeometricPath", lambda e: GeometricPath.from_waypoints([1.0, 2.0]),
      ["waypoints must be a (N, n) array", "got list of shape (2,)"]),
+    ("held_object_of", lambda e: rt_drake.held_object_of(None),
+     ["held_object_of: obj must be an ObjectConfig", "got None"]),
+    ("held_object_of",
+     lambda e: rt_drake.held_object_of(e.scenario.objects[0], plant="plant"),
+     ["held_object_of: plant must be a MultibodyPlant", "got str 'plant'"]),
     ("load_scenario", lambda e: load_scenario(None),
      ["load_scenario: path must be a file path", "got None"]),
     ("make_arm_plant", lambda e: make_arm_plant("stack_four_objects"),
@@ -312,6 +317,8 @@ NOT_CALLED = {
     "TimedPath",  # built by retime
     "TrajectoryCheck",
     "default_cache_dir",
+    "models_dir",
+    "scenarios_dir",
     "warm_up",
 }
 

@@ -4,13 +4,16 @@ import numpy as np
 import pytest
 from scipy.interpolate import CubicSpline
 
-from rt_drake.dynamics import (
-    HeldObject,
+from rt_drake.dynamics.regressor import (
+    path_wrench_regressor,
+    torque_regressor,
+)
+from rt_drake.dynamics.wrench import (
     path_torque_coefficients,
     path_wrench_coefficients,
 )
-from rt_drake.inertial_set import inertial_parameters
-from rt_drake.regressor import path_wrench_regressor, torque_regressor
+from rt_drake.types.held_object import HeldObject
+from rt_drake.uncertainty.inertial_set import inertial_parameters
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 WAYPOINTS = np.array(

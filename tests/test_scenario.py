@@ -5,7 +5,8 @@ from __future__ import annotations
 import pytest
 
 from rt_drake.errors import ScenarioError
-from rt_drake.scenario import VacuumModel, load_scenario
+from rt_drake.model.scenario import load_scenario
+from rt_drake.model.vacuum import VacuumModel
 
 
 def test_shipped_scenarios_load(scenario_paths):
@@ -229,7 +230,7 @@ def test_empty_objects_binary_and_directories_are_refused(tmp_path, scenario_pat
 def test_an_object_model_with_an_invalid_mass_is_refused_at_load(
     tmp_path, scenario_paths
 ):
-    from rt_drake.resources import models_dir
+    from rt_drake.model.resources import models_dir
 
     sdf = (models_dir() / "objects" / "notebook.sdf").read_text()
     (tmp_path / "o.sdf").write_text(sdf.replace("<mass>0.551</mass>", "<mass>0</mass>"))

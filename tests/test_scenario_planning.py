@@ -5,9 +5,12 @@ from __future__ import annotations
 import pytest
 
 from rt_drake.errors import ScenarioError
-from rt_drake.planning.shape import MoveOptimizerOptions
-from rt_drake.resources import scenarios_dir
-from rt_drake.scenario import PlanningConfig, load_scenario
+from rt_drake.model.resources import scenarios_dir
+from rt_drake.model.scenario import (
+    PlanningConfig,
+    load_scenario,
+)
+from rt_drake.shaping import MoveOptimizerOptions
 
 
 def test_planning_defaults_when_the_key_is_absent(scenario_paths):

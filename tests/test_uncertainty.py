@@ -7,9 +7,9 @@ import pytest
 
 from rt_drake.contact import CupParameters
 from rt_drake.errors import InputError, ScenarioError
-from rt_drake.resources import scenarios_dir
-from rt_drake.scenario import load_scenario
-from rt_drake.uncertainty import ObjectUncertainty
+from rt_drake.model.resources import scenarios_dir
+from rt_drake.model.scenario import load_scenario
+from rt_drake.types.object_uncertainty import ObjectUncertainty
 
 
 @pytest.mark.parametrize(

@@ -1,23 +1,22 @@
-"""``rt-drake constraint``: compute a cup's grasp-stability constraint F w <= g.
+"""rt-drake constraint: compute a cup's grasp-stability constraint F w <= g.
 
-Writes an ``.npz`` with ``F`` (rows, 6), ``g`` (rows,), ``vertices``
-(count, 6), ``parameter_names``, ``parameters`` and ``format_version``, for
-wrenches ``w = [torque; force]`` (N*m, N) that the cup exerts on the object,
-about and in the cup frame C (+z out of the cup into the object).
+Writes an .npz with F (rows, 6), g (rows,), vertices (count, 6),
+parameter_names, parameters and format_version, for wrenches
+w = [torque; force] (N*m, N) that the cup exerts on the object, about and
+in the cup frame C (+z out of the cup into the object).
 
-The cup comes from ``--scenario FILE`` (its ``cup`` entry) or the paper's
-defaults; explicit flags override either. The exact set is cached (see
-``rt_drake.contact.cache``). With ``--approximate N`` the file holds instead
-the guided inner approximation of at most N vertices, built from wrenches of
-a ``--guide-mass`` kg object hanging below the cup, tilted up to 90 degrees
-and accelerated up to ``--guide-acceleration`` m/s^2
-(``rt_drake.contact.samplers.object_wrench_sampler``), and also ``covered``,
-``samples`` and ``exact_rows``.
+The cup comes from --scenario FILE (its cup entry) or the paper's defaults;
+explicit flags override either. The exact set is cached on disk (in
+$RT_DRAKE_CACHE_DIR, default ~/.cache/rt_drake). With --approximate N the
+file holds instead the guided inner approximation of at most N vertices,
+built from wrenches of a --guide-mass kg object hanging below the cup,
+tilted up to 90 degrees and accelerated up to --guide-acceleration m/s^2,
+and also covered, samples and exact_rows.
 
 The exact set's memory and time are estimated first (it grows steeply with
-``--points`` and ``--sides``); above ``--max-memory`` the command refuses
-with the estimate and the largest accepted values. ``--out`` is checked
-before any work (see ``rt_drake.cli._output``) and written atomically.
+--points and --sides); above --max-memory the command refuses with the
+estimate and the largest accepted values. --out is checked before any work
+and written atomically.
 """
 
 from __future__ import annotations
@@ -103,7 +102,7 @@ def _cup(args: argparse.Namespace, scenario: Path | None):
 
     cup = CupParameters()
     if scenario is not None:
-        from rt_drake.scenario import load_scenario
+        from rt_drake.model.scenario import load_scenario
 
         cup = load_scenario(scenario).single_cup("rt-drake constraint")
     overrides = {
@@ -131,7 +130,7 @@ def run(args: argparse.Namespace) -> int:
             raise InputError(f"{flag} must be in [{low}, {high}], got {value}")
     scenario = None
     if args.scenario is not None:
-        from rt_drake.resources import resolve_scenario_path
+        from rt_drake.model.resources import resolve_scenario_path
 
         scenario = resolve_scenario_path(args.scenario)
     output_file(args.out, "--out", ".npz", {"scenario file": scenario})

@@ -1,20 +1,20 @@
-"""``rt-drake experiment transport|cycle|campaign|report``: experiments in simulation.
+"""rt-drake experiment transport|cycle|campaign|report: experiments in simulation.
 
-``transport``: Table I. Random start and goal poses of one object, each MOVE
+transport: Table I. Random start and goal poses of one object, each MOVE
 retimed with and without the grasp constraint and played in the cycle's
-physics, plus a speed sweep to the slip. Writes ``results.json``,
-``report.md`` and PNG plots. With ``--optimize``, each trial also shapes its
-MOVE for speed from the same grasp to the same goal (issue 13), plays it in
-the same physics with its own sweep, and the report compares both (plus
-``optimized.png`` and ``optimized_replay.html``). With ``--robust``: each
-MOVE retimed for the nominal object and for every object of its uncertainty
-set, both played with a true object drawn from the set's hardest corners.
+physics, plus a speed sweep to the slip. Writes results.json, report.md and
+PNG plots. With --optimize, each trial also shapes its MOVE for speed from
+the same grasp to the same goal, plays it in the same physics with its own
+sweep, and the report compares both (plus optimized.png and
+optimized_replay.html). With --robust: each MOVE retimed for the nominal
+object and for every object of its uncertainty set, both played with a true
+object drawn from the set's hardest corners.
 
-``cycle``: Table II. The four-object cycle with its timing breakdown (as
-``rt-drake run``), into ``report.json``, ``report.md`` and ``replay.html``.
+cycle: Table II. The four-object cycle with its timing breakdown (as
+rt-drake run), into report.json, report.md and replay.html.
 
-``campaign`` and ``report``: validation campaigns over many objects, cups
-and transports, into SQLite (see :mod:`rt_drake.cli.campaign`).
+campaign and report: validation campaigns over many objects, cups and
+transports, into SQLite (see rt-drake experiment campaign --help).
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from rt_drake.cli import campaign
+from rt_drake.cli import campaign_command as campaign
 from rt_drake.cli._args import add_optimize_flag, int_in, nonnegative_int
 
 #: Most random paths (each is planned, retimed twice and simulated ~12 times).
@@ -106,7 +106,7 @@ def run_transport(args: argparse.Namespace) -> int:
         transport_table,
         write_transport_report,
     )
-    from rt_drake.resources import resolve_scenario_path
+    from rt_drake.model.resources import resolve_scenario_path
 
     if args.robust:
         return run_robust_transport(args)
@@ -156,7 +156,7 @@ def run_robust_transport(args: argparse.Namespace) -> int:
         write_robust_report,
     )
     from rt_drake.experiments.robust_report import summary_lines
-    from rt_drake.resources import resolve_scenario_path
+    from rt_drake.model.resources import resolve_scenario_path
 
     if args.optimize:
         raise InputError(

@@ -1,21 +1,21 @@
-"""``rt-drake plan SCENARIO --object NAME``: collision-free paths of one cycle.
+"""rt-drake plan SCENARIO --object NAME: collision-free paths of one cycle.
 
 Plans APPROACH (from the robot's home), REACH and MOVE for object NAME from
 its start pose to its goal pose, prints each phase's timing breakdown and,
-with ``--out``, writes the chosen phase's joint waypoints as CSV (one row per
-waypoint, radians; ``#`` header). The clamped chord-length spline through
-those waypoints is the planned path (``rt_drake.planning.GeometricPath``),
-the input of ``rt-drake retime SCENARIO --waypoints FILE.csv --object NAME``.
+with --out, writes the chosen phase's joint waypoints as CSV (one row per
+waypoint, radians; # header). The planned path is the clamped cubic spline
+through those waypoints with chord-length knots, the input of
+rt-drake retime SCENARIO --waypoints FILE.csv --object NAME.
 
 Objects listed before NAME in the scenario are taken as already placed at
-their goals (the cycle's order); the others rest at their starts. ``--out``
-is checked before planning (``rt_drake.cli._output``: never the scenario
-file, a ``.csv``) and written atomically.
+their goals (the cycle's order); the others rest at their starts. --out is
+checked before planning (a .csv, never the scenario file) and written
+atomically.
 
-With ``--optimize`` (or the scenario's ``planning.optimize_move``), the MOVE
-is then shaped for speed under the grasp constraint (issue 13): the command
-prints the spline and the optimised MOVE's durations (both retimed on the
-optimiser's adaptive grid) and ``--out`` writes the optimised waypoints.
+With --optimize (or the scenario's planning.optimize_move), the MOVE is
+then shaped for speed under the grasp constraint: the command prints the
+spline and the optimised MOVE's durations (both retimed on the optimiser's
+adaptive grid) and --out writes the optimised waypoints.
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ from pathlib import Path
 
 from rt_drake.cli._args import add_optimize_flag, nonnegative_int, positive_float
 from rt_drake.cli._output import output_file
+from rt_drake.model.held import held_object_of
 
 PHASES = ("approach", "reach", "move")
 
@@ -64,7 +65,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Plan, print the timings, write the CSV; return 0."""
-    from rt_drake.resources import resolve_scenario_path
+    from rt_drake.model.resources import resolve_scenario_path
 
     scenario_path = resolve_scenario_path(args.scenario)
     if args.out is not None:  # before the heavy imports: a quick refusal
@@ -75,8 +76,8 @@ def run(args: argparse.Namespace) -> int:
     import numpy as np
 
     from rt_drake.atomic_file import write_text_atomically
+    from rt_drake.model.scenario import load_scenario
     from rt_drake.planning import CyclePlanner, PlannedPath
-    from rt_drake.scenario import load_scenario
 
     scenario = load_scenario(scenario_path)
     scenario.object(args.object)
@@ -139,11 +140,10 @@ def _optimized(scenario, planner, move):
     from rt_drake import (
         CupFrame,
         GraspConstraint,
-        HeldObject,
         JointLimits,
         make_arm_plant,
     )
-    from rt_drake.planning.shape import (
+    from rt_drake.shaping import (
         MoveOptimizer,
         MoveOptimizerOptions,
         warm_up,
@@ -153,7 +153,7 @@ def _optimized(scenario, planner, move):
     plant = make_arm_plant(scenario)
     limits = JointLimits.from_plant(plant, scenario.robot)
     obj = dataclasses.replace(scenario.object(move.object), grasp=Transform(move.X_OC))
-    held = HeldObject.from_scenario_object(obj)
+    held = held_object_of(obj)
     if scenario.tool is None:
         grasp = GraspConstraint.for_cup(held, scenario.cup)
     else:  # the set the cycle retimes a multi-cup tool's MOVE under

@@ -1,21 +1,19 @@
-"""``rt-drake retime SCENARIO --waypoints FILE.csv --object NAME --out FILE.npz``.
+"""rt-drake retime SCENARIO --waypoints FILE.csv --object NAME --out FILE.npz.
 
 Retimes the clamped C2 spline through joint-space waypoints (one row per
-waypoint, one column per joint, rad; ``#`` starts a comment) time-optimally
-under the scenario's joint limits and, unless ``--no-grasp-constraint``, the
+waypoint, one column per joint, rad; # starts a comment) time-optimally
+under the scenario's joint limits and, unless --no-grasp-constraint, the
 grasp stability of the named object held by the scenario's cup, or by its
-multi-cup tool (``tool:``; its set for ``tool.load_sharing``, by default
-the rims' spring split, with ``robot.cup_frame`` as the tool frame T): of
-every object of its uncertainty set (and every cup of the cup's friction
-and suction range) if the scenario gives one or the flags
-``--mass-uncertainty``, ``--com-uncertainty``, ``--inertia-uncertainty``
-do (one cup only). Writes an
-``.npz`` from which anyone can re-check the result (the format of
-``rt_drake.save_trajectory``: samples every 1 ms of t, q, qd, qdd and the
-cup's pose X_WC, the object's inertia, the grasp constraint F, g, the cup,
-the path and its s'(s) profile). ``--out`` is checked before any work
-(``rt_drake.cli._output``: a ``.npz``, never an input) and written
-atomically.
+multi-cup tool (tool:; its set for tool.load_sharing, by default the rims'
+spring split, with robot.cup_frame as the tool frame T): of every object of
+its uncertainty set (and every cup of the cup's friction and suction range)
+if the scenario gives one or the flags --mass-uncertainty,
+--com-uncertainty, --inertia-uncertainty do (one cup only). Writes an .npz
+from which anyone can re-check the result (the trajectory file format:
+samples every 1 ms of t, q, qd, qdd and the cup's pose X_WC, the object's
+inertia, the grasp constraint F, g, the cup, the path and its s'(s)
+profile). --out is checked before any work (a .npz, never an input) and
+written atomically.
 """
 
 from __future__ import annotations
@@ -28,6 +26,7 @@ import numpy as np
 
 from rt_drake.cli._output import output_file
 from rt_drake.errors import InputError
+from rt_drake.model.held import held_object_of
 
 #: Largest number of waypoints read from a CSV.
 MAX_WAYPOINTS = 100_000
@@ -102,8 +101,8 @@ def object_uncertainty(args: argparse.Namespace, obj):  # noqa: ANN001, ANN201
     Returns None when neither gives one. Bad widths raise InputError naming
     the key and value; the CoM box must stay inside the object.
     """
-    from rt_drake.object_geometry import object_box
-    from rt_drake.uncertainty import ObjectUncertainty
+    from rt_drake.model.object_geometry import object_box
+    from rt_drake.types.object_uncertainty import ObjectUncertainty
 
     flags = {
         "mass": args.mass_uncertainty,
@@ -121,7 +120,7 @@ def object_uncertainty(args: argparse.Namespace, obj):  # noqa: ANN001, ANN201
     }
     uncertainty = ObjectUncertainty(**fields)
     if any(uncertainty.com):
-        uncertainty.check_inside(*object_box(obj))
+        uncertainty.check_inside(*object_box(obj.model, obj.name))
     return uncertainty
 
 
@@ -169,7 +168,7 @@ def read_waypoints(path: Path, joints: int) -> np.ndarray:
 
 def run(args: argparse.Namespace) -> int:
     """Retime, write the .npz and print a summary; return 0."""
-    from rt_drake.resources import resolve_scenario_path
+    from rt_drake.model.resources import resolve_scenario_path
 
     path = resolve_scenario_path(args.scenario)
     output_file(  # before the heavy imports: a quick refusal
@@ -183,7 +182,6 @@ def run(args: argparse.Namespace) -> int:
         CupFrame,
         CupParameters,
         GraspConstraint,
-        HeldObject,
         JointLimits,
         ToolParameters,
         load_scenario,
@@ -192,7 +190,7 @@ def run(args: argparse.Namespace) -> int:
         sample_trajectory,
         save_trajectory,
     )
-    from rt_drake.plant import make_arm_plant
+    from rt_drake.model.plant import make_arm_plant
     from rt_drake.retiming.grid import MAX_GRIDPOINTS
 
     if not 2 <= args.gridpoints <= MAX_GRIDPOINTS:
@@ -207,7 +205,7 @@ def run(args: argparse.Namespace) -> int:
         _, knots = path_waypoints_and_knots(waypoints)
     except InputError as error:  # e.g. two equal rows: name the file
         raise InputError(f"{args.waypoints}: {error}") from None
-    held = HeldObject.from_scenario_object(obj)
+    held = held_object_of(obj)
     obj = dataclasses.replace(obj, uncertainty=object_uncertainty(args, obj))
     uncertain = obj.uncertainty is not None and not obj.uncertainty.is_zero()
     cup_model: CupParameters | ToolParameters

@@ -1,12 +1,11 @@
-"""``rt-drake run [SCENARIO]``: simulate the whole pick-and-place cycle.
+"""rt-drake run [SCENARIO]: simulate the whole pick-and-place cycle.
 
 Every object is approached, reached, attached, moved (planned and retimed
 online, critically fast under the grasp constraint) and detached, in a Drake
 simulation with suction physics. Prints the paper's Table II for this run
-and writes ``report.json``, ``report.md`` and ``replay.html`` (a Meshcat
-recording that plays offline) into ``--out``, checked before the
-simulation starts (``rt_drake.cli._output``: a directory, none of its files
-an input) and written atomically.
+and writes report.json, report.md and replay.html (a Meshcat recording that
+plays offline) into --out, checked before the simulation starts (a
+directory, none of its files an input) and written atomically.
 """
 
 from __future__ import annotations
@@ -62,7 +61,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="plan each motion when its phase starts, as the paper did, instead "
         "of during the motion and wait before it (the arm waits for all of it)",
     )
-    add_optimize_flag(parser, "shape each MOVE for speed (issue 13)")
+    add_optimize_flag(parser, "shape each MOVE for speed")
     parser.add_argument(
         "--time-step",
         type=float_in(1e-4, 0.01),
@@ -90,10 +89,10 @@ def run(args: argparse.Namespace) -> int:
         table_markdown,
         write_report,
     )
-    from rt_drake.phase import Phase
-    from rt_drake.resources import resolve_scenario_path
-    from rt_drake.scenario import load_scenario
+    from rt_drake.model.resources import resolve_scenario_path
+    from rt_drake.model.scenario import load_scenario
     from rt_drake.simulation import OnlineMotions, StationOptions, run_cycle
+    from rt_drake.types.phase import Phase
 
     path = resolve_scenario_path(args.scenario)
     output_directory(

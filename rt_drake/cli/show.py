@@ -1,11 +1,10 @@
-"""``rt-drake show SCENARIO [--html FILE] [--wait]``: the cell in Meshcat.
+"""rt-drake show SCENARIO [--html FILE] [--wait]: the cell in Meshcat.
 
 Builds the scenario's plant (robot at home, objects at their start poses, or
-at their goals with ``--goals``), publishes it to Drake's Meshcat and, with
-``--html``, writes a self-contained HTML file of the scene that opens offline
-in a browser. ``--html`` is checked before anything is built
-(``rt_drake.cli._output``: an ``.html``, never the scenario file) and
-written atomically.
+at their goals with --goals), publishes it to Drake's Meshcat and, with
+--html, writes a self-contained HTML file of the scene that opens offline
+in a browser. --html is checked before anything is built (an .html, never
+the scenario file) and written atomically.
 """
 
 from __future__ import annotations
@@ -47,9 +46,9 @@ def run(args: argparse.Namespace) -> int:
     from pydrake.geometry import StartMeshcat
 
     from rt_drake.atomic_file import write_text_atomically
-    from rt_drake.resources import resolve_scenario_path
-    from rt_drake.scenario import load_scenario
-    from rt_drake.visualization import publish_scene
+    from rt_drake.model.resources import resolve_scenario_path
+    from rt_drake.model.scenario import load_scenario
+    from rt_drake.simulation.visualization import publish_scene
 
     path = resolve_scenario_path(args.scenario)
     if args.html is not None:

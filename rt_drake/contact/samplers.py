@@ -12,7 +12,7 @@ Rotational inertia is neglected (no angular acceleration). The cup axis +z_C
 points down (the object hangs below) tilted by an angle drawn uniformly in
 ``[0, max_tilt]``, at a uniform azimuth and a uniform spin about the axis;
 a_W is uniform in the ball of radius ``max_acceleration``. Samples from the
-real planner (``rt_drake.dynamics``) are better guides; this one needs none.
+real planner (``rt_drake.dynamics.wrench``) are better guides; this one needs none.
 """
 
 from __future__ import annotations

@@ -34,7 +34,7 @@ from rt_drake.experiments.rollout import (
     critical_speed,
     simulate_move,
 )
-from rt_drake.experiments.transport import (
+from rt_drake.experiments.transport_experiment import (
     run_transport_experiment,
     summarize,
     transport_trial,

@@ -21,9 +21,9 @@ from pathlib import Path
 from typing import Any
 
 from rt_drake.atomic_file import write_text_atomically
-from rt_drake.phase import Phase
 from rt_drake.simulation.motion import PlanTimes
 from rt_drake.simulation.records import ObjectRecord
+from rt_drake.types.phase import Phase
 
 #: Keys of ``plan_s``: APPROACH and REACH (plan + retime), MOVE (plan), and
 #: the MOVE's retime, as the paper's Table II.

@@ -1,7 +1,7 @@
 """The optimised MOVE of a Table I transport, next to the spline MOVE (issue 13).
 
 :func:`optimized_trial` takes the spline MOVE a transport trial planned and
-played, shapes it for speed (:class:`rt_drake.planning.shape.MoveOptimizer`,
+played, shapes it for speed (:class:`rt_drake.shaping.MoveOptimizer`,
 the scenario's ``planning`` tilt and budget), and plays the optimised MOVE
 in the same physics with its own speed sweep. Per trial it returns the keys
 ``duration_optimized_s`` (s, under the exact grasp constraint),
@@ -30,18 +30,18 @@ from pydrake.trajectories import Trajectory
 
 from rt_drake.atomic_file import write_text_atomically
 from rt_drake.experiments.rollout import critical_speed, simulate_move
+from rt_drake.model.plant import make_arm_plant
+from rt_drake.model.scenario import Scenario
 from rt_drake.planning import CyclePlanner, PlannedPath
-from rt_drake.planning.shape import (
+from rt_drake.retiming import GraspConstraint, JointLimits, RetimeResult
+from rt_drake.shaping import (
     Clock,
     MoveOptimizer,
     MoveOptimizerOptions,
     OptimizedMove,
     warm_up,
 )
-from rt_drake.planning.shape.kinematics import CupChain
-from rt_drake.plant import make_arm_plant
-from rt_drake.retiming import GraspConstraint, JointLimits, RetimeResult
-from rt_drake.scenario import Scenario
+from rt_drake.shaping.cup_chain import CupChain
 
 #: Samples in time of the cup profiles.
 PROFILE_SAMPLES = 200

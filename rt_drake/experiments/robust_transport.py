@@ -7,12 +7,13 @@ cup of the cup's range (:meth:`~rt_drake.retiming.GraspConstraint.robust`).
 Each trial then plays both trajectories in the cycle's physics with the same
 TRUE object, drawn (seeded) from the set's hardest corners (heaviest, largest
 moments, centre of mass at a random corner:
-:func:`~rt_drake.object_samples.hardest_corner`), and the worst cup of the
+:func:`~rt_drake.uncertainty.object_samples.hardest_corner`), and the worst cup of the
 range. The robust duration is also compared with a lower bound of the true
 robust optimum: the retime that holds a dense sample of the set (its
 corners and ``SAMPLE`` random objects, bodies only), stacked. And the robust
 trajectory is checked, at 1 kHz, for every object of that sample by another
-route than the retimer's (:func:`~rt_drake.newton_euler.reference_object_wrenches`):
+route than the retimer's
+(:func:`~rt_drake.dynamics.newton_euler.reference_object_wrenches`):
 ``sound_excess`` is the largest ``max_k F_k w / g_k - 1`` found (the
 retimer's contract: at most 1e-3).
 """
@@ -31,25 +32,35 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.tree import SpatialInertia
 
 from rt_drake.contact import worst_cup_polytope
-from rt_drake.cup_frame import CupFrame
+from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.dynamics.newton_euler import reference_object_wrenches
 from rt_drake.errors import ScenarioError
 from rt_drake.experiments.rollout import rollout_scenario, simulate_move
-from rt_drake.experiments.transport import transport_inputs, transport_scenario
+from rt_drake.experiments.transport_experiment import (
+    transport_inputs,
+    transport_scenario,
+)
 from rt_drake.experiments.trial_pool import run_trials
-from rt_drake.newton_euler import reference_object_wrenches
-from rt_drake.object_samples import (
+from rt_drake.model.plant import make_arm_plant
+from rt_drake.model.scenario import (
+    ObjectConfig,
+    Scenario,
+    load_scenario,
+)
+from rt_drake.planning import sample_transports
+from rt_drake.retiming import GraspConstraint, TimedPath
+from rt_drake.retiming.stage_rows import (
+    normalised_rows,
+    wrench_ratios,
+)
+from rt_drake.simulation import OnlineMotions
+from rt_drake.types.object_uncertainty import ObjectUncertainty
+from rt_drake.uncertainty.object_samples import (
     ObjectInertia,
     corners,
     hardest_corner,
     random_objects,
 )
-from rt_drake.planning import sample_transports
-from rt_drake.plant import make_arm_plant
-from rt_drake.retiming import GraspConstraint, TimedPath
-from rt_drake.retiming.rows import normalised_rows, wrench_ratios
-from rt_drake.scenario import ObjectConfig, Scenario, load_scenario
-from rt_drake.simulation import OnlineMotions
-from rt_drake.uncertainty import ObjectUncertainty
 
 #: Random objects of the dense sample (besides the corners).
 SAMPLE = 200
@@ -134,7 +145,7 @@ def true_object_world(
     """The physics a robust plan is played in: a hard TRUE object, the worst cup.
 
     The true object is drawn from the set's hardest corners
-    (:func:`~rt_drake.object_samples.hardest_corner`, one draw of ``rng``);
+    (:func:`~rt_drake.uncertainty.object_samples.hardest_corner`, one draw of ``rng``);
     the cup is the worst of its range (``friction_min``,
     ``suction_force_min``).
 

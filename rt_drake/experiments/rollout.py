@@ -19,8 +19,12 @@ from pydrake.geometry import Meshcat
 from pydrake.multibody.tree import SpatialInertia
 from pydrake.trajectories import PiecewisePolynomial, Trajectory
 
+from rt_drake.model.scenario import (
+    ObjectConfig,
+    Scenario,
+)
+from rt_drake.model.vacuum import Vacuum
 from rt_drake.retiming import TimeScaled
-from rt_drake.scenario import ObjectConfig, Scenario, Vacuum
 from rt_drake.simulation import UPDATE_PERIOD, Motion, run_cycle
 
 #: m and rad: a rollout slipped if the object moved more on the cup.

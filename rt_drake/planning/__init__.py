@@ -13,18 +13,18 @@
 """
 
 from rt_drake.planning.cycle_planner import CyclePlanner
-from rt_drake.planning.errors import (
+from rt_drake.planning.pick import PlannedPick
+from rt_drake.planning.planning_errors import (
     GoalInCollisionError,
     NoPathError,
     PlanningError,
     StartInCollisionError,
     UnreachablePoseError,
 )
-from rt_drake.planning.path import GeometricPath
-from rt_drake.planning.pick import PlannedPick
 from rt_drake.planning.result import PlannedPath, PlanTiming
 from rt_drake.planning.scene import PlanningScene
-from rt_drake.planning.transport import sample_transports
+from rt_drake.planning.transport_queries import sample_transports
+from rt_drake.types.path import GeometricPath
 
 __all__ = [
     "CyclePlanner",

@@ -22,13 +22,13 @@ import time
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 
-from rt_drake.phase import Phase
-from rt_drake.planning.errors import NoPathError
 from rt_drake.planning.ik import CupIk
+from rt_drake.planning.planning_errors import NoPathError
 from rt_drake.planning.result import PlannedPath, Stopwatch
 from rt_drake.planning.rrt import rrt_connect, shortcut
 from rt_drake.planning.scene import PlanningScene
 from rt_drake.planning.smooth import fit_spline
+from rt_drake.types.phase import Phase
 
 #: m, spacing of the IK waypoints along a straight cup line.
 LINE_STEP = 0.05
@@ -223,7 +223,26 @@ def _planned(attempt: Attempt, path, polyline, X_OC) -> PlannedPath:
     )
 
 
+@dataclasses.dataclass(frozen=True)
+class PhaseEnds:
+    """Where a phase starts and ends, before any path joins them.
+
+    Attributes:
+        attempt: the phase's planning call (its stopwatch and RNG).
+        q_start, q_goal: rad, the ends.
+        X_OC: the grasp (or its flip) the phase is for.
+        chain: the REACH's IK line from q_start to q_goal (None otherwise).
+    """
+
+    attempt: Attempt
+    q_start: np.ndarray
+    q_goal: np.ndarray
+    X_OC: RigidTransform
+    chain: np.ndarray | None = None
+
+
 __all__ = [
+    "PhaseEnds",
     "Attempt",
     "IkLine",
     "LINE_STEP",

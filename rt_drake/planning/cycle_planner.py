@@ -23,7 +23,7 @@ Each phase tries the spline through its anchors first and connects them
 spline is not clean (:mod:`.connect`). Grasp yaw: the scenario's X_OC or its
 flip by 180 deg about z_C; APPROACH takes whichever IK solution is nearer q,
 REACH and MOVE keep the flip the cup has. A call is deterministic for the
-planner's seed and raises a :class:`~rt_drake.planning.errors.PlanningError`
+planner's seed and raises a :class:`~rt_drake.planning.planning_errors.PlanningError`
 naming phase and object within its budget (plus one IK round).
 """
 
@@ -37,22 +37,28 @@ from pydrake.math import RigidTransform, RotationMatrix
 
 from rt_drake import arguments
 from rt_drake.errors import InputError
-from rt_drake.phase import Phase
-from rt_drake.planning.connect import Attempt, describe, ik_line, through
-from rt_drake.planning.errors import (
+from rt_drake.model.plant import home_configuration
+from rt_drake.model.scenario import Scenario
+from rt_drake.planning.connect import (
+    Attempt,
+    PhaseEnds,
+    describe,
+    ik_line,
+    through,
+)
+from rt_drake.planning.geometry import face_under_cup
+from rt_drake.planning.ik import CupIk, initial_guesses, nearest_valid_solution
+from rt_drake.planning.pick import PlannedPick, plan_pick
+from rt_drake.planning.planning_errors import (
     GoalInCollisionError,
     PlanningError,
     PlanningInputError,
     StartInCollisionError,
     UnreachablePoseError,
 )
-from rt_drake.planning.geometry import face_under_cup
-from rt_drake.planning.ik import CupIk, initial_guesses, nearest_valid_solution
-from rt_drake.planning.pick import PlannedPick, plan_pick
 from rt_drake.planning.result import PlannedPath
 from rt_drake.planning.scene import PlanningScene
-from rt_drake.plant import home_configuration
-from rt_drake.scenario import Scenario
+from rt_drake.types.phase import Phase
 
 #: m, how far a grasped face is moved in so the cup may touch it.
 TOUCH_ALLOWANCE = 0.002
@@ -66,24 +72,6 @@ BUDGET_S = 1.0
 MAX_BUDGET_S = 600.0
 #: heights of MOVE's above-place anchor tried, in units of approach_offset.
 ABOVE_FRACTIONS = (1.0, 0.5, 0.25)
-
-
-@dataclasses.dataclass(frozen=True)
-class PhaseEnds:
-    """Where a phase starts and ends, before any path joins them.
-
-    Attributes:
-        attempt: the phase's planning call (its stopwatch and RNG).
-        q_start, q_goal: rad, the ends.
-        X_OC: the grasp (or its flip) the phase is for.
-        chain: the REACH's IK line from q_start to q_goal (None otherwise).
-    """
-
-    attempt: Attempt
-    q_start: np.ndarray
-    q_goal: np.ndarray
-    X_OC: RigidTransform
-    chain: np.ndarray | None = None
 
 
 def _raised(X_WC: RigidTransform, height: float) -> RigidTransform:

@@ -31,9 +31,9 @@ import dataclasses
 
 import numpy as np
 
-from rt_drake.planning.kinematics import step_motion
-from rt_drake.planning.path import GeometricPath
+from rt_drake.planning.body_poses import step_motion
 from rt_drake.planning.scene import PlanningScene
+from rt_drake.types.path import GeometricPath
 
 #: m, largest motion of any robot point between two grid samples.
 GRID_STEP = 1e-3

@@ -30,7 +30,8 @@ from pydrake.multibody.plant import AddMultibodyPlantSceneGraph, MultibodyPlant
 from pydrake.multibody.tree import Body
 from pydrake.systems.framework import DiagramBuilder
 
-from rt_drake.plant import OBJECT_BODY, make_parser
+from rt_drake.model.object_model import OBJECT_BODY
+from rt_drake.model.parser import make_parser
 
 
 @dataclasses.dataclass(frozen=True)

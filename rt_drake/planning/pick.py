@@ -40,22 +40,63 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 from pydrake.math import RigidTransform
 
 from rt_drake.errors import RtDrakeError
-from rt_drake.phase import Phase
-from rt_drake.planning.connect import ik_line
+from rt_drake.model.scenario import Scenario
+from rt_drake.planning.connect import PhaseEnds, ik_line
 from rt_drake.planning.dense_check import check_path
-from rt_drake.planning.errors import NoPathError, UnreachablePoseError
-from rt_drake.planning.path import GeometricPath
+from rt_drake.planning.ik import CupIk
+from rt_drake.planning.planning_errors import (
+    NoPathError,
+    UnreachablePoseError,
+)
 from rt_drake.planning.result import PlannedPath, PlanTiming
 from rt_drake.planning.scene import PlanningScene
+from rt_drake.types.path import GeometricPath
+from rt_drake.types.phase import Phase
 
-if TYPE_CHECKING:
-    from rt_drake.planning.cycle_planner import CyclePlanner
+
+class PickPlanner(Protocol):
+    """What :func:`plan_pick` needs of its planner (a ``CyclePlanner``)."""
+
+    scene: PlanningScene
+    ik: CupIk
+    scenario: Scenario
+
+    def grasps(self, name: str) -> list[RigidTransform]:
+        """The grasp ``X_OC`` of object ``name`` and its flip."""
+        ...
+
+    def prepare(
+        self,
+        phase: Phase,
+        name: str,
+        q_start: np.ndarray,
+        X_OC: RigidTransform | None = None,
+    ) -> PlanningScene:
+        """Set the scene's objects for ``phase`` of object ``name``."""
+        ...
+
+    def approach_goal(
+        self, q_current: np.ndarray, name: str, prepared: bool = False
+    ) -> PhaseEnds:
+        """The APPROACH's ends: from ``q_current`` to above the grasp."""
+        ...
+
+    def descent_line(
+        self, q_approach: np.ndarray, name: str, prepared: bool = False
+    ) -> PhaseEnds:
+        """The REACH's ends along the vertical line down to the grasp."""
+        ...
+
+    def plan_approach(self, q_current: np.ndarray, name: str) -> PlannedPath:
+        """The APPROACH path from ``q_current`` to above object ``name``."""
+        ...
+
 
 #: m, how far the cup rises vertically from an object it rests on.
 RETREAT_HEIGHT = 0.02
@@ -133,7 +174,7 @@ def line_deviation(
 
 
 def plan_pick(
-    planner: CyclePlanner, q_start: np.ndarray, name: str, retreat: bool
+    planner: PickPlanner, q_start: np.ndarray, name: str, retreat: bool
 ) -> PlannedPick:
     """Retreat (if ``retreat``), approach and reach object ``name`` in one path.
 
@@ -231,7 +272,7 @@ class _Blend:
 
     def __init__(
         self,
-        planner: CyclePlanner,
+        planner: PickPlanner,
         retreat: np.ndarray,
         transit: np.ndarray | None,
         descent: np.ndarray,

@@ -8,8 +8,8 @@ import time
 import numpy as np
 from pydrake.math import RigidTransform
 
-from rt_drake.phase import Phase
-from rt_drake.planning.path import GeometricPath
+from rt_drake.types.path import GeometricPath
+from rt_drake.types.phase import Phase
 
 
 @dataclasses.dataclass(frozen=True)

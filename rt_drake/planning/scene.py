@@ -35,6 +35,12 @@ from pydrake.planning import (
 )
 
 from rt_drake.errors import ScenarioError
+from rt_drake.model.plant import (
+    ObjectMode,
+    add_scenario_models,
+    scenario_cup_frame,
+)
+from rt_drake.model.scenario import Scenario
 from rt_drake.planning.bounds import MotionBounds
 from rt_drake.planning.geometry import (
     PosedShape,
@@ -42,8 +48,6 @@ from rt_drake.planning.geometry import (
     object_geometries,
     shrink_face,
 )
-from rt_drake.plant import ObjectMode, add_scenario_models, scenario_cup_frame
-from rt_drake.scenario import Scenario
 
 #: Edge step of the checker's straight-line checks, in the weighted metric
 #: ``||R_max * dq||_2`` (m; ``R_max[j]`` the largest lever arm of joint j,

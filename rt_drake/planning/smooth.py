@@ -23,8 +23,11 @@ import time
 import numpy as np
 
 from rt_drake.planning.dense_check import DenseCheck, check_path
-from rt_drake.planning.path import GeometricPath, drop_repeated
 from rt_drake.planning.scene import PlanningScene
+from rt_drake.types.path import (
+    GeometricPath,
+    drop_repeated,
+)
 
 #: refinement rounds before giving up.
 MAX_ROUNDS = 12

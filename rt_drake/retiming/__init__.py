@@ -29,7 +29,9 @@ from rt_drake.retiming.check import (
     TrajectoryCheck,
     check_trajectory,
 )
-from rt_drake.retiming.errors import (
+from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming.precompile import warm_up
+from rt_drake.retiming.retime_errors import (
     GraspUnstableAtRestError,
     LimitsBetweenGridPointsError,
     PathNotControllableError,
@@ -38,8 +40,6 @@ from rt_drake.retiming.errors import (
     RetimeStatus,
     TorqueLimitAtRestError,
 )
-from rt_drake.retiming.limits import GraspConstraint, JointLimits
-from rt_drake.retiming.path import chord_knots, path_waypoints_and_knots
 from rt_drake.retiming.solve import RetimeResult, retime
 from rt_drake.retiming.time_scaled import TimeScaled
 from rt_drake.retiming.timed_path import TimedPath
@@ -49,7 +49,10 @@ from rt_drake.retiming.trajectory_file import (
     sample_trajectory,
     save_trajectory,
 )
-from rt_drake.retiming.warm import warm_up
+from rt_drake.types.path import (
+    chord_knots,
+    path_waypoints_and_knots,
+)
 
 __all__ = [
     "DEFAULT_TOLERANCE",

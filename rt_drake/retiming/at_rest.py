@@ -9,9 +9,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from rt_drake.inertial_set import SetVertex
-from rt_drake.retiming.errors import GraspUnstableAtRestError, TorqueLimitAtRestError
 from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming.retime_errors import (
+    GraspUnstableAtRestError,
+    TorqueLimitAtRestError,
+)
+from rt_drake.uncertainty.inertial_set import SetVertex
 
 
 def check_grasp_at_rest(

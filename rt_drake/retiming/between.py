@@ -43,7 +43,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from rt_drake.dynamics import PathCoefficients
+from rt_drake.dynamics.wrench import PathCoefficients
 from rt_drake.retiming import between_kernels as K
 from rt_drake.retiming.joint_path import JointPath
 from rt_drake.retiming.limits import JointLimits

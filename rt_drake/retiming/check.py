@@ -6,8 +6,8 @@ independently of the retimer's path coefficients, evaluates at each sample:
 - velocity and acceleration ratios ``|v_j| / v_max_j``, ``|vdot_j| / a_max_j``;
 - the object wrench by another route than the retimer's: the cup body's
   spatial acceleration from Drake's ``CalcSpatialAccelerationsFromVdot`` and
-  Newton-Euler (:func:`rt_drake.newton_euler.reference_object_wrench`; no
-  Jacobian, bias or gravity shortcut of :mod:`rt_drake.dynamics`), and its
+  Newton-Euler (:func:`rt_drake.dynamics.newton_euler.reference_object_wrench`; no
+  Jacobian, bias or gravity shortcut of :mod:`rt_drake.dynamics.wrench`), and its
   g-scaled excess ``max_k (F_k w - g_k) / g_k`` (the Minkowski gauge of W
   about 0, minus 1);
 - joint torques by Drake inverse dynamics plus ``J_Coᵀ w`` for that wrench,
@@ -33,8 +33,8 @@ from pydrake.systems.framework import Context
 from pydrake.trajectories import Trajectory
 
 from rt_drake import arguments
-from rt_drake.cup_frame import CupFrame
-from rt_drake.newton_euler import reference_object_wrench
+from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.dynamics.newton_euler import reference_object_wrench
 from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint, JointLimits
 
 #: Allowed relative excess over a limit (and over g for the grasp), see above.

@@ -20,7 +20,7 @@ from typing import NamedTuple
 import numpy as np
 from toppra.constraint import LinearConstraint
 
-from rt_drake.retiming import rows as R
+from rt_drake.retiming import stage_rows as R
 from rt_drake.retiming.at_rest import check_grasp_at_rest
 from rt_drake.retiming.between import ROW_SCREEN, Segments, grasp_midpoint_rows
 from rt_drake.retiming.limits import GraspConstraint

@@ -27,7 +27,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from rt_drake.retiming.errors import RetimeInputError
+from rt_drake.retiming.retime_errors import RetimeInputError
 
 #: Segments per cubic piece of the path, at least.
 MIN_PIECE_SEGMENTS = 3

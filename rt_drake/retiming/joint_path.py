@@ -36,8 +36,9 @@ from pydrake.trajectories import (
 )
 from scipy.interpolate import CubicSpline
 
-from rt_drake.retiming.errors import RetimeInputError
-from rt_drake.retiming.path import path_waypoints_and_knots
+from rt_drake.errors import InputError
+from rt_drake.retiming.retime_errors import RetimeInputError
+from rt_drake.types.path import path_waypoints_and_knots
 
 #: Derivatives the retimer evaluates: q, q', q'' (q''' for the jerk).
 MAX_ORDER = 3
@@ -112,7 +113,10 @@ def _array_like(path: Any) -> bool:
 
 
 def _from_waypoints(path: Any) -> JointPath:
-    waypoints, knots = path_waypoints_and_knots(path)
+    try:
+        waypoints, knots = path_waypoints_and_knots(path)
+    except InputError as error:  # the path type's refusal, as the retimer's
+        raise RetimeInputError(str(error)) from None
     spline = getattr(path, "spline", None)
     if not (
         isinstance(spline, CubicSpline)

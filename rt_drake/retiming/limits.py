@@ -3,7 +3,8 @@
 A grasp constraint holds one object (:meth:`GraspConstraint.for_cup`), or
 every object of a set: an uncertainty set around a nominal object with the
 worst friction and suction of the cup (:meth:`GraspConstraint.robust`,
-:mod:`rt_drake.inertial_set`, :mod:`rt_drake.contact.worst_cup`), or a finite
+:mod:`rt_drake.uncertainty.inertial_set`, :mod:`rt_drake.contact.worst_cup`),
+or a finite
 list of objects (:meth:`GraspConstraint.for_objects`).
 """
 
@@ -25,12 +26,20 @@ from rt_drake.contact.tool import LoadSharing
 from rt_drake.contact.tool_polytope import DEFAULT_MAX_FACETS
 from rt_drake.contact.worst_cup import worst_cup_polytope
 from rt_drake.contact.wrench_polytope import check_h_representation
-from rt_drake.dynamics import HeldObject
 from rt_drake.errors import InputError
-from rt_drake.inertial_set import ObjectSet, object_list, uncertain_object
-from rt_drake.retiming.errors import RetimeInputError
-from rt_drake.scenario import ObjectConfig, RobotConfig
-from rt_drake.uncertainty import ObjectUncertainty
+from rt_drake.model.held import held_object_of
+from rt_drake.model.scenario import (
+    ObjectConfig,
+    RobotConfig,
+)
+from rt_drake.retiming.retime_errors import RetimeInputError
+from rt_drake.types.held_object import HeldObject
+from rt_drake.types.object_uncertainty import ObjectUncertainty
+from rt_drake.uncertainty.inertial_set import (
+    ObjectSet,
+    object_list,
+    uncertain_object,
+)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -283,7 +292,7 @@ class GraspConstraint:
 
         The wrench set is the one every cup of ``cup``'s friction and suction
         range can exert (:func:`~rt_drake.contact.worst_cup_polytope`); the
-        objects are the outer set Q of :func:`~rt_drake.inertial_set.
+        objects are the outer set Q of :func:`~rt_drake.uncertainty.inertial_set.
         uncertain_object`, which contains every admissible object. A
         zero-width set of a known cup is exactly :meth:`for_cup`.
 
@@ -372,7 +381,7 @@ class GraspConstraint:
         """
         if X_OC is not None:
             obj = dataclasses.replace(obj, grasp=Transform(X_OC))
-        held = HeldObject.from_scenario_object(obj)
+        held = held_object_of(obj)
         uncertainty = obj.uncertainty or ObjectUncertainty()
         if robust and (not uncertainty.is_zero() or cup.is_uncertain()):
             X_CO = obj.grasp.GetDeterministicValue().inverse()

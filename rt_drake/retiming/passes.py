@@ -41,7 +41,7 @@ from toppra.constraint import DiscretizationType, LinearConstraint
 from toppra.constraint.linear_constraint import canlinear_colloc_to_interpolate
 
 from rt_drake.retiming import seidel
-from rt_drake.retiming.errors import RetimeInputError
+from rt_drake.retiming.retime_errors import RetimeInputError
 
 #: toppra's box on (u, x) at every stage (cy_seidel_solverwrapper VAR_MIN/MAX).
 VAR_BOUND = 1e8

@@ -1,7 +1,7 @@
 """The grasp rows of a set of objects: (row, vertex) pairs, added as they bind.
 
 A robust grasp must hold every object of a set Q of inertial parameters
-(:mod:`rt_drake.inertial_set`): ``F_k w(pi) <= g_k`` for every row k and
+(:mod:`rt_drake.uncertainty.inertial_set`): ``F_k w(pi) <= g_k`` for every row k and
 every pi in Q, at every point the stage LPs constrain. The wrench is linear
 in pi, so it suffices to hold the vertices of Q; Q has many (1024 for the
 notebook's set) and only a few bind anywhere. :class:`SetRows` gives the
@@ -38,9 +38,8 @@ from __future__ import annotations
 import numpy as np
 from toppra.constraint import LinearConstraint
 
-from rt_drake.dynamics import PathCoefficients
-from rt_drake.inertial_set import SetVertex, set_vertex
-from rt_drake.retiming import rows as R
+from rt_drake.dynamics.wrench import PathCoefficients
+from rt_drake.retiming import stage_rows as R
 from rt_drake.retiming.at_rest import set_grasp_at_rest, set_torque_at_rest
 from rt_drake.retiming.between import ROW_SCREEN, Segments, subpoint_x
 from rt_drake.retiming.grasp_rows import ROW_TOLERANCE, Check
@@ -57,6 +56,10 @@ from rt_drake.retiming.set_tables import (
     pair_stage_rows,
     parameter_columns,
     with_subpoints,
+)
+from rt_drake.uncertainty.inertial_set import (
+    SetVertex,
+    set_vertex,
 )
 
 #: Rows ranked at each point by the exactness check (their worst pairs added

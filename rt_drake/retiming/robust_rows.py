@@ -1,6 +1,7 @@
 """The worst object of a set, row by row: compiled support functions.
 
-A set of objects is a union of parameter boxes (:mod:`rt_drake.inertial_set`)
+A set of objects is a union of parameter boxes
+(:mod:`rt_drake.uncertainty.inertial_set`)
 ``{m (c1 + G1 sigma) + cz + Gz tau}``. At one motion point (u, x) every
 parameter vector maps linearly to a wrench (or to joint torques): the
 vectors ``W[j] = a_j u + b_j x + c_j`` of the columns ``c1, G1_*, cz,

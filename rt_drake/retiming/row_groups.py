@@ -1,6 +1,6 @@
 """Grasp rows in boxes, so that the exactness check skips most of them.
 
-The exactness check (:func:`rt_drake.retiming.rows.wrench_ratios`) needs,
+The exactness check (:func:`rt_drake.retiming.stage_rows.wrench_ratios`) needs,
 at every wrench w the stage LPs enforced, the largest ``n_k w`` over the
 polytope's rows (n_k = F_k / g_k) and every row above a floor (the rows
 looked at between grid points) or above its bound. Most rows are far below

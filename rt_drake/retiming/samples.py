@@ -2,18 +2,18 @@
 
 At each grid point s_i: ``q(s_i)``, ``q'(s_i)``, ``q''(s_i)`` from the path's
 spline, the velocity bound ``x_cap = min_j v_j^2 / q'_j^2`` on ``x = s'^2``,
-and, from Drake (:mod:`rt_drake.dynamics`), the coefficients of the joint
+and, from Drake (:mod:`rt_drake.dynamics.wrench`), the coefficients of the joint
 torques ``tau = a u + b x + c`` (if torques are limited) and of the object
 wrench ``w = a u + b x + c`` (if an object is held). Drake is the expensive
 part (about 20 us per point), so a refined grid evaluates only its new
 points (:func:`with_points`), and when the plant is the cup's serial chain
-alone (``cup.chain``, :mod:`rt_drake.chain`) the object wrench comes from
+alone (``cup.chain``, :mod:`rt_drake.dynamics.chain`) the object wrench comes from
 that chain's batched kinematics instead (the same quantities to rounding,
 about 1.4 us per point). Torques, and a plant with other joints (a second
 arm, a turntable), take Drake's route.
 
-For a set of objects (a robust grasp, :mod:`rt_drake.inertial_set`) the
-wrench is linear in the inertial parameters (:mod:`rt_drake.regressor`):
+For a set of objects (a robust grasp, :mod:`rt_drake.uncertainty.inertial_set`) the
+wrench is linear in the inertial parameters (:mod:`rt_drake.dynamics.regressor`):
 the samples then hold the coefficients of the set's P parameter columns
 (``wrench_set``, each (G, P, 6); ``torque_set``, each (G, P, n), the held
 object's share of the joint torques) and ``torque`` is the arm's own.
@@ -27,15 +27,18 @@ import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import Context
 
-from rt_drake.cup_frame import CupFrame
-from rt_drake.dynamics import (
-    HeldObject,
+from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.dynamics.regressor import (
+    path_wrench_regressor,
+    torque_regressor,
+)
+from rt_drake.dynamics.wrench import (
     PathCoefficients,
     path_torque_coefficients,
     path_wrench_coefficients,
 )
-from rt_drake.regressor import path_wrench_regressor, torque_regressor
 from rt_drake.retiming.joint_path import JointPath
+from rt_drake.types.held_object import HeldObject
 
 
 class PathSamples(NamedTuple):

@@ -15,7 +15,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from rt_drake.dynamics import PathCoefficients
+from rt_drake.dynamics.wrench import PathCoefficients
 from rt_drake.retiming.between import SUBPOINTS, Segments
 from rt_drake.retiming.passes import StageRows
 from rt_drake.retiming.robust_rows import Layout, vertex_weights

@@ -17,11 +17,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from rt_drake.dynamics import PathCoefficients
-from rt_drake.inertial_set import ObjectSet
+from rt_drake.dynamics.wrench import PathCoefficients
 from rt_drake.retiming.between import MIDDLE, SUBPOINTS, Segments
 from rt_drake.retiming.passes import StageRows
 from rt_drake.retiming.robust_rows import Layout
+from rt_drake.uncertainty.inertial_set import ObjectSet
 
 #: Sub-points (indices k of theta = (k + 1) / (K + 1)) where pairs are rows
 #: of the stage LPs and where the exactness check looks, besides the grid

@@ -6,7 +6,7 @@ planner's clamped spline) such that, rest to rest,
 - ``|q'(s) s'| <= v_max`` and ``|q'(s) s'' + q''(s) s'^2| <= qdd_max``;
 - optionally ``|tau| <= tau_max`` (inverse dynamics with the held object);
 - optionally the grasp ``F (a(s) s'' + b(s) s'^2 + c(s)) <= g``, the object
-  wrench of :mod:`rt_drake.dynamics` in the grasp polytope of
+  wrench of :mod:`rt_drake.dynamics.wrench` in the grasp polytope of
   :mod:`rt_drake.contact` (paper eqs 1, 6, 20),
 
 by TOPP-RA on a uniform grid with toppra's interpolation discretization and
@@ -15,9 +15,9 @@ its seidel LP, compiled (:mod:`.passes`).
 Exactness of the grasp rows: the polytope has hundreds of rows (834 for the
 paper's cup) and only a few dozen bound the (u, x) slices along a path. The
 stage LPs get the rows that ray shooting picks along the path
-(:func:`rt_drake.retiming.rows.rest_and_candidates`); then every row is
+(:func:`rt_drake.retiming.stage_rows.rest_and_candidates`); then every row is
 evaluated at every (u, x) the LPs enforced (both interpolation blocks,
-:func:`rt_drake.retiming.rows.wrench_ratios`), and any violated row is added
+:func:`rt_drake.retiming.stage_rows.wrench_ratios`), and any violated row is added
 and the passes rerun (``repairs``). The returned profile is then admissible
 for the full constraint and, as TOPP-RA's pointwise-maximal profile of a
 relaxation of it, the very profile TOPP-RA computes with all rows (the tests
@@ -58,8 +58,8 @@ from pydrake.systems.framework import Context
 from toppra.constraint import LinearConstraint
 
 from rt_drake import arguments
-from rt_drake.cup_frame import CupFrame
-from rt_drake.dynamics import PathCoefficients
+from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.dynamics.wrench import PathCoefficients
 from rt_drake.retiming.at_rest import check_torque_at_rest
 from rt_drake.retiming.between import (
     Segments,
@@ -71,12 +71,6 @@ from rt_drake.retiming.between import (
 )
 from rt_drake.retiming.between_kernels import position_excess
 from rt_drake.retiming.check import DEFAULT_TOLERANCE
-from rt_drake.retiming.errors import (
-    LimitsBetweenGridPointsError,
-    PathNotControllableError,
-    RetimeInputError,
-    RetimeStatus,
-)
 from rt_drake.retiming.grasp_rows import ROW_TOLERANCE, ObjectRows
 from rt_drake.retiming.grid import bound_steps, initial_grid
 from rt_drake.retiming.joint_path import JointPath, ToppraPath, as_joint_path
@@ -87,6 +81,12 @@ from rt_drake.retiming.passes import (
     XBound,
     reachability,
     stage_rows,
+)
+from rt_drake.retiming.retime_errors import (
+    LimitsBetweenGridPointsError,
+    PathNotControllableError,
+    RetimeInputError,
+    RetimeStatus,
 )
 from rt_drake.retiming.robust_grasp import SetRows
 from rt_drake.retiming.samples import PathSamples, sample_path

@@ -10,7 +10,7 @@ import numpy as np
 from pydrake.trajectories import Trajectory
 
 from rt_drake import arguments
-from rt_drake.retiming.errors import RetimeInputError
+from rt_drake.retiming.retime_errors import RetimeInputError
 
 
 class TimeScaled(Trajectory):

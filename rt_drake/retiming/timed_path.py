@@ -20,8 +20,8 @@ from __future__ import annotations
 import numpy as np
 from pydrake.trajectories import Trajectory
 
-from rt_drake.retiming.errors import RetimeInputError
 from rt_drake.retiming.joint_path import JointPath
+from rt_drake.retiming.retime_errors import RetimeInputError
 
 #: Highest derivative order the trajectory evaluates.
 MAX_ORDER = 3

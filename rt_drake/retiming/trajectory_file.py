@@ -36,11 +36,11 @@ from pydrake.multibody.tree import Frame
 from rt_drake import arguments
 from rt_drake.atomic_file import output_problem, write_atomically
 from rt_drake.contact import CupParameters, ToolParameters
-from rt_drake.cup_frame import CupFrame
-from rt_drake.dynamics import HeldObject
+from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.errors import InputError, TooLargeError
 from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint
 from rt_drake.retiming.solve import RetimeResult
+from rt_drake.types.held_object import HeldObject
 
 #: Version of the layout below; bumped when a key changes meaning.
 FORMAT_VERSION = 1

@@ -14,6 +14,7 @@
   (``run_cycle``).
 """
 
+from rt_drake.model.vacuum import VacuumTimeout
 from rt_drake.simulation.cycle_runner import (
     CycleResult,
     CycleTimeout,
@@ -33,7 +34,6 @@ from rt_drake.simulation.retimer_system import Retimer, RetimeRequest
 from rt_drake.simulation.sequencer import UPDATE_PERIOD, Sequencer
 from rt_drake.simulation.station import MakeStation, Station, StationOptions
 from rt_drake.simulation.suction import SuctionCup
-from rt_drake.simulation.vacuum import VacuumTimeout
 
 __all__ = [
     "UPDATE_PERIOD",

@@ -21,13 +21,17 @@ from pydrake.systems.framework import DiagramBuilder, EventStatus
 
 from rt_drake import arguments
 from rt_drake.errors import RtDrakeError
-from rt_drake.phase import Phase
-from rt_drake.plant import OBJECT_BODY, home_configuration, scenario_cup_frame
-from rt_drake.scenario import Scenario
+from rt_drake.model.object_model import OBJECT_BODY
+from rt_drake.model.plant import (
+    home_configuration,
+    scenario_cup_frame,
+)
+from rt_drake.model.scenario import Scenario
 from rt_drake.simulation.motion import MotionSource
 from rt_drake.simulation.records import ObjectRecord
 from rt_drake.simulation.sequencer import Sequencer
 from rt_drake.simulation.station import MakeStation, Station, StationOptions
+from rt_drake.types.phase import Phase
 
 
 class CycleTimeout(RtDrakeError):

@@ -29,10 +29,10 @@ from typing import Protocol
 import numpy as np
 from pydrake.trajectories import Trajectory
 
-from rt_drake.phase import Phase
+from rt_drake.model.scenario import ObjectConfig
 from rt_drake.planning import PlannedPath
 from rt_drake.retiming import GraspConstraint, RetimeResult
-from rt_drake.scenario import ObjectConfig
+from rt_drake.types.phase import Phase
 
 
 @dataclasses.dataclass(frozen=True)

@@ -7,7 +7,7 @@ from the :class:`~rt_drake.planning.CyclePlanner` and is retimed by
 grasp constraint ``F w <= g`` of the held object (unless disabled). With
 MOVE optimisation on (the scenario's ``planning.optimize_move``, or
 ``optimize=True``), the spline MOVE is then reshaped for speed by
-:class:`~rt_drake.planning.shape.MoveOptimizer` within
+:class:`~rt_drake.shaping.MoveOptimizer` within
 ``planning.budget_s``, and the path it returns is the one retimed. Both are
 timed on the wall clock, as in the paper's Table II. The grasp polytope is
 computed once, offline, per cup or multi-cup tool (as the paper did: the
@@ -49,14 +49,15 @@ from rt_drake.contact import (
     with_suction_force,
     worst_cup_polytope,
 )
-from rt_drake.cup_frame import CupFrame
-from rt_drake.dynamics import HeldObject, path_wrench_coefficients
-from rt_drake.inertial_set import uncertain_object
-from rt_drake.phase import Phase
+from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.dynamics.wrench import path_wrench_coefficients
+from rt_drake.model.held import held_object_of
+from rt_drake.model.plant import make_arm_plant
+from rt_drake.model.scenario import (
+    ObjectConfig,
+    Scenario,
+)
 from rt_drake.planning import CyclePlanner, GeometricPath, PlannedPath
-from rt_drake.planning.shape import MoveOptimizer, MoveOptimizerOptions
-from rt_drake.planning.shape import warm_up as warm_up_optimizer
-from rt_drake.plant import make_arm_plant
 from rt_drake.retiming import (
     GraspConstraint,
     JointLimits,
@@ -65,9 +66,16 @@ from rt_drake.retiming import (
     retime,
     warm_up,
 )
-from rt_drake.scenario import ObjectConfig, Scenario
+from rt_drake.shaping import (
+    MoveOptimizer,
+    MoveOptimizerOptions,
+)
+from rt_drake.shaping import warm_up as warm_up_optimizer
 from rt_drake.simulation.motion import Motion, PhasePart, PlanTimes
-from rt_drake.uncertainty import ObjectUncertainty
+from rt_drake.types.held_object import HeldObject
+from rt_drake.types.object_uncertainty import ObjectUncertainty
+from rt_drake.types.phase import Phase
+from rt_drake.uncertainty.inertial_set import uncertain_object
 
 #: The guarantee of a MOVE retimed without the grasp constraint.
 NO_GUARANTEE = "none: joint limits only"
@@ -75,9 +83,7 @@ NO_GUARANTEE = "none: joint limits only"
 
 def held_object(obj: ObjectConfig, X_OC: RigidTransform) -> HeldObject:
     """Inertia of ``obj`` in the cup frame, held at grasp ``X_OC``."""
-    return HeldObject.from_scenario_object(
-        dataclasses.replace(obj, grasp=Transform(X_OC))
-    )
+    return held_object_of(dataclasses.replace(obj, grasp=Transform(X_OC)))
 
 
 def move_polytope(scenario: Scenario) -> WrenchPolytope | SharedLoadSet:

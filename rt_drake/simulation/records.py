@@ -8,8 +8,8 @@ import math
 import numpy as np
 from pydrake.math import RigidTransform
 
-from rt_drake.phase import Phase
 from rt_drake.simulation.motion import PlanTimes
+from rt_drake.types.phase import Phase
 
 
 @dataclasses.dataclass(frozen=True)

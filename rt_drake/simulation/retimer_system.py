@@ -15,7 +15,7 @@ from pydrake.common.value import AbstractValue
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import BasicVector, Context, LeafSystem, State
 
-from rt_drake.cup_frame import CupFrame
+from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.errors import InputError
 from rt_drake.retiming import (
     GraspConstraint,

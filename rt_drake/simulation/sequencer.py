@@ -38,8 +38,13 @@ from pydrake.multibody.math import SpatialVelocity
 from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.framework import BasicVector, Context, LeafSystem, State
 
-from rt_drake.phase import Phase
-from rt_drake.scenario import ObjectConfig, Vacuum, VacuumModel
+from rt_drake.model.scenario import ObjectConfig
+from rt_drake.model.vacuum import (
+    Vacuum,
+    VacuumModel,
+    is_released,
+    wait_over,
+)
 from rt_drake.simulation.motion import Motion, MotionSource, PendingMotion
 from rt_drake.simulation.records import (
     ObjectRecord,
@@ -47,7 +52,7 @@ from rt_drake.simulation.records import (
     with_placement,
     with_slip,
 )
-from rt_drake.simulation.vacuum import is_released, wait_over
+from rt_drake.types.phase import Phase
 
 #: s, period of the sequencer's update (the paper's robot runs at 125 Hz).
 UPDATE_PERIOD = 1.0 / 125.0

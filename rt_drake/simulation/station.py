@@ -9,7 +9,7 @@ state through the plant's implicit PD actuators, with an inverse-dynamics
 feedforward (gravity, Coriolis and the commanded acceleration, for the arm
 and tool without payload) computed on a separate controller plant. The
 vacuum is a :class:`~rt_drake.simulation.suction.SuctionCup` with the
-scenario's :class:`~rt_drake.scenario.Vacuum` model: one vacuum force and
+scenario's :class:`~rt_drake.model.vacuum.Vacuum` model: one vacuum force and
 one seal per cup of the scenario's ``cup`` or ``tool``.
 
 Exported ports of the Diagram:
@@ -47,8 +47,8 @@ from pydrake.systems.framework import Diagram, DiagramBuilder
 
 from rt_drake import arguments
 from rt_drake.errors import InputError
-from rt_drake.plant import (
-    OBJECT_BODY,
+from rt_drake.model.object_model import OBJECT_BODY
+from rt_drake.model.plant import (
     ObjectMode,
     ScenarioModels,
     add_scenario_models,
@@ -56,7 +56,7 @@ from rt_drake.plant import (
     make_arm_plant,
     scenario_cup_frame,
 )
-from rt_drake.scenario import Scenario
+from rt_drake.model.scenario import Scenario
 from rt_drake.simulation.suction import CupOnTool, SuctionCup, SuctionTarget
 
 

@@ -26,8 +26,12 @@ from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.framework import BasicVector, Context, DiscreteValues, LeafSystem
 
 from rt_drake.errors import InputError
-from rt_drake.scenario import Vacuum, VacuumModel
-from rt_drake.simulation.vacuum import next_level, part_present
+from rt_drake.model.vacuum import (
+    Vacuum,
+    VacuumModel,
+    next_level,
+    part_present,
+)
 
 #: Cosine of the largest angle between the cup axis and a face's inward
 #: normal at which the cup can still seal on that face (20 deg).
@@ -119,7 +123,7 @@ class SuctionCup(LeafSystem):
     ``valve`` (1-vector, on when > 0.5; it drives every cup); ``body_poses``
     is the plant's ``body_poses`` output. Each cup seals on the target whose
     face is nearest to it (gap at most ``seal_distance``); each cup's vacuum
-    level lambda_i follows the scenario's :class:`~rt_drake.scenario.Vacuum`
+    level lambda_i follows the scenario's :class:`~rt_drake.model.vacuum.Vacuum`
     (:mod:`.vacuum`; state: one discrete value per cup, updated every
     ``time_step``, ``fixed`` needs none). ``spatial_forces`` is a list of
     ExternallyAppliedSpatialForce for the plant: per cup that pulls,

@@ -1,7 +1,7 @@
 """Every kind of bad input: exit code 2, one stderr line naming it, nothing lost.
 
 One test (or parametrized family) per kind of the bad-input campaign
-(``benchmarks/bad_inputs.py``): silent wrong answers, hangs and blown
+(``tools/bad_inputs.py``): silent wrong answers, hangs and blown
 memory, data loss, tracebacks, poor messages. Each asserts the exit code,
 that stderr is ONE line ``rt-drake <command>: error: ...`` naming the flag,
 key or file and the value, and, where files are involved, that inputs are
@@ -17,7 +17,10 @@ from pathlib import Path
 import pytest
 
 from rt_drake.cli import main
-from rt_drake.resources import models_dir, scenarios_dir
+from rt_drake.model.resources import (
+    models_dir,
+    scenarios_dir,
+)
 
 BASE = (scenarios_dir() / "random_transport.yaml").read_text()
 SDF = (models_dir() / "objects" / "notebook.sdf").read_text()

@@ -10,9 +10,9 @@ from toppra.interpolator import SplineInterpolator
 
 from rt_drake.cli import plan
 from rt_drake.errors import ScenarioError
+from rt_drake.model.scenario import load_scenario
 from rt_drake.planning import CyclePlanner
-from rt_drake.planning.path import chord_knots
-from rt_drake.scenario import load_scenario
+from rt_drake.types.path import chord_knots
 
 
 def run(argv: list[str]) -> int:

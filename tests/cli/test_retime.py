@@ -148,9 +148,9 @@ def test_retimes_under_a_multi_cup_tool(tmp_path, capsys):
     from tool_reference import residual
 
     from rt_drake import CupFrame, CupParameters, HeldObject, load_scenario
-    from rt_drake.newton_euler import reference_object_wrench
-    from rt_drake.plant import make_arm_plant
-    from rt_drake.resources import scenarios_dir
+    from rt_drake.dynamics.newton_euler import reference_object_wrench
+    from rt_drake.model.plant import make_arm_plant
+    from rt_drake.model.resources import scenarios_dir
 
     text = (scenarios_dir() / "stack_four_objects.yaml").read_text()
     start, end = text.index("\ncup:\n"), text.index("max_normal_force: 33.3\n")

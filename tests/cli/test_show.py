@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from rt_drake.cli import main
-from rt_drake.visualization import meshcat_paths_in_html
+from rt_drake.simulation.visualization import meshcat_paths_in_html
 
 
 def test_show_writes_html_with_the_scene(tmp_path, capsys):

@@ -31,9 +31,9 @@ from rt_drake.experiments.campaign import (
     load_campaign,
     write_campaign_report,
 )
-from rt_drake.experiments.campaign.progress import Progress
+from rt_drake.experiments.campaign.campaign_progress import Progress
 from rt_drake.experiments.campaign.store import ResultStore
-from rt_drake.resources import scenarios_dir
+from rt_drake.model.resources import scenarios_dir
 
 SHIPPED = scenarios_dir() / "campaigns" / "two_objects_two_cups.yaml"
 

@@ -38,10 +38,13 @@ import pytest
 
 from rt_drake.cli import main
 from rt_drake.experiments.campaign import RowKey, Variant, load_campaign
-from rt_drake.object_samples import ObjectInertia, corners
 from rt_drake.planning import GeometricPath
 from rt_drake.retiming import GraspConstraint
 from rt_drake.simulation import OnlineMotions
+from rt_drake.uncertainty.object_samples import (
+    ObjectInertia,
+    corners,
+)
 
 pytestmark = pytest.mark.slow
 

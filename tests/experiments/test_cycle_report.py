@@ -7,8 +7,8 @@ import json
 import pytest
 
 from rt_drake.experiments import cycle_report, table_markdown, write_report
-from rt_drake.phase import Phase
 from rt_drake.simulation import ObjectRecord, PlanTimes
+from rt_drake.types.phase import Phase
 
 
 def _record(name, wait):

@@ -16,11 +16,14 @@ from pydrake.common.schema import Transform
 
 from rt_drake.cli import main
 from rt_drake.experiments.rollout import rollout_scenario, simulate_move
-from rt_drake.object_samples import ObjectInertia, hardest_corner
+from rt_drake.model.resources import scenarios_dir
+from rt_drake.model.scenario import load_scenario
 from rt_drake.planning import sample_transports
-from rt_drake.resources import scenarios_dir
-from rt_drake.scenario import load_scenario
 from rt_drake.simulation import OnlineMotions
+from rt_drake.uncertainty.object_samples import (
+    ObjectInertia,
+    hardest_corner,
+)
 
 #: Whole-cycle simulations: tens of seconds (still run by CI).
 pytestmark = pytest.mark.slow

@@ -7,10 +7,13 @@ import pytest
 from pydrake.math import RigidTransform
 
 from rt_drake.errors import InputError
-from rt_drake.phase import Phase
+from rt_drake.model.scenario import load_scenario
 from rt_drake.planning import CyclePlanner
-from rt_drake.planning.errors import PlanningError, PlanningInputError
-from rt_drake.scenario import load_scenario
+from rt_drake.planning.planning_errors import (
+    PlanningError,
+    PlanningInputError,
+)
+from rt_drake.types.phase import Phase
 
 
 @pytest.fixture(scope="module")

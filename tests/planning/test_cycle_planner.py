@@ -13,9 +13,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rt_drake.phase import Phase
+from rt_drake.model.scenario import load_scenario
 from rt_drake.planning import CyclePlanner, GeometricPath, sample_transports
-from rt_drake.scenario import load_scenario
+from rt_drake.types.phase import Phase
 
 #: Plans twenty transports and checks them at 1 mm of cup travel.
 pytestmark = pytest.mark.slow

@@ -8,7 +8,7 @@ from pydrake.geometry import Box
 from pydrake.math import RigidTransform, RotationMatrix
 
 from rt_drake.errors import RtDrakeError
-from rt_drake.phase import Phase
+from rt_drake.model.scenario import load_scenario
 from rt_drake.planning import (
     CyclePlanner,
     GoalInCollisionError,
@@ -17,7 +17,7 @@ from rt_drake.planning import (
     StartInCollisionError,
     UnreachablePoseError,
 )
-from rt_drake.scenario import load_scenario
+from rt_drake.types.phase import Phase
 
 
 @pytest.fixture

@@ -9,7 +9,11 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 from toppra.interpolator import SplineInterpolator
 
-from rt_drake.planning.path import GeometricPath, chord_knots, drop_repeated
+from rt_drake.types.path import (
+    GeometricPath,
+    chord_knots,
+    drop_repeated,
+)
 
 waypoint_arrays = arrays(
     float,

@@ -12,11 +12,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rt_drake.phase import Phase
+from rt_drake.model.plant import CUP_FRAME
 from rt_drake.planning import CyclePlanner
 from rt_drake.planning.pick import RETREAT_HEIGHT
-from rt_drake.plant import CUP_FRAME
 from rt_drake.retiming import JointLimits, retime
+from rt_drake.types.phase import Phase
 
 #: Plans four picks and moves and samples each pick at 1 mm of cup travel.
 pytestmark = pytest.mark.slow

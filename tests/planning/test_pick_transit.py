@@ -14,10 +14,10 @@ import numpy as np
 from pydrake.geometry import Sphere
 from pydrake.math import RigidTransform
 
-from rt_drake.phase import Phase
+from rt_drake.model.plant import CUP_FRAME
 from rt_drake.planning import CyclePlanner, GeometricPath
 from rt_drake.planning.dense_check import check_path
-from rt_drake.plant import CUP_FRAME
+from rt_drake.types.phase import Phase
 
 
 def cup_travel_samples(plant, path, step=1e-3):

@@ -7,14 +7,14 @@ import pytest
 from pydrake.geometry import Box
 from pydrake.math import RigidTransform, RotationMatrix
 
-from rt_drake.phase import Phase
+from rt_drake.model.plant import home_configuration
+from rt_drake.model.scenario import load_scenario
+from rt_drake.planning.body_poses import step_motion
 from rt_drake.planning.dense_check import check_path
 from rt_drake.planning.geometry import object_geometries
-from rt_drake.planning.kinematics import step_motion
-from rt_drake.planning.path import GeometricPath
 from rt_drake.planning.scene import PlanningScene
-from rt_drake.plant import home_configuration
-from rt_drake.scenario import load_scenario
+from rt_drake.types.path import GeometricPath
+from rt_drake.types.phase import Phase
 
 
 @pytest.fixture(scope="module")

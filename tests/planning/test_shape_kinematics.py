@@ -4,15 +4,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from rt_drake import CupFrame, HeldObject
-from rt_drake.dynamics import path_wrench_coefficients
-from rt_drake.planning.shape.kinematics import CupChain
+from rt_drake import CupFrame
+from rt_drake.dynamics.wrench import path_wrench_coefficients
+from rt_drake.model.held import held_object_of
+from rt_drake.shaping.cup_chain import CupChain
 
 
 def test_batched_wrench_coefficients_match_drake(scenario, plant):
     cup = CupFrame.of(plant)
     chain = CupChain(plant, cup)
-    held = HeldObject.from_scenario_object(scenario.objects[0])
+    held = held_object_of(scenario.objects[0])
     rng = np.random.default_rng(1)
     q, dq, ddq = (rng.uniform(-1.5, 1.5, (9, 6)) for _ in range(3))
     expected = path_wrench_coefficients(plant, held, q, dq, ddq, cup=cup)

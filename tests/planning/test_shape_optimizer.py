@@ -21,7 +21,6 @@ from rt_drake import (
     CyclePlanner,
     GeometricPath,
     GraspConstraint,
-    HeldObject,
     JointLimits,
     PlannedPath,
     cached_wrench_polytope,
@@ -29,9 +28,9 @@ from rt_drake import (
     make_arm_plant,
     retime,
 )
-from rt_drake.phase import Phase
+from rt_drake.model.held import held_object_of
 from rt_drake.planning import PlanTiming, sample_transports
-from rt_drake.planning.shape import (
+from rt_drake.shaping import (
     Clock,
     MoveOptimizer,
     MoveOptimizerOptions,
@@ -39,6 +38,7 @@ from rt_drake.planning.shape import (
     retime_adaptive,
     warm_up,
 )
+from rt_drake.types.phase import Phase
 
 CUP_STEP = 1e-3  # m
 OPTIONS = MoveOptimizerOptions(
@@ -72,7 +72,7 @@ def setup(scenario_paths) -> Setup:
 def grasp_for(setup: Setup, X_OC: RigidTransform) -> GraspConstraint:
     obj = dataclasses.replace(setup.scenario.object(setup.name), grasp=Transform(X_OC))
     polytope = cached_wrench_polytope(setup.scenario.cup)
-    return GraspConstraint(HeldObject.from_scenario_object(obj), polytope.F, polytope.g)
+    return GraspConstraint(held_object_of(obj), polytope.F, polytope.g)
 
 
 def reach(setup: Setup, X_start) -> PlannedPath:
@@ -279,10 +279,10 @@ def test_kernels_only_take_the_layout_warm_up_compiles(moves):
     """
     from numba.core import types
 
-    from rt_drake import _chain_kernels
-    from rt_drake.planning.shape.clearance import _clearance
-    from rt_drake.planning.shape.spline import _splines
-    from rt_drake.planning.shape.surrogate import _batch_durations
+    from rt_drake.dynamics import chain_kernels as _chain_kernels
+    from rt_drake.shaping.clearance import _clearance
+    from rt_drake.shaping.spline import _splines
+    from rt_drake.shaping.surrogate import _batch_durations
 
     warm_up()
     kernels = (

@@ -5,7 +5,10 @@ from __future__ import annotations
 import pytest
 
 from rt_drake import InputError
-from rt_drake.planning.shape import MoveOptimizerError, MoveOptimizerOptions
+from rt_drake.shaping import (
+    MoveOptimizerError,
+    MoveOptimizerOptions,
+)
 
 
 @pytest.mark.parametrize(

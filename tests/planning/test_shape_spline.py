@@ -5,8 +5,11 @@ from __future__ import annotations
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from rt_drake.planning.shape.spline import chord_knots_batch, evaluate_splines
 from rt_drake.retiming import chord_knots
+from rt_drake.shaping.spline import (
+    chord_knots_batch,
+    evaluate_splines,
+)
 
 
 def test_batched_splines_match_scipy():

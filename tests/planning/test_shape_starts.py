@@ -6,13 +6,13 @@ import numpy as np
 import pytest
 
 from rt_drake import CupFrame, GeometricPath
-from rt_drake.planning.shape.family import PathFamily
-from rt_drake.planning.shape.kinematics import CupChain
-from rt_drake.planning.shape.library import LIBRARY
-from rt_drake.planning.shape.starts import (
+from rt_drake.shaping.cup_chain import CupChain
+from rt_drake.shaping.family import PathFamily
+from rt_drake.shaping.starts import (
     offset_parameters,
     start_parameters,
     transport_frame,
+    warm_start_library,
 )
 
 
@@ -82,7 +82,7 @@ def test_an_offset_moves_the_via_points_cup_by_that_much(family, plant):
 
 
 def test_library_starts_are_at_most_the_count_asked(family):
-    offsets, keys = LIBRARY
+    offsets, keys = warm_start_library()
     assert offsets.shape[1:] == (2, 6) and keys.shape == (len(offsets), 5)
     x = start_parameters(family, path_of(family), 5)
     assert x.shape[1] == family.dim and len(x) <= min(5, len(offsets))

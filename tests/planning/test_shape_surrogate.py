@@ -6,13 +6,14 @@ import numpy as np
 import pytest
 from scipy.interpolate import CubicSpline
 
-from rt_drake import CupFrame, GraspConstraint, HeldObject, JointLimits
+from rt_drake import CupFrame, GraspConstraint, JointLimits
 from rt_drake.contact import cached_wrench_polytope
-from rt_drake.dynamics import path_wrench_coefficients
-from rt_drake.planning.shape.kinematics import CupChain
-from rt_drake.planning.shape.surrogate import CoarseRetimer
+from rt_drake.dynamics.wrench import path_wrench_coefficients
+from rt_drake.model.held import held_object_of
 from rt_drake.retiming import chord_knots
 from rt_drake.retiming.passes import AffineConstraint, XBound, reachability
+from rt_drake.shaping.cup_chain import CupChain
+from rt_drake.shaping.surrogate import CoarseRetimer
 
 
 def classic_toppra(plant, waypoints, limits, grasp, gridpoints):
@@ -43,9 +44,7 @@ def test_coarse_retimer_is_classic_toppra_with_every_row(scenario, plant):
     """Same grid, same constraints at the grid points: the same duration."""
     chain = CupChain(plant, CupFrame.of(plant))
     polytope = cached_wrench_polytope(scenario.cup)
-    grasp = GraspConstraint(
-        HeldObject.from_scenario_object(scenario.objects[2]), polytope.F, polytope.g
-    )
+    grasp = GraspConstraint(held_object_of(scenario.objects[2]), polytope.F, polytope.g)
     limits = JointLimits.from_plant(plant, scenario.robot)
     q_home = np.array(scenario.robot.home)
     rng = np.random.default_rng(2)

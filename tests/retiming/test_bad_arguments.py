@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from rt_drake.contact import CupMount, CupParameters, ToolParameters
-from rt_drake.dynamics import HeldObject
 from rt_drake.errors import InputError, TooLargeError
+from rt_drake.model.held import held_object_of
 from rt_drake.retiming import (
     GraspConstraint,
     JointLimits,
@@ -17,8 +17,9 @@ from rt_drake.retiming import (
     retime,
     sample_trajectory,
 )
-from rt_drake.retiming.path import MAX_ABS_POSITION
-from rt_drake.uncertainty import ObjectUncertainty
+from rt_drake.types.held_object import HeldObject
+from rt_drake.types.object_uncertainty import ObjectUncertainty
+from rt_drake.types.path import MAX_ABS_POSITION
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 PATH = np.array([HOME, HOME + [-0.4, 0.1, -0.2, 0.0, 0.1, -0.5]])
@@ -98,13 +99,13 @@ def test_a_held_object_must_be_physical(mass, inertia, words):
 def test_a_held_object_from_a_model_with_a_defaulted_mass_is_refused(
     tmp_path, scenario
 ):
-    from rt_drake.resources import models_dir
+    from rt_drake.model.resources import models_dir
 
     sdf = (models_dir() / "objects" / "notebook.sdf").read_text()
     (tmp_path / "o.sdf").write_text(sdf.replace("<mass>0.551</mass>", ""))
     obj = type(scenario.objects[0])(name="o", model=str(tmp_path / "o.sdf"))
     with pytest.raises(InputError, match="o.sdf.*no <inertial><mass>.*1 kg"):
-        HeldObject.from_scenario_object(obj)
+        held_object_of(obj)
 
 
 def test_sampling_a_trajectory_too_long_for_memory_is_refused(plant):

@@ -14,7 +14,7 @@ from pydrake.math import BsplineBasis
 from pydrake.trajectories import BsplineTrajectory, PiecewisePolynomial, Trajectory
 from scipy.interpolate import CubicSpline, make_interp_spline
 
-from rt_drake.dynamics import HeldObject
+from rt_drake.model.held import held_object_of
 from rt_drake.retiming import (
     GraspConstraint,
     JointLimits,
@@ -39,7 +39,7 @@ WAYPOINTS = np.array(
 @pytest.fixture(scope="module")
 def setting(plant, scenario):
     limits = JointLimits.from_plant(plant, scenario.robot)
-    held = HeldObject.from_scenario_object(scenario.object("notebook"))
+    held = held_object_of(scenario.object("notebook"))
     return limits, GraspConstraint.for_cup(held, scenario.cup)
 
 

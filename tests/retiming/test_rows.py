@@ -1,4 +1,4 @@
-"""rt_drake.retiming.rows: grasp rows at rest, ray-shooting selection, check.
+"""rt_drake.retiming.stage_rows: grasp rows at rest, ray-shooting selection, check.
 
 The compiled kernels are compared with plain numpy on the scenario cup's
 exact polytope (834 rows) and random wrench coefficients.
@@ -10,8 +10,15 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from rt_drake.contact.cache import cached_wrench_polytope
-from rt_drake.retiming import row_groups, rows, seidel
-from rt_drake.retiming.warm import warm_up
+from rt_drake.model.held import held_object_of
+from rt_drake.retiming import (
+    row_groups,
+    seidel,
+)
+from rt_drake.retiming import (
+    stage_rows as rows,
+)
+from rt_drake.retiming.precompile import warm_up
 
 
 @pytest.fixture(scope="module")
@@ -109,8 +116,7 @@ def test_wrench_ratios_equal_numpy(polytope, seed, scale, floor, exact):
 
 def test_warm_up_compiles_what_retime_uses(plant, scenario, polytope):
     """After warm_up a retime with a grasp adds no compiled specialisation."""
-    from rt_drake import _chain_kernels
-    from rt_drake.dynamics import HeldObject
+    from rt_drake.dynamics import chain_kernels as _chain_kernels
     from rt_drake.retiming import (
         GraspConstraint,
         JointLimits,
@@ -131,7 +137,7 @@ def test_warm_up_compiles_what_retime_uses(plant, scenario, polytope):
     ]
     warm_up()
     before = [len(kernel.signatures) for kernel in kernels]
-    held = HeldObject.from_scenario_object(scenario.object("notebook"))
+    held = held_object_of(scenario.object("notebook"))
     grasp = GraspConstraint(held, polytope.F, polytope.g)
     home = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
     limits = JointLimits.from_plant(plant, scenario.robot, torque=True)

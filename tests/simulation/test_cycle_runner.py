@@ -7,7 +7,10 @@ import json
 import pytest
 
 from rt_drake.cli import main
-from rt_drake.visualization import meshcat_command_types, meshcat_paths_in_html
+from rt_drake.simulation.visualization import (
+    meshcat_command_types,
+    meshcat_paths_in_html,
+)
 
 #: Whole-cycle simulations: tens of seconds (still run by CI).
 pytestmark = pytest.mark.slow

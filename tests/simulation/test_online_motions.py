@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rt_drake.phase import Phase
-from rt_drake.plant import make_arm_plant
+from rt_drake.model.plant import make_arm_plant
 from rt_drake.retiming import JointLimits, TimeScaled, check_trajectory
 from rt_drake.simulation import OnlineMotions
+from rt_drake.types.phase import Phase
 
 
 @pytest.fixture(scope="module")

@@ -8,8 +8,14 @@ import numpy as np
 import pytest
 
 from rt_drake import JointLimits, OnlineMotions, make_arm_plant
-from rt_drake.planning.shape import MoveOptimizer, MoveOptimizerOptions
-from rt_drake.scenario import PlanningConfig, load_scenario
+from rt_drake.model.scenario import (
+    PlanningConfig,
+    load_scenario,
+)
+from rt_drake.shaping import (
+    MoveOptimizer,
+    MoveOptimizerOptions,
+)
 
 
 @pytest.mark.slow

@@ -14,9 +14,9 @@ import dataclasses
 import numpy as np
 import pytest
 
-from rt_drake.phase import Phase
 from rt_drake.simulation import OnlineMotions, PendingMotion, run_cycle
 from rt_drake.simulation.motion import Motion, PlanTimes
+from rt_drake.types.phase import Phase
 
 #: A two-object cycle with the planner and retimer: tens of seconds.
 pytestmark = pytest.mark.slow

@@ -7,11 +7,11 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantValueSource
 
-from rt_drake.dynamics import HeldObject
-from rt_drake.plant import make_arm_plant
-from rt_drake.resources import scenarios_dir
+from rt_drake.model.held import held_object_of
+from rt_drake.model.plant import make_arm_plant
+from rt_drake.model.resources import scenarios_dir
+from rt_drake.model.scenario import load_scenario
 from rt_drake.retiming import GraspConstraint, JointLimits, retime
-from rt_drake.scenario import load_scenario
 from rt_drake.simulation.retimer_system import Retimer, RetimeRequest
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
@@ -29,7 +29,7 @@ def setup():
     scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
     plant = make_arm_plant(scenario)
     limits = JointLimits.from_plant(plant, scenario.robot)
-    held = HeldObject.from_scenario_object(scenario.object("notebook"))
+    held = held_object_of(scenario.object("notebook"))
     return plant, limits, GraspConstraint.for_cup(held, scenario.cup)
 
 

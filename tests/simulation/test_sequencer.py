@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 from motion_helpers import IkMotions
 
-from rt_drake.phase import Phase
-from rt_drake.scenario import load_scenario
+from rt_drake.model.scenario import load_scenario
 from rt_drake.simulation import run_cycle
+from rt_drake.types.phase import Phase
 
 #: Whole-cycle simulations: tens of seconds (still run by CI).
 pytestmark = pytest.mark.slow

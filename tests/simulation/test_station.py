@@ -11,11 +11,9 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import Demultiplexer, TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
-from rt_drake.plant import (
-    CUP_FRAME,
-    OBJECT_BODY,
-)
-from rt_drake.scenario import load_scenario
+from rt_drake.model.object_model import OBJECT_BODY
+from rt_drake.model.plant import CUP_FRAME
+from rt_drake.model.scenario import load_scenario
 from rt_drake.simulation.station import MakeStation
 from rt_drake.simulation.suction import find_seal
 

@@ -20,15 +20,16 @@ from pydrake.systems.primitives import ConstantVectorSource, TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
 from rt_drake.experiments.rollout import Replay
-from rt_drake.phase import Phase
-from rt_drake.scenario import Vacuum, load_scenario
-from rt_drake.simulation import UPDATE_PERIOD, MakeStation, run_cycle
-from rt_drake.simulation.vacuum import (
+from rt_drake.model.scenario import load_scenario
+from rt_drake.model.vacuum import (
+    Vacuum,
     VacuumTimeout,
     next_level,
     time_to_part_present,
     wait_over,
 )
+from rt_drake.simulation import UPDATE_PERIOD, MakeStation, run_cycle
+from rt_drake.types.phase import Phase
 
 FIRST_ORDER = Vacuum(
     model="first_order",

@@ -16,14 +16,18 @@ its summary tables and plots.
 - :mod:`.report`, :mod:`.report_plots`: the report from the database.
 """
 
-from rt_drake.experiments.campaign.campaign import Campaign, Combination, load_campaign
-from rt_drake.experiments.campaign.errors import (
+from rt_drake.experiments.campaign.campaign_errors import (
     CampaignError,
     CampaignMismatchError,
     ExecutorUnavailableError,
 )
+from rt_drake.experiments.campaign.definition import (
+    Campaign,
+    Combination,
+    load_campaign,
+)
 from rt_drake.experiments.campaign.report import summarize_rows, write_campaign_report
-from rt_drake.experiments.campaign.rows import (
+from rt_drake.experiments.campaign.row_types import (
     Outcome,
     RowKey,
     RowResult,

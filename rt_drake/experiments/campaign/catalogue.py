@@ -7,7 +7,8 @@ pointing down into the object), so a catalogue of boxes needs no grasp
 poses; an object without a box takes the base scenario's grasp.
 
 An object may name an uncertainty set file, for the ``robust`` variant: a
-YAML mapping with the fields of :class:`~rt_drake.uncertainty.ObjectUncertainty`
+YAML mapping with the fields of
+:class:`~rt_drake.types.object_uncertainty.ObjectUncertainty`
 (the scenario key ``objects[].uncertainty``), e.g.::
 
     mass: 0.2                   # relative half-width of the mass
@@ -28,12 +29,19 @@ from pydrake.math import RigidTransform, RotationMatrix
 
 from rt_drake.contact import CupParameters, ToolParameters
 from rt_drake.errors import InputError, ScenarioError
-from rt_drake.experiments.campaign.errors import CampaignError
-from rt_drake.plant import OBJECT_BODY
-from rt_drake.resources import models_dir
-from rt_drake.scenario import MAX_SCENARIO_BYTES, ObjectConfig, ToolConfig
-from rt_drake.scenario_yaml import check_schema, locate, read_yaml
-from rt_drake.uncertainty import ObjectUncertainty
+from rt_drake.experiments.campaign.campaign_errors import CampaignError
+from rt_drake.model.object_model import OBJECT_BODY
+from rt_drake.model.resources import models_dir
+from rt_drake.model.scenario import (
+    MAX_SCENARIO_BYTES,
+    ToolConfig,
+)
+from rt_drake.model.yaml_schema import (
+    check_schema,
+    locate,
+    read_yaml,
+)
+from rt_drake.types.object_uncertainty import ObjectUncertainty
 
 #: The URL prefix of the shipped models.
 PACKAGE_PREFIX = "package://rt_drake/"
@@ -205,10 +213,10 @@ def read_uncertainty(file: Path, name: str, model: str) -> ObjectUncertainty:
     except InputError as error:  # a width out of range
         raise CampaignError(f"{file}: {error}") from None
     if any(uncertainty.com):
-        from rt_drake.object_geometry import object_box  # parses the model: Drake
+        from rt_drake.model.object_geometry import object_box  # parses the model: Drake
 
         try:
-            p_OoScm_O, half_extents = object_box(ObjectConfig(name=name, model=model))
+            p_OoScm_O, half_extents = object_box(model, name)
             uncertainty.check_inside(p_OoScm_O, half_extents)
         except InputError as error:
             raise CampaignError(f"{file}: {error}") from None

@@ -24,8 +24,13 @@ from concurrent.futures.process import BrokenProcessPool
 from multiprocessing import get_context
 
 from rt_drake.errors import InputError
-from rt_drake.experiments.campaign.campaign import Campaign
-from rt_drake.experiments.campaign.rows import Outcome, RowKey, RowResult, Status
+from rt_drake.experiments.campaign.definition import Campaign
+from rt_drake.experiments.campaign.row_types import (
+    Outcome,
+    RowKey,
+    RowResult,
+    Status,
+)
 from rt_drake.experiments.campaign.worker import (
     Task,
     code_version,

@@ -31,10 +31,13 @@ from types import ModuleType
 from typing import Any
 
 from rt_drake.errors import InputError, RtDrakeError
-from rt_drake.experiments.campaign.campaign import Campaign
-from rt_drake.experiments.campaign.errors import ExecutorUnavailableError
+from rt_drake.experiments.campaign.campaign_errors import ExecutorUnavailableError
+from rt_drake.experiments.campaign.definition import Campaign
 from rt_drake.experiments.campaign.local_executor import MAX_ATTEMPTS, crashed
-from rt_drake.experiments.campaign.rows import Outcome, RowKey
+from rt_drake.experiments.campaign.row_types import (
+    Outcome,
+    RowKey,
+)
 from rt_drake.experiments.campaign.worker import Task, run_task
 
 #: The Ray version rt-drake is tested with (the ``ray`` extra pins it).

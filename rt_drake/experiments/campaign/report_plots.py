@@ -11,8 +11,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from rt_drake.experiments.campaign.report import GroupSummary
-from rt_drake.experiments.campaign.rows import Variant
+from rt_drake.experiments.campaign.group_summary import GroupSummary
+from rt_drake.experiments.campaign.row_types import Variant
 from rt_drake.experiments.rollout import SPEED_FACTORS
 
 

@@ -17,9 +17,13 @@ from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import IO, Protocol
 
-from rt_drake.experiments.campaign.campaign import Campaign
-from rt_drake.experiments.campaign.progress import Progress
-from rt_drake.experiments.campaign.rows import Outcome, RowKey, Status
+from rt_drake.experiments.campaign.campaign_progress import Progress
+from rt_drake.experiments.campaign.definition import Campaign
+from rt_drake.experiments.campaign.row_types import (
+    Outcome,
+    RowKey,
+    Status,
+)
 from rt_drake.experiments.campaign.store import ResultStore
 
 #: The statuses of failed rows.

@@ -24,7 +24,7 @@ comparisons to run (see ``scenarios/campaigns/two_objects_two_cups.yaml``)::
 
 An entry of ``cups`` is a cup (its :class:`CupParameters` fields) or a tool
 of several cups (``tool``, the schema of a scenario's ``tool`` key, checked
-by the scenario's own :func:`~rt_drake.scenario.check_tool`), never both;
+by the scenario's own :func:`~rt_drake.model.scenario.check_tool`), never both;
 its ``name`` names the rows of either.
 
 ``yaml_load_typed`` rejects misspelled keys; :func:`load_campaign` turns every
@@ -42,15 +42,23 @@ from pydrake.common.yaml import yaml_load_typed
 
 from rt_drake.contact import CupParameters
 from rt_drake.errors import InputError, ScenarioError
+from rt_drake.experiments.campaign.campaign_errors import CampaignError
 from rt_drake.experiments.campaign.catalogue import (
     CampaignCup,
     CampaignObject,
     resolve_objects,
 )
-from rt_drake.experiments.campaign.errors import CampaignError
-from rt_drake.experiments.campaign.rows import Variant
-from rt_drake.scenario import MAX_SCENARIO_BYTES, ToolConfig, check_tool
-from rt_drake.scenario_yaml import check_schema, locate, read_yaml
+from rt_drake.experiments.campaign.row_types import Variant
+from rt_drake.model.scenario import (
+    MAX_SCENARIO_BYTES,
+    ToolConfig,
+    check_tool,
+)
+from rt_drake.model.yaml_schema import (
+    check_schema,
+    locate,
+    read_yaml,
+)
 
 
 @dataclasses.dataclass
@@ -66,7 +74,7 @@ class ObjectEntry:
             else the base scenario's grasp).
         uncertainty: A file with the object's uncertainty set, held by the
             ``robust`` comparison only (the fields of
-            :class:`~rt_drake.uncertainty.ObjectUncertainty`; see
+            :class:`~rt_drake.types.object_uncertainty.ObjectUncertainty`; see
             :mod:`.catalogue`).
     """
 
@@ -172,7 +180,7 @@ def _check_cup_or_tool(path: Path, entries: object) -> None:
 def parse_cups(path: Path, entries: list[CupEntry]) -> tuple[CampaignCup, ...]:
     """Named, validated cups and tools.
 
-    A tool is checked by the scenario's :func:`~rt_drake.scenario.check_tool`
+    A tool is checked by the scenario's :func:`~rt_drake.model.scenario.check_tool`
     (at least one cup, each in range, fixed poses).
 
     Raises:

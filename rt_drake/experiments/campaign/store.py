@@ -28,9 +28,17 @@ import sqlite3
 from pathlib import Path
 from types import TracebackType
 
-from rt_drake.experiments.campaign.campaign import Campaign
-from rt_drake.experiments.campaign.errors import CampaignError, CampaignMismatchError
-from rt_drake.experiments.campaign.rows import Outcome, RowKey, Status, Variant
+from rt_drake.experiments.campaign.campaign_errors import (
+    CampaignError,
+    CampaignMismatchError,
+)
+from rt_drake.experiments.campaign.definition import Campaign
+from rt_drake.experiments.campaign.row_types import (
+    Outcome,
+    RowKey,
+    Status,
+    Variant,
+)
 
 #: Bump when the tables change meaning.
 SCHEMA_VERSION = 1

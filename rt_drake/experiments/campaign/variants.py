@@ -30,8 +30,12 @@ from types import MappingProxyType
 import numpy as np
 
 from rt_drake.errors import RtDrakeError, ScenarioError
-from rt_drake.experiments.campaign.campaign import Combination
-from rt_drake.experiments.campaign.rows import RowResult, Status, Variant
+from rt_drake.experiments.campaign.definition import Combination
+from rt_drake.experiments.campaign.row_types import (
+    RowResult,
+    Status,
+    Variant,
+)
 from rt_drake.experiments.optimized_transport import optimize_spline
 from rt_drake.experiments.robust_transport import true_object_world
 from rt_drake.experiments.rollout import (
@@ -41,9 +45,9 @@ from rt_drake.experiments.rollout import (
     rollout_scenario,
     simulate_move,
 )
-from rt_drake.scenario import Scenario
+from rt_drake.model.scenario import Scenario
 from rt_drake.simulation import Motion, OnlineMotions
-from rt_drake.uncertainty import ObjectUncertainty
+from rt_drake.types.object_uncertainty import ObjectUncertainty
 
 #: A variant: one row's results from its combination.
 VariantFunction = Callable[[Combination], RowResult]

@@ -8,7 +8,7 @@ per worker and kept for all its tasks:
   run if the files changed since the driver hashed them);
 - the retimer's compiled numba kernels (:func:`rt_drake.retiming.warm_up`),
   and the MOVE optimiser's if the campaign runs the ``optimized`` variant
-  (:func:`rt_drake.planning.shape.warm_up`), so that no row's optimisation
+  (:func:`rt_drake.shaping.warm_up`), so that no row's optimisation
   time counts a compilation;
 - the exact wrench polytope of every cup or tool, the one its MOVEs are
   retimed under (computed once, then in the on-disk cache that each task's
@@ -35,12 +35,19 @@ from pathlib import Path
 
 from rt_drake._version import __version__
 from rt_drake.errors import RtDrakeError
-from rt_drake.experiments.campaign.campaign import Campaign, load_campaign
-from rt_drake.experiments.campaign.errors import CampaignMismatchError
-from rt_drake.experiments.campaign.rows import Outcome, RowKey, Variant
+from rt_drake.experiments.campaign.campaign_errors import CampaignMismatchError
+from rt_drake.experiments.campaign.definition import (
+    Campaign,
+    load_campaign,
+)
+from rt_drake.experiments.campaign.row_types import (
+    Outcome,
+    RowKey,
+    Variant,
+)
 from rt_drake.experiments.campaign.variants import run_variant
-from rt_drake.planning.shape import warm_up as warm_up_optimizer
 from rt_drake.retiming import warm_up
+from rt_drake.shaping import warm_up as warm_up_optimizer
 from rt_drake.simulation.online_motions import move_polytope
 
 

@@ -1,0 +1,10 @@
+"""The held object's wrench along a path: kinematics and Newton-Euler in the cup frame.
+
+- :mod:`.chain` (kernels in :mod:`.chain_kernels`, numba): the serial chain
+  from the world to the cup, batched forward kinematics, the one forward
+  kinematics of the cup.
+- :mod:`.cup_frame`: the cup frame C of a plant, looked up once.
+- :mod:`.wrench`: the object wrench and joint torques along a path, Drake's
+  route; :mod:`.newton_euler` the equations; :mod:`.regressor` the wrench as
+  linear in the object's inertial parameters.
+"""

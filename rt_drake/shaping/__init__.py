@@ -1,0 +1,54 @@
+"""MOVE path optimisation under the grasp constraint (issue 13).
+
+:func:`optimize_move` returns a MOVE path from the grasp configuration to
+the place configuration whose time-optimal duration (TOPP-RA under the joint
+limits and the exact grasp polytope ``F w <= g``) is as short as it finds
+within a time budget. It starts from the planner's spline path and never
+returns a slower one. Modules:
+
+- :mod:`.optimizer`: :class:`MoveOptimizer` and :func:`optimize_move`;
+  :mod:`.options`: their options and result;
+- :mod:`.family`: the paths searched (vertical end segments, free via
+  points in joint space starting at the spline path's corners);
+- :mod:`.search`: CMA-ES until a deadline; :mod:`.objective`: its objective;
+- :mod:`.starts`: warm starts learned on other transports (package data
+  ``data/warm_starts.npz``);
+- :mod:`.surrogate`: batched TOPP-RA on a coarse grid (the duration part);
+- :mod:`.kinematics`, :mod:`.spline`: batched cup kinematics, object wrench
+  coefficients and clamped splines (numba);
+- :mod:`.clearance`: the search's cheap clearance estimate;
+- :mod:`.finish`: the final retime on an adaptive grid, the vertical check;
+- :mod:`.compile_kernels`: compiles the numba kernels before anything is timed.
+"""
+
+from rt_drake.shaping.compile_kernels import warm_up
+from rt_drake.shaping.family import FamilyError
+from rt_drake.shaping.finish import (
+    retime_adaptive,
+    vertical_drift,
+)
+from rt_drake.shaping.optimizer import (
+    MoveOptimizer,
+    optimize_move,
+)
+from rt_drake.shaping.options import (
+    Clock,
+    MoveOptimizerError,
+    MoveOptimizerOptions,
+    MovePlanner,
+    OptimizedMove,
+)
+
+__all__ = [
+    "Clock",
+    "FamilyError",
+    "MoveOptimizer",
+    "MoveOptimizerError",
+    "MoveOptimizerOptions",
+    "MovePlanner",
+    "OptimizedMove",
+    "optimize_move",
+    "retime_adaptive",
+    "vertical_drift",
+    "warm_up",
+]
