@@ -82,22 +82,22 @@ def path_waypoints_and_knots(path: Any) -> tuple[np.ndarray, np.ndarray]:
             equal consecutive waypoints, or knots not strictly increasing from
             0 to 1.
     """
-    where = "path"  # the argument of retime and of path_waypoints_and_knots
+    caller = "path"  # the argument of retime and of path_waypoints_and_knots
     if hasattr(path, "waypoints") and hasattr(path, "knots"):
         waypoints = arguments.array(
             path.waypoints,
             "waypoints",
             ("K", "n"),
-            where=where,
+            where=caller,
             finite=False,
         )
-        knots = arguments.array(path.knots, "knots", ("K",), where=where)
+        knots = arguments.array(path.knots, "knots", ("K",), where=caller)
     else:
         waypoints = arguments.array(
             path,
             "waypoints",
             ("K", "n"),
-            where=where,
+            where=caller,
             finite=False,
         )
         knots = None
