@@ -571,6 +571,11 @@ def cli_cases() -> list[Case]:
             ("cup", "friction", "nan"),
         ),
         _scenario_case(
+            "friction_zero",
+            scenario(("friction: 0.3", "friction: 0.0")),
+            ("cup.friction", "0.0"),
+        ),
+        _scenario_case(
             "attach_text",
             scenario(("attach_s: 1.0", "attach_s: soon")),
             ("vacuum.attach_s", "soon"),
@@ -1043,12 +1048,34 @@ def api_cases() -> list[Case]:
         ),
         (
             "held.from_scenario_mass_0",
-            "from rt_drake import HeldObject, load_scenario\nopen('{d}/obj.sdf', 'w').write("
+            "from rt_drake import held_object_of, load_scenario\nopen('{d}/obj.sdf', 'w').write("
             + repr(sdf(("<mass>0.551</mass>", "<mass>0</mass>")))
             + ")\nopen('{d}/s.yaml', 'w').write("
             + repr(scenario(_MODEL))
             + ")\nresult = held_object_of(load_scenario('{d}/s.yaml').object('notebook'))",
             ("mass", "0"),
+        ),
+        (
+            "is_realizable.list_F_wrong_shape",
+            polytope
+            + "from rt_drake import is_realizable\nresult = is_realizable([0.0] * 6, W.F.tolist()[0], W.g.tolist())",
+            ("F", "(rows, 6)", "list"),
+        ),
+        (
+            "contact_wrench_polytope.none",
+            "from rt_drake import contact_wrench_polytope\nresult = contact_wrench_polytope(None)",
+            ("cup", "None"),
+        ),
+        (
+            "grasp.no_rows",
+            grasp + "result = GraspConstraint(h, np.zeros((0, 6)), np.zeros(0))",
+            ("F", "(0, 6)"),
+        ),
+        (
+            "grasp.frictionless_cup",
+            grasp
+            + "from rt_drake import CupParameters\nresult = GraspConstraint.for_cup(h, CupParameters(points=4, friction=0.0))",
+            ("friction", "0.0"),
         ),
         (
             "trajectory.save_onto_directory",
