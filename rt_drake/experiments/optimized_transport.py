@@ -40,7 +40,7 @@ from rt_drake.planning.shape import (
 )
 from rt_drake.planning.shape.kinematics import CupChain
 from rt_drake.plant import make_arm_plant
-from rt_drake.retiming import GraspConstraint, JointLimits, RetimeResult
+from rt_drake.retiming import GraspConstraint, JointLimits, Margin, RetimeResult
 from rt_drake.scenario import Scenario
 
 #: Samples in time of the cup profiles.
@@ -144,7 +144,7 @@ def cup_profile(chain: CupChain, retimed: RetimeResult) -> dict[str, list[float]
         "z": p[:, 2].tolist(),
         "tilt_deg": np.degrees(chain.tilt(q)).tolist(),
         "t_grid": (retimed.trajectory.times - t[0]).tolist(),
-        "grasp_margin": retimed.margins["grasp"].tolist(),
+        "grasp_margin": retimed.margins[Margin.GRASP].tolist(),
     }
 
 

@@ -3,7 +3,8 @@
 The public face of TOPP-RA in rt_drake; everything else in this package is
 internal:
 
-- :mod:`.solve`: :func:`retime` and :class:`RetimeResult`.
+- :mod:`.solve`: :func:`retime` and :class:`RetimeResult` (its margins keyed
+  by :class:`Margin`; the passes run by an :class:`Engine`).
 - :mod:`.limits`: joint limits and the grasp constraint ``F w <= g``.
 - :mod:`.path`: the joint path ``q(s)`` in the planner's spline convention.
 - :mod:`.at_rest`: the object and the arm must be holdable at rest.
@@ -26,7 +27,9 @@ internal:
 from rt_drake.retiming.check import (
     DEFAULT_TOLERANCE,
     Excess,
+    Margin,
     TrajectoryCheck,
+    WorstMargin,
     check_trajectory,
 )
 from rt_drake.retiming.errors import (
@@ -38,7 +41,9 @@ from rt_drake.retiming.errors import (
     RetimeStatus,
     TorqueLimitAtRestError,
 )
+from rt_drake.retiming.joint_path import PathLike, WaypointPath
 from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming.passes import Engine
 from rt_drake.retiming.path import chord_knots, path_waypoints_and_knots
 from rt_drake.retiming.solve import RetimeResult, retime
 from rt_drake.retiming.time_scaled import TimeScaled
@@ -53,11 +58,14 @@ from rt_drake.retiming.warm import warm_up
 
 __all__ = [
     "DEFAULT_TOLERANCE",
+    "Engine",
     "Excess",
     "GraspConstraint",
     "GraspUnstableAtRestError",
     "JointLimits",
     "LimitsBetweenGridPointsError",
+    "Margin",
+    "PathLike",
     "PathNotControllableError",
     "RetimeError",
     "RetimeInputError",
@@ -68,6 +76,8 @@ __all__ = [
     "TimedPath",
     "TorqueLimitAtRestError",
     "TrajectoryCheck",
+    "WaypointPath",
+    "WorstMargin",
     "check_trajectory",
     "chord_knots",
     "load_trajectory",
