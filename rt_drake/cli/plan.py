@@ -157,8 +157,7 @@ def _optimized(scenario, planner, move):
     if scenario.tool is None:
         grasp = GraspConstraint.for_cup(held, scenario.cup)
     else:  # the set the cycle retimes a multi-cup tool's MOVE under
-        polytope = move_polytope(scenario)
-        grasp = GraspConstraint(held=held, F=polytope.F, g=polytope.g, cup=polytope.cup)
+        grasp = GraspConstraint.for_polytope(held, move_polytope(scenario))
     warm_up()
     options = MoveOptimizerOptions.from_config(scenario.planning)
     cup = CupFrame.of(plant, scenario.robot.cup_frame)

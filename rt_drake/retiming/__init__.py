@@ -5,7 +5,9 @@ internal:
 
 - :mod:`.solve`: :func:`retime` and :class:`RetimeResult` (its margins keyed
   by :class:`Margin`; the passes run by an :class:`Engine`).
-- :mod:`.limits`: joint limits and the grasp constraint ``F w <= g``.
+- :mod:`.limits`: joint limits and the grasp constraint ``F w <= g``, one
+  class per source of its rows (:class:`GraspConstraint` given by hand,
+  :class:`CupGrasp`, :class:`ToolGrasp`, :class:`ObjectSetGrasp`).
 - :mod:`.path`: the joint path ``q(s)`` in the planner's spline convention.
 - :mod:`.at_rest`: the object and the arm must be holdable at rest.
 - :mod:`.rows`: which grasp rows the stage LPs get, and the exactness check
@@ -42,7 +44,13 @@ from rt_drake.retiming.errors import (
     TorqueLimitAtRestError,
 )
 from rt_drake.retiming.joint_path import PathLike, WaypointPath
-from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming.limits import (
+    CupGrasp,
+    GraspConstraint,
+    JointLimits,
+    ObjectSetGrasp,
+    ToolGrasp,
+)
 from rt_drake.retiming.passes import Engine
 from rt_drake.retiming.path import chord_knots, path_waypoints_and_knots
 from rt_drake.retiming.solve import RetimeResult, retime
@@ -58,6 +66,7 @@ from rt_drake.retiming.warm import warm_up
 
 __all__ = [
     "DEFAULT_TOLERANCE",
+    "CupGrasp",
     "Engine",
     "Excess",
     "GraspConstraint",
@@ -65,6 +74,7 @@ __all__ = [
     "JointLimits",
     "LimitsBetweenGridPointsError",
     "Margin",
+    "ObjectSetGrasp",
     "PathLike",
     "PathNotControllableError",
     "RetimeError",
@@ -74,6 +84,7 @@ __all__ = [
     "SavedTrajectory",
     "TimeScaled",
     "TimedPath",
+    "ToolGrasp",
     "TorqueLimitAtRestError",
     "TrajectoryCheck",
     "WaypointPath",

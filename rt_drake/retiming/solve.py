@@ -83,7 +83,7 @@ from rt_drake.retiming.joint_path import (
     ToppraPath,
     as_joint_path,
 )
-from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming.limits import GraspConstraint, JointLimits, ObjectSetGrasp
 from rt_drake.retiming.passes import (
     AffineConstraint,
     Engine,
@@ -224,7 +224,7 @@ def retime(
     family: ObjectRows | SetRows | None = None
     held = columns = None
     if grasp is not None and grasp.is_robust:
-        assert grasp.objects is not None
+        assert isinstance(grasp, ObjectSetGrasp)  # the only robust kind
         family = SetRows(grasp, limits)
         columns = parameter_columns(grasp.objects)[0]
     elif grasp is not None:
