@@ -73,11 +73,18 @@ class WorstMargin:
     time: float
     index: int
 
-    def words(self) -> str:
-        """``room 0.006 %`` or ``over by 0.010 %`` (no sign to misread)."""
-        if self.value < 0.0:
-            return f"over by {-100 * self.value:.3f} %"
-        return f"room {100 * self.value:.3f} %"
+    def words(self, tolerance: float = DEFAULT_TOLERANCE) -> str:
+        """``room 0.006 %`` or ``over by 0.010 %`` (no sign to misread).
+
+        An excess the contract allows (at most ``tolerance``) says so:
+        ``over by 0.010 % (within the 0.100 % tolerance)``.
+        """
+        if self.value >= 0.0:
+            return f"room {100 * self.value:.3f} %"
+        text = f"over by {-100 * self.value:.3f} %"
+        if -self.value <= tolerance:
+            text += f" (within the {100 * tolerance:.3f} % tolerance)"
+        return text
 
 
 @dataclasses.dataclass(frozen=True)
@@ -115,14 +122,14 @@ class TrajectoryCheck:
         """Whether no constraint is over its limit by more than ``tolerance``."""
         return self.min_margin() >= -tolerance
 
-    def summary(self) -> str:
+    def summary(self, tolerance: float = DEFAULT_TOLERANCE) -> str:
         """One line per constraint: name, margin in words, time, index.
 
         E.g. ``grasp: room 0.006 % at t = 0.4120 s (#17)`` or ``torque: over
-        by 0.010 % at t = 1.2000 s (#2)``.
+        by 0.200 % at t = 1.2000 s (#2)`` (:meth:`WorstMargin.words`).
         """
         return "\n".join(
-            f"{kind.value}: {m.words()} at t = {m.time:.4f} s (#{m.index})"
+            f"{kind.value}: {m.words(tolerance)} at t = {m.time:.4f} s (#{m.index})"
             for kind, m in self.margins.items()
         )
 
