@@ -154,6 +154,7 @@ def _optimized(scenario, planner, move):
     limits = JointLimits.from_plant(plant, scenario.robot)
     obj = dataclasses.replace(scenario.object(move.object), grasp=Transform(move.X_OC))
     held = HeldObject.from_scenario_object(obj)
+    grasp: GraspConstraint
     if scenario.tool is None:
         grasp = GraspConstraint.for_cup(held, scenario.cup)
     else:  # the set the cycle retimes a multi-cup tool's MOVE under
