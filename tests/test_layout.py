@@ -32,4 +32,10 @@ def test_no_module_name_is_used_twice():
 
 def test_the_root_holds_only_the_public_face_and_the_foundation():
     root = sorted(p.name for p in PACKAGE.glob("*.py"))
-    assert root == ["__init__.py", "_version.py", "atomic_file.py", "errors.py"]
+    assert root == [
+        "__init__.py",
+        "_version.py",
+        "arguments.py",
+        "atomic_file.py",
+        "errors.py",
+    ]

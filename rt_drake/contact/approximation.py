@@ -30,6 +30,7 @@ from collections.abc import Callable
 import numpy as np
 from scipy.spatial import ConvexHull
 
+from rt_drake import arguments
 from rt_drake.contact.tool_polytope import ToolWrenchSet
 from rt_drake.contact.wrench_polytope import (
     WrenchPolytope,
@@ -170,11 +171,16 @@ def guided_approximation(
             raise InputError(f"{name} must be in [{low}, {high}], got {value}")
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise InputError(f"seed must be an integer >= 0, got {seed!r}")
-    if not (np.isfinite(tol) and tol >= 0.0):
-        raise InputError(f"tol must be finite and >= 0, got {tol!r}")
+    where = "guided_approximation"
+    arguments.instance(
+        polytope, "polytope", (WrenchPolytope, ToolWrenchSet), where=where
+    )
+    arguments.number(tol, "tol", where=where, low=0.0)
     if callable(guiding_samples):
         guiding_samples = guiding_samples(sample_count)
-    wrenches = np.asarray(guiding_samples, dtype=float)
+    wrenches = arguments.array(
+        guiding_samples, "guiding_samples", ("N", 6), where=where, finite=False
+    )
     if (
         wrenches.ndim != 2
         or wrenches.shape[1] != 6

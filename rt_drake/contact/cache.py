@@ -23,6 +23,7 @@ from typing import Any, BinaryIO
 
 import numpy as np
 
+from rt_drake import arguments
 from rt_drake.atomic_file import write_atomically
 from rt_drake.contact.cup import CupParameters
 from rt_drake.contact.exact_cost import DEFAULT_MAX_MEMORY
@@ -67,6 +68,9 @@ def cache_path(
     cup: CupParameters | ToolParameters, directory: Path | None = None
 ) -> Path:
     """Return where the wrench set of ``cup`` (or of a tool) is cached."""
+    arguments.instance(cup, "cup", (CupParameters, ToolParameters), where="cache_path")
+    if directory is not None:
+        arguments.path(directory, "directory", where="cache_path")
     directory = default_cache_dir() if directory is None else Path(directory)
     kind = "wrench_polytope"
     if isinstance(cup, ToolParameters):
@@ -91,6 +95,8 @@ def save_polytope(path: str | Path, polytope: WrenchPolytope, **extra: Any) -> N
     Raises:
         InputError: ``path`` cannot be written (a directory, under a file).
     """
+    arguments.path(path, "path", where="save_polytope")
+    arguments.instance(polytope, "polytope", WrenchPolytope, where="save_polytope")
     arrays: dict[str, Any] = {
         "F": polytope.F,
         "g": polytope.g,
@@ -144,7 +150,10 @@ def load_polytope(
             of this format version, written for other parameters (which) or
             another tool, or arrays that are not a consistent polytope.
     """
-    path = Path(path)
+    path = arguments.path(path, "path", where="load_polytope")
+    arguments.instance(
+        cup, "cup", (CupParameters, ToolParameters), where="load_polytope"
+    )
     if not path.is_file():
         raise InputError(f"wrench polytope file '{path}' does not exist")
     try:
@@ -199,6 +208,13 @@ def cached_wrench_polytope(
         InputError: a bad parameter; TooLargeError (an InputError) when the
             set is estimated or found to be too large.
     """
+    where = "cached_wrench_polytope"
+    arguments.instance(cup, "cup", (CupParameters, ToolParameters), where=where)
+    if directory is not None:
+        arguments.path(directory, "directory", where=where)
+    arguments.number(max_memory, "max_memory", where=where, above=0.0)
+    if max_facets is not None:
+        arguments.integer(max_facets, "max_facets", where=where, low=1)
     cup.validate()
     path = cache_path(cup, directory)
     if use_cache:

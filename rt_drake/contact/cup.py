@@ -29,6 +29,7 @@ from typing import Any, Self
 
 import numpy as np
 
+from rt_drake import arguments
 from rt_drake.errors import InputError
 
 #: Accepted range of each real parameter, [low, high] in SI units: the range
@@ -222,6 +223,7 @@ def grasp_matrices(cup: CupParameters) -> np.ndarray:
 
     ``G_i = [[p_CPi_C]x R_CPi; R_CPi]`` (paper eq. 8).
     """
+    arguments.instance(cup, "cup", CupParameters, where="grasp_matrices")
     p = contact_positions(cup)
     rotations = contact_rotations(cup)
     skew = np.zeros((cup.points, 3, 3))
@@ -265,4 +267,5 @@ def friction_halfspaces(cup: CupParameters) -> tuple[np.ndarray, np.ndarray]:
 
 def suction_wrench(cup: CupParameters) -> np.ndarray:
     """Return the suction wrench on the object, ``[0, 0, 0, 0, 0, -P A]``."""
+    arguments.instance(cup, "cup", CupParameters, where="suction_wrench")
     return np.array([0.0, 0.0, 0.0, 0.0, 0.0, -cup.suction_force])

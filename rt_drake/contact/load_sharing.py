@@ -50,9 +50,10 @@ import dataclasses
 
 import numpy as np
 
+from rt_drake import arguments
 from rt_drake.contact.cup import contact_positions, contact_rotations
 from rt_drake.contact.tool import ToolParameterError, ToolParameters
-from rt_drake.contact.wrench_polytope import is_realizable
+from rt_drake.contact.wrench_polytope import check_h_representation, is_realizable
 
 #: m and rad: how far a cup may sit off T's z = 0 plane, or tilt its axis
 #: from T's z, for the planar spring model.
@@ -177,6 +178,7 @@ def shared_load_polytope(tool: ToolParameters) -> tuple[np.ndarray, np.ndarray]:
         ToolParameterError: see :func:`rim_springs`; g <= 0 (the object at
             rest with no load would already lift a rim point).
     """
+    arguments.instance(tool, "tool", ToolParameters, where="shared_load_polytope")
     springs = rim_springs(tool)
     split, n0 = springs.split, -springs.split @ springs.suction  # n(0)
     normal_part = np.zeros((3, 6))
@@ -223,9 +225,17 @@ class SharedLoadSet:
     F: np.ndarray
     g: np.ndarray
 
+    def __post_init__(self) -> None:
+        where = "SharedLoadSet"
+        arguments.instance(self.cup, "cup", ToolParameters, where=where)
+        F, g = check_h_representation(self.F, self.g, where)
+        object.__setattr__(self, "F", F)
+        object.__setattr__(self, "g", g)
+
     @classmethod
     def of(cls, tool: ToolParameters) -> SharedLoadSet:
         """Compute the rows of ``tool``'s set (milliseconds)."""
+        arguments.instance(tool, "tool", ToolParameters, where="SharedLoadSet.of")
         F, g = shared_load_polytope(tool)
         return cls(cup=tool, F=F, g=g)
 

@@ -25,6 +25,7 @@ import numpy as np
 from scipy.linalg import block_diag
 from scipy.optimize import linprog
 
+from rt_drake import arguments
 from rt_drake.contact.cup import (
     CupParameters,
     contact_positions,
@@ -32,7 +33,6 @@ from rt_drake.contact.cup import (
     friction_halfspaces,
 )
 from rt_drake.contact.tool import ToolParameters
-from rt_drake.errors import InputError
 
 _HIGHS_OPTIONS = {
     "primal_feasibility_tolerance": 1e-10,
@@ -102,10 +102,6 @@ def shared_load_residual(wrenches: np.ndarray, tool: ToolParameters) -> np.ndarr
     rows: it uses the pyramids' H-form and no split matrix. Every cup must
     lie in T's z = 0 plane with its axis along T's z.
     """
-    if not isinstance(tool, ToolParameters):
-        raise InputError(
-            f"shared_load_residual needs a ToolParameters, got {type(tool).__name__}"
-        )
     return _residuals(wrenches, tool, springs=True)
 
 
@@ -117,11 +113,10 @@ def _residuals(
     Variables: every rim force, then (``springs``) the displacement c (3),
     then the residual t; ``springs`` adds ``(f_i)_z - A_i c = 0`` per point.
     """
-    wrenches = np.asarray(wrenches, dtype=float)
-    if wrenches.shape[-1:] != (6,):
-        raise InputError(f"{wrenches.shape=}: need (..., 6) wrenches")
-    if not np.all(np.isfinite(wrenches)):
-        raise InputError("wrenches must be finite, got NaN or inf")
+    where = "shared_load_residual" if springs else "is_realizable_lp"
+    wrenches = arguments.array(wrenches, "wrenches", ("...", 6), where=where)
+    kinds = ToolParameters if springs else (CupParameters, ToolParameters)
+    arguments.instance(source, "tool" if springs else "cup", kinds, where=where)
     source.validate()
     G, polygon, bounds, suction = _point_forces(source)
     forces = G.shape[1]
@@ -181,4 +176,5 @@ def is_realizable_lp(
 
     ``tol`` bounds the residual accepted as zero (N*m / N).
     """
+    arguments.number(tol, "tol", where="is_realizable_lp", low=0.0)
     return lp_residual(wrenches, cup) <= tol

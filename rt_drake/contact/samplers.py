@@ -21,6 +21,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from rt_drake import arguments
 from rt_drake.errors import InputError
 
 #: Gravity in the world frame, m/s^2.
@@ -57,6 +58,13 @@ def object_wrench_sampler(
         max_tilt: Largest angle between +z_C and straight down, rad.
         seed: Seed of the sampler's random generator.
     """
+    where = "object_wrench_sampler"
+    for name, value in (
+        ("mass", mass),
+        ("max_acceleration", max_acceleration),
+        ("max_tilt", max_tilt),
+    ):
+        arguments.number(value, name, where=where)
     if not (np.isfinite(mass) and mass > 0.0):
         raise InputError(f"sampler mass must be > 0 kg, got {mass!r}")
     if not (np.isfinite(max_acceleration) and max_acceleration >= 0.0):

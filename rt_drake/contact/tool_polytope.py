@@ -33,6 +33,7 @@ import dataclasses
 
 import numpy as np
 
+from rt_drake import arguments
 from rt_drake.contact.adjacency import minkowski_sum_walk
 from rt_drake.contact.cup import friction_pyramid, grasp_matrices, suction_wrench
 from rt_drake.contact.exact_cost import DEFAULT_MAX_MEMORY
@@ -60,6 +61,7 @@ def tool_summands(tool: ToolParameters) -> tuple[list[np.ndarray], np.ndarray]:
         (apex 0, then the k_i base vertices), and the (6,) wrench
         ``sum_i Ad_i [0, 0, 0, 0, 0, -P_i A_i]``.
     """
+    arguments.instance(tool, "tool", ToolParameters, where="tool_summands")
     summands, offset = [], np.zeros(6)
     for mount in tool.cups:
         adjoint = mount.adjoint()
@@ -93,6 +95,7 @@ def tool_symmetry(tool: ToolParameters) -> np.ndarray | None:
     of rim points down to 2; it is valid when it maps the set of rim pyramids
     (in T) onto itself and fixes the suction wrench.
     """
+    arguments.instance(tool, "tool", ToolParameters, where="tool_symmetry")
     summands, offset = tool_summands(tool)
     extent = max(float(np.abs(np.vstack(summands)).max()), float(np.abs(offset).max()))
     atol = _SYMMETRY_TOL * max(extent, 1.0)
@@ -127,6 +130,11 @@ def tool_wrench_polytope(
         max_memory: Bytes a single cup's enumeration may use (see
             :func:`contact_wrench_polytope`).
     """
+    where = "tool_wrench_polytope"
+    arguments.instance(tool, "tool", ToolParameters, where=where)
+    if max_facets is not None:
+        arguments.integer(max_facets, "max_facets", where=where, low=1)
+    arguments.number(max_memory, "max_memory", where=where, above=0.0)
     tool.validate()
     if len(tool.cups) == 1:
         mount = tool.cups[0]
@@ -174,6 +182,9 @@ class ToolWrenchSet:
 
     cup: ToolParameters
 
+    def __post_init__(self) -> None:
+        arguments.instance(self.cup, "cup", ToolParameters, where="ToolWrenchSet")
+
     def support(self, directions: np.ndarray) -> np.ndarray:
         """Return a point of W_T maximising ``u . w`` for each direction (K, 6).
 
@@ -182,7 +193,10 @@ class ToolWrenchSet:
         W_T for a generic u, and in W_T always.
         """
         summands, offset = tool_summands(self.cup)
-        directions = np.atleast_2d(np.asarray(directions, dtype=float))
+        directions = arguments.array(
+            directions, "directions", ("...", 6), where="ToolWrenchSet.support"
+        )
+        directions = np.atleast_2d(directions)
         points = np.tile(offset, (len(directions), 1))
         for vertices in summands:
             points += vertices[np.argmax(directions @ vertices.T, axis=1)]

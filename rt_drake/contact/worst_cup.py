@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rt_drake import arguments
 from rt_drake.contact.cache import cached_wrench_polytope
 from rt_drake.contact.cup import CupParameters
 
@@ -48,6 +49,7 @@ def worst_cup_polytope(
         F (R, 6) unit rows and g (R,) (module docstring); the cup's own exact
         set when nothing is uncertain.
     """
+    arguments.instance(cup, "cup", CupParameters, where="worst_cup_polytope")
     polytope = cached_wrench_polytope(cup.worst_case(), use_cache=use_cache)
     F, g = polytope.F, polytope.g
     if cup.suction_force_min is None:

@@ -22,6 +22,7 @@ import dataclasses
 
 import numpy as np
 
+from rt_drake import arguments
 from rt_drake.contact.cup import (
     CupParameters,
     contact_rotations,
@@ -58,6 +59,22 @@ class WrenchPolytope:
     g: np.ndarray
     vertices: np.ndarray
 
+    def __post_init__(self) -> None:
+        """Check the types and shapes (consistency: :func:`check_polytope`)."""
+        where = "WrenchPolytope"
+        arguments.instance(
+            self.cup, "cup", (CupParameters, ToolParameters), where=where
+        )
+        for name, shape in (
+            ("F", ("rows", 6)),
+            ("g", ("rows",)),
+            ("vertices", ("count", 6)),
+        ):
+            value = arguments.array(
+                getattr(self, name), name, shape, where=where, finite=False
+            )
+            object.__setattr__(self, name, value)
+
     def contains(self, wrenches: np.ndarray, tol: float = 1e-9) -> np.ndarray:
         """Return whether each wrench (..., 6) satisfies ``F w <= g + tol``."""
         return is_realizable(wrenches, self.F, self.g, tol)
@@ -82,21 +99,13 @@ def is_realizable(
         wrench).
 
     Raises:
-        InputError: a shape, NaN or inf, a zero row of F, or a bad ``tol``.
+        InputError: a shape, NaN or inf, a zero row of F, or a bad ``tol``
+            (array-likes such as lists are accepted).
     """
-    wrenches = np.asarray(wrenches, dtype=float)
-    F = np.asarray(F, dtype=float)
-    check_h_representation(F, g)
-    if wrenches.shape[-1:] != (F.shape[1],):
-        raise InputError(f"{wrenches.shape=} but {F.shape=}: need (..., 6) wrenches")
-    if not np.all(np.isfinite(wrenches)):
-        bad = np.argwhere(~np.isfinite(wrenches))[0]
-        raise InputError(
-            f"wrenches must be finite, got {wrenches[tuple(bad)]} at index "
-            f"{tuple(int(i) for i in bad)}"
-        )
-    if not (np.isfinite(tol) and tol >= 0.0):
-        raise InputError(f"tol must be finite and >= 0, got {tol!r}")
+    where = "is_realizable"
+    wrenches = arguments.array(wrenches, "wrenches", ("...", 6), where=where)
+    F, g = check_h_representation(F, g, where)
+    tol = arguments.number(tol, "tol", where=where, low=0.0)
     flat = wrenches.reshape(-1, F.shape[1])
     inside = np.empty(len(flat), dtype=bool)
     chunk = max(1, 2**22 // max(len(g), 1))  # (chunk, rows) floats: 32 MB
@@ -106,28 +115,29 @@ def is_realizable(
     return inside.reshape(wrenches.shape[:-1])[()]
 
 
-def check_h_representation(F: np.ndarray, g: np.ndarray) -> None:
-    """Raise InputError unless ``F w <= g`` is a well-formed H-representation.
+def check_h_representation(
+    F: np.ndarray, g: np.ndarray, where: str = "wrench polytope"
+) -> tuple[np.ndarray, np.ndarray]:
+    """Return F and g as arrays if ``F w <= g`` is a well-formed H-representation.
 
-    F is (rows, 6) and finite with no all-zero row (``0 <= g_j`` accepts
-    every wrench: a corrupted or underflowed row); g is (rows,) and finite.
+    F is (rows, 6) and finite with at least one row and no all-zero row
+    (``0 <= g_j`` accepts every wrench: a corrupted or underflowed row); g is
+    (rows,) and finite. Raises InputError naming the argument, prefixed by
+    ``where``.
     """
-    F = np.asarray(F, dtype=float)
-    g = np.asarray(g, dtype=float)
-    if F.ndim != 2 or F.shape[1] != 6 or g.shape != (F.shape[0],):
-        raise InputError(f"need F (rows, 6) and g (rows,), got {F.shape=} {g.shape=}")
-    if not np.all(np.isfinite(F)):
-        row = int(np.flatnonzero(~np.all(np.isfinite(F), axis=1))[0])
-        raise InputError(f"F must be finite, got row {row} = {F[row].tolist()}")
-    if not np.all(np.isfinite(g)):
-        row = int(np.flatnonzero(~np.isfinite(g))[0])
-        raise InputError(f"g must be finite, got g[{row}] = {g[row]}")
+    F = arguments.array(F, "F", ("rows", 6), where=where)
+    g = arguments.array(g, "g", ("rows",), where=where)
+    if len(g) != len(F):
+        raise InputError(
+            f"{where}: g must have one offset per row of F ({len(F)}), got {len(g)}"
+        )
     norms = np.linalg.norm(F, axis=1)
     if np.any(norms <= ZERO_ROW * max(float(norms.max(initial=0.0)), 1.0)):
         row = int(np.flatnonzero(norms <= ZERO_ROW * max(norms.max(), 1.0))[0])
         raise InputError(
-            f"F row {row} is zero ({F[row].tolist()}): it constrains nothing"
+            f"{where}: F row {row} is zero ({F[row].tolist()}): it constrains nothing"
         )
+    return F, g
 
 
 def check_polytope(polytope: WrenchPolytope, tol: float = VERTEX_TOLERANCE) -> None:
@@ -174,6 +184,9 @@ def with_suction_force(
         InputError: ``suction_force`` not > 0 (the cup parameters' own check),
             or a multi-cup tool's set (each cup has its own suction force).
     """
+    where = "with_suction_force"
+    arguments.instance(polytope, "polytope", WrenchPolytope, where=where)
+    arguments.number(suction_force, "suction_force", where=where)
     if isinstance(polytope.cup, ToolParameters):
         raise InputError(
             "with_suction_force takes one cup's W_c, got a tool's set "
@@ -227,6 +240,9 @@ def contact_wrench_polytope(
         TooLargeError: the estimate exceeds ``max_memory`` (the message gives
             the estimate and the largest accepted points and sides).
     """
+    where = "contact_wrench_polytope"
+    arguments.instance(cup, "cup", CupParameters, where=where)
+    arguments.number(max_memory, "max_memory", where=where, above=0.0)
     cup.validate()
     check_exact_cost(cup, max_memory)
     scale = wrench_scale(cup)

@@ -31,6 +31,7 @@ import dataclasses
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import Frame, ModelInstanceIndex
 
+from rt_drake import arguments
 from rt_drake.dynamics.chain import SerialChain
 from rt_drake.model.frames import DEFAULT_CUP_FRAME, find_frame
 
@@ -51,6 +52,10 @@ class CupFrame:
     frame: Frame
     base_axes: tuple[tuple[int, tuple[float, float, float]], ...]
     chain: SerialChain | None = None
+
+    def __post_init__(self) -> None:
+        arguments.instance(self.frame, "frame", Frame, where="CupFrame")
+        arguments.instance(self.base_axes, "base_axes", tuple, where="CupFrame")
 
     @classmethod
     def of(

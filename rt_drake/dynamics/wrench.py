@@ -49,6 +49,7 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import JacobianWrtVariable, MultibodyForces
 from pydrake.systems.framework import Context
 
+from rt_drake import arguments
 from rt_drake.dynamics.cup_frame import (
     CupFrame,
     vertical_base_joint,
@@ -136,6 +137,13 @@ def object_wrench(
     Evaluated at each state on its own: ``[alpha; a] = J vdot + A_bias(q, v)``
     and ``omega = J_w v`` for Scm, then Newton-Euler (module docstring).
     """
+    where = "object_wrench"
+    arguments.instance(plant, "plant", MultibodyPlant, where=where)
+    arguments.instance(held, "held", HeldObject, where=where)
+    q, v, vdot = (
+        arguments.array(x, name, ("...", "n"), where=where)
+        for x, name in ((q, "q"), (v, "v"), (vdot, "vdot"))
+    )
     q, v, vdot = _as_rows(q, v, vdot)
     kin = path_kinematics(plant, held.p_CoScm_C, q, v, vdot, context, cup)
     alpha, acc = np.split(_matvec(kin.J, vdot) + kin.bias, 2, axis=1)

@@ -9,6 +9,7 @@ from __future__ import annotations
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 
+from rt_drake import arguments
 from rt_drake.errors import InputError
 from rt_drake.model.object_model import OBJECT_BODY, model_file, read_model_inertia
 from rt_drake.model.parser import make_parser
@@ -32,6 +33,9 @@ def held_object_of(
             :func:`rt_drake.model.object_model.read_model_inertia`), or the
             inertia is not physically valid.
     """
+    arguments.instance(obj, "obj", ObjectConfig, where="held_object_of")
+    if plant is not None:
+        arguments.instance(plant, "plant", MultibodyPlant, where="held_object_of")
     if plant is not None and plant.HasModelInstanceNamed(obj.name):
         instance = plant.GetModelInstanceByName(obj.name)
         body = plant.GetBodyByName(OBJECT_BODY, instance)

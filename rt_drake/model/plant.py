@@ -24,6 +24,7 @@ from pydrake.multibody.parsing import (
 from pydrake.multibody.plant import CoulombFriction, MultibodyPlant
 from pydrake.multibody.tree import Frame, ModelInstanceIndex
 
+from rt_drake import arguments
 from rt_drake.contact import CupMount, CupParameters, ToolParameters
 from rt_drake.contact.tool import is_identity_pose
 from rt_drake.errors import InputError, ScenarioError
@@ -149,6 +150,7 @@ def make_arm_plant(scenario: Scenario) -> MultibodyPlant:
     Its positions are the arm's joints: the plant the retimer, the dynamics and
     the controller's feedforward work on.
     """
+    arguments.instance(scenario, "scenario", Scenario, where="make_arm_plant")
     plant = MultibodyPlant(0.0)
     add_scenario_models(plant, scenario, ObjectMode.NONE)
     plant.Finalize()

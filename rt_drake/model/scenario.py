@@ -27,6 +27,7 @@ from pydrake.common.schema import Transform
 from pydrake.common.yaml import yaml_load_typed
 from pydrake.multibody.parsing import ModelDirective
 
+from rt_drake import arguments
 from rt_drake.contact import CupMount, CupParameters, LoadSharing, ToolParameters
 from rt_drake.contact.load_sharing import rim_springs
 from rt_drake.contact.tool import is_identity_pose
@@ -281,7 +282,7 @@ def load_scenario(path: str | Path) -> Scenario:
         ScenarioError: one line naming the file, the key and the value (see
             the module docstring for what is refused).
     """
-    path = Path(path)
+    path = arguments.path(path, "path", where="load_scenario", error=ScenarioError)
     if path.is_dir():
         raise ScenarioError(f"{path}: is a directory, not a scenario file")
     if not path.is_file():
@@ -386,10 +387,27 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
         scenario.cup.validate()
     except InputError as error:
         raise ScenarioError(f"{path}: key 'cup': {error}") from None
+    _check_grip(path, "cup", scenario.cup.friction, scenario.cup.friction_min)
     if scenario.tool is not None:
         check_tool(path, scenario.tool)
     check_vacuum(path, scenario.vacuum)
     _check_planning(path, scenario.planning)
+
+
+def _check_grip(
+    path: Path, key: str, friction: float, friction_min: float | None
+) -> None:
+    """Refuse friction <= 0: such a cup holds no object.
+
+    A frictionless rim exerts no sideways force, so its wrench set has no
+    interior and no grasp constraint can be built from it.
+    """
+    for name, value in (("friction", friction), ("friction_min", friction_min)):
+        if value is not None and not value > 0.0:
+            raise ScenarioError(
+                f"{path}: key '{key}.{name}': must be > 0 to hold an object (a "
+                f"frictionless rim exerts no sideways force), got {value!r}"
+            )
 
 
 def _check_planning(path: Path, planning: PlanningConfig) -> None:
@@ -440,6 +458,7 @@ def check_tool(path: Path, tool: ToolConfig, key: str = "tool") -> None:
             message = str(error).removeprefix("cup ")
             name = message.split(" ", 1)[0]
             raise ScenarioError(f"{where}.{name}': {message}") from None
+        _check_grip(path, f"{key}.cups[{index}]", entry.friction, None)
     parameters = tool.parameters()
     if tool.load_sharing == LoadSharing.ELASTIC.value and len(parameters.cups) > 1:
         try:

@@ -35,6 +35,7 @@ import zlib
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 
+from rt_drake import arguments
 from rt_drake.errors import InputError
 from rt_drake.model.plant import home_configuration
 from rt_drake.model.scenario import Scenario
@@ -93,6 +94,7 @@ class CyclePlanner:
         budget_s: float = BUDGET_S,
         scene: PlanningScene | None = None,
     ) -> None:
+        arguments.instance(scenario, "scenario", Scenario, where="CyclePlanner")
         if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)):
             raise InputError(f"planner seed must be an integer, got {seed!r}")
         if not (

@@ -36,9 +36,10 @@ from pydrake.multibody.tree import JacobianWrtVariable, MultibodyForces
 from pydrake.systems.framework import Context
 from pydrake.trajectories import Trajectory
 
+from rt_drake import arguments
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.dynamics.newton_euler import reference_object_wrench
-from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint, JointLimits
 
 #: Allowed relative excess over a limit (and over g for the grasp), see above:
 #: a margin down to ``-DEFAULT_TOLERANCE`` passes.
@@ -178,6 +179,19 @@ def check_trajectory(
         context: Scratch context of ``plant``.
         cup: The cup frame C (default: the plant's ``suction_cup``).
     """
+    where = "check_trajectory"
+    arguments.instance(plant, "plant", MultibodyPlant, where=where)
+    arguments.instance(trajectory, "trajectory", Trajectory, where=where)
+    arguments.instance(limits, "limits", JointLimits, where=where)
+    if grasp is not None:
+        arguments.having(
+            grasp, "grasp", "GraspConstraint", GRASP_ATTRIBUTES, where=where
+        )
+    arguments.number(rate_hz, "rate_hz", where=where, above=0.0)
+    if context is not None:
+        arguments.instance(context, "context", Context, where=where)
+    if cup is not None:
+        arguments.instance(cup, "cup", CupFrame, where=where)
     t0, t1 = trajectory.start_time(), trajectory.end_time()
     times = np.append(np.arange(t0, t1, 1.0 / rate_hz), t1)
     q, v, vdot = _sample(trajectory, times)

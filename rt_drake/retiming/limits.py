@@ -20,6 +20,7 @@ class per source of the rows:
 from __future__ import annotations
 
 import dataclasses
+import functools
 from collections.abc import Sequence
 
 import numpy as np
@@ -27,6 +28,7 @@ from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 
+from rt_drake import arguments
 from rt_drake.contact import (
     CupParameters,
     ToolParameters,
@@ -69,11 +71,21 @@ class JointLimits:
     def __post_init__(self) -> None:
         for name in ("velocity", "acceleration", "torque"):
             value = getattr(self, name)
-            if value is None:
+            if value is None and name == "torque":
                 continue
-            value = np.array(value, dtype=float).reshape(-1)
-            if not (np.all(np.isfinite(value)) and np.all(value > 0)):
-                raise RetimeInputError(f"{name} limits must be finite and > 0: {value}")
+            value = np.array(
+                arguments.array(
+                    value,
+                    name,
+                    ("joints",),
+                    where="JointLimits",
+                    error=RetimeInputError,
+                )
+            )
+            if not np.all(value > 0):
+                raise RetimeInputError(
+                    f"JointLimits: {name} limits must be > 0, got {value.tolist()}"
+                )
             value.setflags(write=False)
             object.__setattr__(self, name, value)
         sizes = {
@@ -119,6 +131,13 @@ class JointLimits:
             RetimeInputError: a limit the model lacks and nobody gave,
                 naming the joint and how to give it.
         """
+        where = "JointLimits.from_plant"
+        check = functools.partial(
+            arguments.instance, where=where, error=RetimeInputError
+        )
+        check(plant, "plant", MultibodyPlant)
+        if robot is not None:
+            check(robot, "robot", RobotConfig)
         n = plant.num_velocities()
         model = {
             "velocity": plant.GetVelocityUpperLimits(),
@@ -167,6 +186,31 @@ def _check_single_cup(cup: object, method: str) -> None:
             f"GraspConstraint.{method} needs one cup (CupParameters), got "
             f"{type(cup).__name__}"
         )
+
+
+def _check_grip(cup: object, where: str) -> None:
+    """A cup (or every cup of a tool) with friction > 0, which can hold an object.
+
+    A frictionless rim exerts no tangential force, so its wrench set has no
+    interior: the grasp constraint would need g > 0 on rows whose g is 0.
+    """
+    arguments.instance(
+        cup,
+        "cup",
+        (CupParameters, ToolParameters),
+        where=where,
+        error=RetimeInputError,
+    )
+    cups = [m.cup for m in cup.cups] if isinstance(cup, ToolParameters) else [cup]
+    for index, one in enumerate(cups):
+        which = f"cups[{index}]." if isinstance(cup, ToolParameters) else "cup."
+        for name in ("friction", "friction_min"):
+            value = getattr(one, name)
+            if value is not None and not value > 0.0:
+                raise RetimeInputError(
+                    f"{where}: {which}{name} must be > 0 to hold an object "
+                    f"(a frictionless rim exerts no sideways force), got {value!r}"
+                )
 
 
 def _effort_limits(plant: MultibodyPlant) -> np.ndarray:
@@ -218,15 +262,23 @@ class GraspConstraint:
     g: np.ndarray
 
     def __post_init__(self) -> None:
-        F = np.array(self.F, dtype=float)
-        g = np.array(self.g, dtype=float).reshape(-1)
-        try:  # shapes, NaN or inf, an all-zero row (it would constrain nothing)
-            check_h_representation(F, g)
+        where = "GraspConstraint"
+        arguments.instance(
+            self.held, "held", HeldObject, where=where, error=RetimeInputError
+        )
+        cup = getattr(self, "cup", None)  # a family member built from a cup
+        if cup is not None:
+            _check_grip(cup, where)
+        try:  # shapes, no rows, NaN or inf, an all-zero row (constrains nothing)
+            F, g = check_h_representation(self.F, self.g, where)
         except InputError as error:
-            raise RetimeInputError(f"grasp constraint: {error}") from None
+            raise RetimeInputError(str(error)) from None
+        F, g = F.copy(), g.copy()
         if np.any(g <= 0.0):
+            row = int(np.argmin(g))
             raise RetimeInputError(
-                f"grasp constraint needs g > 0 (zero wrench inside), min g = {g.min()}"
+                f"{where}: g must be > 0 (the zero wrench strictly inside), "
+                f"got g[{row}] = {g[row]!r}"
             )
         F.setflags(write=False)
         g.setflags(write=False)
@@ -236,6 +288,7 @@ class GraspConstraint:
     @staticmethod
     def for_cup(held: HeldObject, cup: CupParameters) -> CupGrasp:
         """The exact polytope of ``cup`` (cached on disk by rt_drake.contact)."""
+        _check_grip(cup, "GraspConstraint.for_cup")
         polytope = cached_wrench_polytope(cup)
         return CupGrasp(held=held, F=polytope.F, g=polytope.g, cup=cup)
 
@@ -275,6 +328,22 @@ class GraspConstraint:
             R_CO: (3, 3) the object's axes in C (default identity).
         """
         _check_single_cup(cup, "robust")
+        _check_grip(cup, "GraspConstraint.robust")
+        arguments.instance(
+            uncertainty,
+            "uncertainty",
+            ObjectUncertainty,
+            where="GraspConstraint.robust",
+            error=RetimeInputError,
+        )
+        if R_CO is not None:
+            R_CO = arguments.array(
+                R_CO,
+                "R_CO",
+                (3, 3),
+                where="GraspConstraint.robust",
+                error=RetimeInputError,
+            )
         F, g = worst_cup_polytope(cup)
         objects = uncertain_object(held, uncertainty, R_CO)
         return ObjectSetGrasp(held=held, F=F, g=g, cup=cup, objects=objects)
@@ -288,6 +357,19 @@ class GraspConstraint:
         from below.
         """
         _check_single_cup(cup, "for_objects")
+        _check_grip(cup, "GraspConstraint.for_objects")
+        if (
+            not isinstance(objects, (list, tuple))
+            or not objects
+            or not all(isinstance(o, HeldObject) for o in objects)
+        ):
+            raise arguments.fail(
+                "GraspConstraint.for_objects",
+                "objects",
+                "a non-empty list of HeldObject",
+                objects,
+                RetimeInputError,
+            )
         F, g = worst_cup_polytope(cup)
         return ObjectSetGrasp(
             held=objects[0], F=F, g=g, cup=cup, objects=object_list(objects)
@@ -358,6 +440,7 @@ class GraspConstraint:
             raise RetimeInputError(
                 f"for_tool needs a ToolParameters, got {type(tool).__name__}"
             )
+        _check_grip(tool, "GraspConstraint.for_tool")
         try:
             sharing = LoadSharing(load_sharing)
         except ValueError:
@@ -395,7 +478,14 @@ class GraspConstraint:
             raise RetimeInputError(
                 f"inner_for_tool needs a ToolParameters, got {type(tool).__name__}"
             )
-        samples = np.vstack([np.zeros(6), np.asarray(guiding_samples, float)])
+        guiding_samples = arguments.array(
+            guiding_samples,
+            "guiding_samples",
+            ("count", 6),
+            where="GraspConstraint.inner_for_tool",
+            error=RetimeInputError,
+        )
+        samples = np.vstack([np.zeros(6), guiding_samples])
         inner = guided_approximation(
             ToolWrenchSet(tool), samples, max_vertices, seed=seed
         )
@@ -490,7 +580,12 @@ def _suction(cup: CupParameters) -> str:
     return text
 
 
+#: What every grasp constraint has (the retimer's duck-typed check).
+GRASP_ATTRIBUTES = ("held", "F", "g", "is_robust")
+
+
 __all__ = [
+    "GRASP_ATTRIBUTES",
     "CupGrasp",
     "GraspConstraint",
     "JointLimits",

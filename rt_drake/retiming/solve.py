@@ -48,6 +48,7 @@ retimer never returns a trajectory it knows exceeds a limit.
 from __future__ import annotations
 
 import dataclasses
+import functools
 from typing import NamedTuple
 
 import numpy as np
@@ -56,6 +57,7 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import Context
 from toppra.constraint import LinearConstraint
 
+from rt_drake import arguments
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.dynamics.wrench import PathCoefficients
 from rt_drake.retiming.at_rest import check_torque_at_rest
@@ -77,7 +79,12 @@ from rt_drake.retiming.joint_path import (
     ToppraPath,
     as_joint_path,
 )
-from rt_drake.retiming.limits import GraspConstraint, JointLimits, ObjectSetGrasp
+from rt_drake.retiming.limits import (
+    GRASP_ATTRIBUTES,
+    GraspConstraint,
+    JointLimits,
+    ObjectSetGrasp,
+)
 from rt_drake.retiming.passes import (
     AffineConstraint,
     Engine,
@@ -211,6 +218,7 @@ def retime(
     """
     _check_arguments(sd_start, sd_end, start_time)
     engine = Engine.of(engine)
+    _check_objects(plant, limits, grasp, context, cup)
     spline = as_joint_path(path)  # checks the path
     n = spline.num_joints
     if n != plant.num_positions() or n != limits.num_joints:
@@ -546,6 +554,30 @@ def _check_arguments(sd_start: float, sd_end: float, start_time: float) -> None:
         isinstance(start_time, (int, float, np.number)) and np.isfinite(start_time)
     ):
         raise RetimeInputError(f"start_time must be finite, got {start_time!r}")
+
+
+def _check_objects(
+    plant: object, limits: object, grasp: object, context: object, cup: object
+) -> None:
+    """Refuse arguments of the wrong type, naming them."""
+    check = functools.partial(
+        arguments.instance, where="retime", error=RetimeInputError
+    )
+    check(plant, "plant", MultibodyPlant)
+    check(limits, "limits", JointLimits)
+    if grasp is not None:
+        arguments.having(
+            grasp,
+            "grasp",
+            "GraspConstraint",
+            GRASP_ATTRIBUTES,
+            where="retime",
+            error=RetimeInputError,
+        )
+    if context is not None:
+        check(context, "context", Context)
+    if cup is not None:
+        check(cup, "cup", CupFrame)
 
 
 def _margins(

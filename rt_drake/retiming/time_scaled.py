@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 from pydrake.trajectories import Trajectory
 
+from rt_drake import arguments
 from rt_drake.retiming.retime_errors import RetimeInputError
 
 
@@ -21,8 +22,13 @@ class TimeScaled(Trajectory):
 
     def __init__(self, trajectory: Trajectory, factor: float) -> None:
         Trajectory.__init__(self)
-        if not factor > 0:
-            raise RetimeInputError(f"speed factor must be > 0, got {factor}")
+        where = "TimeScaled"
+        arguments.instance(
+            trajectory, "trajectory", Trajectory, where=where, error=RetimeInputError
+        )
+        arguments.number(
+            factor, "factor", where=where, above=0.0, error=RetimeInputError
+        )
         self._trajectory = trajectory
         self._factor = float(factor)
 

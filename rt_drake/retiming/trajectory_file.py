@@ -33,11 +33,12 @@ import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import Frame
 
+from rt_drake import arguments
 from rt_drake.atomic_file import output_problem, write_atomically
 from rt_drake.contact import CupParameters, ToolParameters
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.errors import InputError, TooLargeError
-from rt_drake.retiming.limits import GraspConstraint
+from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint
 from rt_drake.retiming.solve import RetimeResult
 from rt_drake.types.held_object import HeldObject
 
@@ -105,8 +106,28 @@ def sample_trajectory(
         TooLargeError: more than :data:`MAX_SAMPLES` samples (estimated from
             the duration before anything is allocated).
     """
-    if not (isinstance(period, (int, float)) and math.isfinite(period) and period > 0):
-        raise InputError(f"period must be finite and > 0 s, got {period!r}")
+    where = "sample_trajectory"
+    arguments.instance(plant, "plant", MultibodyPlant, where=where)
+    arguments.having(
+        result, "result", "RetimeResult", ("duration", "trajectory"), where=where
+    )
+    arguments.instance(held, "held", HeldObject, where=where)
+    if grasp is not None:
+        arguments.having(
+            grasp, "grasp", "GraspConstraint", GRASP_ATTRIBUTES, where=where
+        )
+    arguments.instance(cup, "cup", (CupParameters, ToolParameters), where=where)
+    arguments.instance(object_name, "object_name", str, where=where)
+    waypoints = arguments.array(waypoints, "waypoints", ("K", "n"), where=where)
+    knots = arguments.array(knots, "knots", ("K",), where=where)
+    if len(knots) != len(waypoints):
+        raise InputError(
+            f"{where}: knots must have one value per waypoint ({len(waypoints)}), "
+            f"got {len(knots)}"
+        )
+    arguments.number(period, "period", where=where, above=0.0)
+    if cup_frame is not None:
+        arguments.instance(cup_frame, "cup_frame", Frame, where=where)
     count = math.ceil(result.duration / period) + 1
     if count > MAX_SAMPLES:
         n = result.trajectory.rows()
@@ -174,14 +195,13 @@ def save_trajectory(path: str | Path, saved: SavedTrajectory) -> Path:
         InputError: the suffix is not ``.npz``, or ``path`` cannot be
             written (a directory, under a file).
     """
-    path = Path(path)
+    path = arguments.path(path, "path", where="save_trajectory")
     if path.suffix != ".npz":
         raise InputError(f"trajectory file '{path}' must end in .npz")
     problem = output_problem(path)
     if problem is not None:
         raise InputError(f"cannot write trajectory file '{path}': {problem}")
-    if not isinstance(saved, SavedTrajectory):
-        raise InputError(f"expected a SavedTrajectory, got {type(saved).__name__}")
+    arguments.instance(saved, "saved", SavedTrajectory, where="save_trajectory")
     arrays = {f.name: getattr(saved, f.name) for f in dataclasses.fields(saved)}
 
     def write(stream: BinaryIO) -> None:
@@ -197,7 +217,7 @@ def load_trajectory(path: str | Path) -> SavedTrajectory:
         InputError: no such file, not an ``.npz`` archive, another format
             version, or a key missing (each message names the file and key).
     """
-    path = Path(path)
+    path = arguments.path(path, "path", where="load_trajectory")
     if not path.is_file():
         raise InputError(f"trajectory file '{path}' does not exist")
     try:

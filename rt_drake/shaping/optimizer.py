@@ -33,6 +33,7 @@ import numpy as np
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 
+from rt_drake import arguments
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.planning.dense_check import check_path
 from rt_drake.planning.result import PlannedPath
@@ -99,6 +100,14 @@ class MoveOptimizer:
         cup: CupFrame | None = None,
         context=None,
     ) -> None:
+        arguments.instance(plant, "plant", MultibodyPlant, where="MoveOptimizer")
+        arguments.instance(limits, "limits", JointLimits, where="MoveOptimizer")
+        if options is not None:
+            arguments.instance(
+                options, "options", MoveOptimizerOptions, where="MoveOptimizer"
+            )
+        if cup is not None:
+            arguments.instance(cup, "cup", CupFrame, where="MoveOptimizer")
         self.plant = plant
         self.limits = limits
         self.options = options or MoveOptimizerOptions()

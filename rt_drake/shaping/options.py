@@ -9,6 +9,7 @@ from typing import Protocol
 import numpy as np
 from pydrake.math import RigidTransform
 
+from rt_drake import arguments
 from rt_drake.errors import InputError
 from rt_drake.model.scenario import PlanningConfig
 from rt_drake.planning.result import PlannedPath
@@ -110,6 +111,23 @@ class MoveOptimizerOptions:
     starts: int = 12
 
     def __post_init__(self) -> None:
+        for field in dataclasses.fields(self):
+            value = getattr(self, field.name)
+            if field.name in ("clock", "joint_scale") or value is None:
+                continue
+            arguments.number(
+                value,
+                field.name,
+                where="MoveOptimizerOptions",
+                error=MoveOptimizerError,
+            )
+        arguments.array(
+            self.joint_scale,
+            "joint_scale",
+            ("...",),
+            where="MoveOptimizerOptions",
+            error=MoveOptimizerError,
+        )
         checks = {
             "max_tilt_deg": 0.0 <= self.max_tilt_deg < 90.0,
             "budget_s": self.budget_s > 0.0,

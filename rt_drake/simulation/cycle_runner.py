@@ -19,6 +19,7 @@ from pydrake.multibody.tree import SpatialInertia
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, EventStatus
 
+from rt_drake import arguments
 from rt_drake.errors import RtDrakeError
 from rt_drake.model.object_model import OBJECT_BODY
 from rt_drake.model.plant import (
@@ -130,6 +131,11 @@ def run_cycle(
             (about its body origin, in its body frame), in place of its
             model's.
     """
+    arguments.instance(scenario, "scenario", Scenario, where="run_cycle")
+    arguments.having(
+        motions, "motions", "MotionSource", ("pick", "move"), where="run_cycle"
+    )
+    arguments.number(max_sim_time, "max_sim_time", where="run_cycle", above=0.0)
     diagram, station, sequencer = build_cycle(
         scenario, motions, meshcat, options, pipelined
     )

@@ -38,6 +38,7 @@ from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
 from pydrake.trajectories import Trajectory
 
+from rt_drake import arguments
 from rt_drake.contact import (
     CupParameters,
     LoadSharing,
@@ -50,7 +51,6 @@ from rt_drake.contact import (
 )
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.dynamics.wrench import path_wrench_coefficients
-from rt_drake.errors import InputError
 from rt_drake.model.held import held_object_of
 from rt_drake.model.plant import make_arm_plant
 from rt_drake.model.scenario import (
@@ -151,8 +151,8 @@ class OnlineMotions:
         robust: bool = True,
         optimize: bool | None = None,
     ) -> None:
-        if not move_speed > 0:
-            raise InputError(f"speed factor must be > 0, got {move_speed}")
+        arguments.instance(scenario, "scenario", Scenario, where="OnlineMotions")
+        arguments.number(move_speed, "move_speed", where="OnlineMotions", above=0.0)
         self._scenario = scenario
         self._planner = CyclePlanner(scenario, seed=seed)
         self._plant = make_arm_plant(scenario)

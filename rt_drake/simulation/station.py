@@ -45,6 +45,7 @@ from pydrake.multibody.tree import JointActuatorIndex, PdControllerGains
 from pydrake.systems.controllers import InverseDynamics
 from pydrake.systems.framework import Diagram, DiagramBuilder
 
+from rt_drake import arguments
 from rt_drake.errors import InputError
 from rt_drake.model.object_model import OBJECT_BODY
 from rt_drake.model.plant import (
@@ -95,6 +96,7 @@ def MakeStation(
     options: StationOptions | None = None,
 ) -> Station:
     """Build the simulated cell of ``scenario`` (see the module docstring)."""
+    arguments.instance(scenario, "scenario", Scenario, where="MakeStation")
     options = options or StationOptions()
     builder = DiagramBuilder()
     plant, scene_graph = AddMultibodyPlant(

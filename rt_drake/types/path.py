@@ -23,6 +23,7 @@ import toppra
 from pydrake.trajectories import PiecewisePolynomial
 from scipy.interpolate import CubicSpline
 
+from rt_drake import arguments
 from rt_drake.errors import InputError
 
 #: Largest |q| of a waypoint (rad, or m for a prismatic joint): 16 turns, far
@@ -50,7 +51,13 @@ def chord_knots(waypoints: np.ndarray) -> np.ndarray:
         InputError (a ValueError): fewer than two waypoints, or two
             consecutive ones equal (zero chord: the knots would not increase).
     """
-    waypoints = np.asarray(waypoints, dtype=float)
+    waypoints = arguments.array(
+        waypoints,
+        "waypoints",
+        ("N", "n"),
+        where="chord_knots",
+        finite=False,
+    )
     if waypoints.ndim != 2 or waypoints.shape[0] < 2:
         raise InputError(f"need (N >= 2, n) waypoints, got {waypoints.shape=}")
     chords = np.linalg.norm(np.diff(waypoints, axis=0), axis=1)
@@ -75,11 +82,24 @@ def path_waypoints_and_knots(path: Any) -> tuple[np.ndarray, np.ndarray]:
             equal consecutive waypoints, or knots not strictly increasing from
             0 to 1.
     """
+    caller = "path"  # the argument of retime and of path_waypoints_and_knots
     if hasattr(path, "waypoints") and hasattr(path, "knots"):
-        waypoints = np.asarray(path.waypoints, dtype=float)
-        knots = np.asarray(path.knots, dtype=float)
+        waypoints = arguments.array(
+            path.waypoints,
+            "waypoints",
+            ("K", "n"),
+            where=caller,
+            finite=False,
+        )
+        knots = arguments.array(path.knots, "knots", ("K",), where=caller)
     else:
-        waypoints = np.asarray(path, dtype=float)
+        waypoints = arguments.array(
+            path,
+            "waypoints",
+            ("K", "n"),
+            where=caller,
+            finite=False,
+        )
         knots = None
     if (
         waypoints.ndim != 2
@@ -179,10 +199,20 @@ class GeometricPath:
     knots: np.ndarray
     spline: CubicSpline
 
+    def __post_init__(self) -> None:
+        where = "GeometricPath"
+        arguments.array(self.waypoints, "waypoints", ("N", "n"), where=where)
+        arguments.array(self.knots, "knots", ("N",), where=where)
+        arguments.instance(self.spline, "spline", CubicSpline, where=where)
+
     @classmethod
     def from_waypoints(cls, waypoints: np.ndarray) -> GeometricPath:
         """Fit the clamped chord-length spline through ``waypoints`` (N, n)."""
-        waypoints = np.array(waypoints, dtype=float)
+        waypoints = np.array(
+            arguments.array(
+                waypoints, "waypoints", ("N", "n"), where="GeometricPath.from_waypoints"
+            )
+        )
         knots = chord_knots(waypoints)
         spline = CubicSpline(knots, waypoints, bc_type="clamped")
         waypoints.setflags(write=False)

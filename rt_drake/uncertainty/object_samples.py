@@ -22,6 +22,7 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import RotationalInertia, SpatialInertia
 
+from rt_drake import arguments
 from rt_drake.model.object_model import OBJECT_BODY
 from rt_drake.model.parser import make_parser
 from rt_drake.model.scenario import ObjectConfig
@@ -42,6 +43,14 @@ class ObjectInertia:
     mass: float
     p_OoScm_O: np.ndarray
     I_Scm_O: np.ndarray
+
+    def __post_init__(self) -> None:
+        where = "ObjectInertia"
+        arguments.number(self.mass, "mass", where=where, above=0.0)
+        p = arguments.array(self.p_OoScm_O, "p_OoScm_O", (3,), where=where)
+        I_Scm_O = arguments.array(self.I_Scm_O, "I_Scm_O", (3, 3), where=where)
+        object.__setattr__(self, "p_OoScm_O", p)
+        object.__setattr__(self, "I_Scm_O", I_Scm_O)
 
     @classmethod
     def of_model(cls, obj: ObjectConfig) -> ObjectInertia:

@@ -58,9 +58,9 @@ def test_the_range_edges_are_accepted():
 @pytest.mark.parametrize(
     "wrench,words",
     [
-        (np.full(6, np.nan), ["wrenches must be finite", "nan"]),
+        (np.full(6, np.nan), ["wrenches must be a (..., 6) array of finite", "nan"]),
         ([0, 0, 0, 0, 0, np.inf], ["finite", "inf"]),
-        (np.zeros(5), ["(..., 6)"]),
+        (np.zeros(5), ["wrenches", "(..., 6)", "shape (5,)"]),
     ],
 )
 def test_is_realizable_refuses_what_it_cannot_answer(W, wrench, words):
@@ -73,14 +73,18 @@ def test_is_realizable_refuses_what_it_cannot_answer(W, wrench, words):
 def test_is_realizable_refuses_a_corrupted_h_representation(W):
     F = W.F.copy()
     F[3] = 0.0  # 0 <= g accepts every wrench: not a constraint
-    with pytest.raises(InputError, match="F row 3 is zero"):
+    with pytest.raises(InputError, match="is_realizable: F row 3 is zero"):
         is_realizable(np.zeros(6), F, W.g)
     F[3, 0] = np.nan
-    with pytest.raises(InputError, match="F must be finite, got row 3"):
+    with pytest.raises(
+        InputError, match=r"F must be a \(rows, 6\) array of finite .* nan at \(3, 0\)"
+    ):
         is_realizable(np.zeros(6), F, W.g)
-    with pytest.raises(InputError, match="g must be finite"):
+    with pytest.raises(InputError, match="g must be a .* finite numbers"):
         is_realizable(np.zeros(6), W.F, np.full_like(W.g, np.nan))
-    with pytest.raises(InputError, match="tol must be finite and >= 0"):
+    with pytest.raises(
+        InputError, match="tol must be a finite number >= 0, got float nan"
+    ):
         is_realizable(np.zeros(6), W.F, W.g, tol=np.nan)
 
 
@@ -116,3 +120,23 @@ def test_the_approximation_refuses_sizes_it_cannot_afford(W, kwargs, words):
 def test_the_sampler_refuses_a_negative_seed():
     with pytest.raises(InputError, match="seed"):
         object_wrench_sampler(seed=-1)
+
+
+def test_is_realizable_takes_lists_as_numpy_would(W):
+    rng = np.random.default_rng(1)
+    wrenches = rng.normal(scale=[0.1, 0.1, 0.02, 3.0, 3.0, 15.0], size=(40, 6))
+    expected = np.all(wrenches @ W.F.T <= W.g + 1e-9, axis=1)  # F w <= g
+    assert 0 < expected.sum() < len(expected)
+    got = is_realizable(wrenches.tolist(), W.F.tolist(), W.g.tolist())
+    assert np.array_equal(got, expected)
+
+
+@pytest.mark.parametrize("cup", [None, "paper cup", {"radius": 0.0125}])
+def test_the_exact_polytope_of_something_not_a_cup_is_refused(cup):
+    from rt_drake.contact import contact_wrench_polytope
+
+    with pytest.raises(InputError) as info:
+        contact_wrench_polytope(cup)
+    message = str(info.value)
+    assert message.startswith("contact_wrench_polytope: cup must be a CupParameters")
+    assert type(cup).__name__ in message or "None" in message

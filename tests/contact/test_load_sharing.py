@@ -125,7 +125,9 @@ def test_a_tilted_or_lifted_cup_is_refused_with_its_index():
 
 
 def test_the_spring_lp_refuses_a_cup_that_is_not_a_tool():
-    with pytest.raises(InputError, match="needs a ToolParameters, got CupParameters"):
+    with pytest.raises(
+        InputError, match="tool must be a ToolParameters, got CupParameters"
+    ):
         shared_load_residual(np.zeros(6), PAPER)  # type: ignore[arg-type]
 
 

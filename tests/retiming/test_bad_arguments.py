@@ -7,6 +7,7 @@ import types
 import numpy as np
 import pytest
 
+from rt_drake.contact import CupMount, CupParameters, ToolParameters
 from rt_drake.errors import InputError, TooLargeError
 from rt_drake.model.held import held_object_of
 from rt_drake.retiming import (
@@ -17,10 +18,12 @@ from rt_drake.retiming import (
     sample_trajectory,
 )
 from rt_drake.types.held_object import HeldObject
+from rt_drake.types.object_uncertainty import ObjectUncertainty
 from rt_drake.types.path import MAX_ABS_POSITION
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 PATH = np.array([HOME, HOME + [-0.4, 0.1, -0.2, 0.0, 0.1, -0.5]])
+CUP = CupParameters()
 
 
 @pytest.fixture(scope="module")
@@ -73,7 +76,7 @@ def test_limits_of_the_wrong_length_name_the_key(plant, scenario):
 def test_a_grasp_constraint_with_a_zero_row_is_refused():
     held = HeldObject(mass=1.0, p_CoScm_C=np.zeros(3), I_Scm_C=np.eye(3) * 1e-3)
     F = np.vstack([np.eye(6), -np.eye(6), np.zeros((1, 6))])
-    with pytest.raises(RetimeInputError, match="grasp constraint: F row 12 is zero"):
+    with pytest.raises(RetimeInputError, match="GraspConstraint: F row 12 is zero"):
         GraspConstraint(held, F, np.ones(13))
 
 
@@ -111,6 +114,38 @@ def test_sampling_a_trajectory_too_long_for_memory_is_refused(plant):
         duration=1e6, trajectory=types.SimpleNamespace(rows=lambda: 6)
     )
     with pytest.raises(TooLargeError, match="1e\\+06 s trajectory.*at most 1000000"):
-        sample_trajectory(plant, result, held, None, None, "x", PATH, [0.0, 1.0])
+        sample_trajectory(plant, result, held, None, CUP, "x", PATH, [0.0, 1.0])
     with pytest.raises(InputError, match="period"):
-        sample_trajectory(plant, result, held, None, None, "x", PATH, [0, 1], np.nan)
+        sample_trajectory(plant, result, held, None, CUP, "x", PATH, [0, 1], np.nan)
+
+
+HELD = HeldObject(mass=1.0, p_CoScm_C=np.zeros(3), I_Scm_C=np.eye(3) * 1e-3)
+
+
+def test_a_grasp_constraint_with_no_rows_is_refused():
+    with pytest.raises(RetimeInputError, match=r"F must be a \(rows, 6\).*\(0, 6\)"):
+        GraspConstraint(HELD, np.zeros((0, 6)), np.zeros(0))
+
+
+@pytest.mark.parametrize(
+    "build,key",
+    [
+        (lambda: GraspConstraint.for_cup(HELD, CupParameters(friction=0.0)),
+         "for_cup: cup.friction"),
+        (lambda: GraspConstraint.robust(
+            HELD, ObjectUncertainty(), CupParameters(friction_min=0.0)),
+         "robust: cup.friction_min"),
+        (lambda: GraspConstraint.for_objects(
+            [HELD], CupParameters(friction_min=0.0)),
+         "for_objects: cup.friction_min"),
+        (lambda: GraspConstraint.for_tool(
+            HELD, ToolParameters((CupMount(CupParameters(friction=0.0)),))),
+         "for_tool: cups[0].friction"),
+    ],
+)  # fmt: skip
+def test_a_frictionless_cup_is_refused_naming_friction_and_value(build, key):
+    with pytest.raises(RetimeInputError) as info:
+        build()
+    message = str(info.value)
+    assert f"GraspConstraint.{key} must be > 0" in message
+    assert message.endswith("got 0.0") and "g > 0" not in message
