@@ -15,13 +15,13 @@ What it prints (one ``key: value`` per line):
 - ``grasp rows``: the rows of ``F w <= g``;
 - ``duration with grasp``, ``duration without grasp``: the MOVE's duration
   in s under joint limits and grasp, and under the joint limits alone;
-- ``worst excess``: the largest excess over any limit found by the 1 kHz
-  check, as a fraction of the limit (<= 0 is inside, the contract is
-  <= 0.001);
+- ``min margin``: the smallest margin to any limit found by the 1 kHz
+  check, as a fraction of the limit (positive is room, negative over the
+  limit; the contract is >= -0.001);
 - ``check passed``: True when every limit and the grasp hold;
-- ``worst excess without grasp``: the same check of the faster motion
+- ``min margin without grasp``: the same check of the faster motion
   retimed without the grasp: it asks more of the cup than it can give
-  (> 0), the notebook would slip;
+  (< 0), the notebook would slip;
 - ``saved``: the ``.npz`` file written, and its samples.
 
 How to run it, from anywhere::
@@ -35,7 +35,6 @@ It takes about 10 s on a busy 2-core machine (4 s of CPU).
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
 import numpy as np
 
@@ -51,17 +50,17 @@ from rt_drake import (
     retime,
     sample_trajectory,
     save_trajectory,
+    scenarios_dir,
 )
 
 #: The scenarios shipped beside this folder in a checkout of rt-drake.
-SCENARIOS = Path(__file__).resolve().parents[1] / "scenarios"
 #: The object carried, and the seed of the planner's random search.
 OBJECT, SEED = "notebook", 0
 
 
 def main(out: str = "move.npz") -> None:
     """Plan, retime, check and save the MOVE of :data:`OBJECT`."""
-    scenario = load_scenario(SCENARIOS / "random_transport.yaml")
+    scenario = load_scenario(scenarios_dir() / "random_transport.yaml")
     obj = scenario.object(OBJECT)
 
     # The cycle up to the MOVE: approach above the box, reach down to
@@ -93,9 +92,9 @@ def main(out: str = "move.npz") -> None:
     print(f"grasp rows: {len(grasp.g)}")
     print(f"duration with grasp: {result.duration:.4f} s")
     print(f"duration without grasp: {free.duration:.4f} s")
-    print(f"worst excess: {check.worst():+.2e}")
+    print(f"min margin: {check.min_margin():+.2e}")
     print(f"check passed: {check.passed()}")
-    print(f"worst excess without grasp: {free_check.worst():+.2e}")
+    print(f"min margin without grasp: {free_check.min_margin():+.2e}")
     print(f"saved: {out} ({len(saved.t)} samples)")
 
 

@@ -18,8 +18,9 @@ What it prints (one ``key: value`` per line):
 - ``grasp rows``: the rows of the cup's exact wrench polytope;
 - ``duration joint limits``: the duration under the joint limits alone, s;
 - ``duration with cup``: the duration that also keeps the box on the cup, s;
-- ``worst excess``: the largest excess over any limit found by the 1 kHz
-  check, as a fraction of the limit (<= 0 is inside; the contract <= 0.001);
+- ``min margin``: the smallest margin to any limit found by the 1 kHz
+  check, as a fraction of the limit (positive is room, negative over the
+  limit; the contract is >= -0.001);
 - ``check passed``: True when every limit and the grasp hold;
 - ``saved``: the ``.npz`` file written, and its samples.
 
@@ -161,7 +162,7 @@ def main(out: str = "my_arm.npz") -> None:
     print(f"grasp rows: {len(grasp.g)}")
     print(f"duration joint limits: {free.duration:.4f} s")
     print(f"duration with cup: {result.duration:.4f} s")
-    print(f"worst excess: {check.worst():+.2e}")
+    print(f"min margin: {check.min_margin():+.2e}")
     print(f"check passed: {check.passed()}")
     print(f"saved: {out} ({len(saved.t)} samples)")
 
