@@ -44,6 +44,7 @@ from rt_drake.experiments.campaign import (  # noqa: E402
     run_campaign,
 )
 from rt_drake.experiments.campaign.report import read_rows  # noqa: E402
+from rt_drake.experiments.campaign.row_types import Status  # noqa: E402
 
 CAMPAIGN = """\
 scenario: random_transport
@@ -70,7 +71,7 @@ def run(kind: ExecutorKind, path: Path, out: Path, workers: int) -> dict[str, fl
     result = run_campaign(campaign, out, make_executor(kind, workers=workers))
     wall = time.perf_counter() - start
     _, rows = read_rows(out)
-    assert result.computed == len(rows) and all(r["status"] == "ok" for r in rows)
+    assert result.computed == len(rows) and all(r["status"] is Status.OK for r in rows)
     busy = sum(r["wall_s"] for r in rows)
     return {
         "rows": len(rows),

@@ -35,6 +35,7 @@ from rt_drake.model.resources import (
     models_dir,
     scenarios_dir,
 )
+from rt_drake.retiming import Margin
 
 # UR's DH table, UR5e: (d, a, alpha) of joints 1..6 (m, rad); theta = q.
 DH = [
@@ -183,7 +184,7 @@ def test_scenario_plans_a_move_and_retimes_it_under_grasp_and_torques(scenario):
     assert held.duration >= free.duration * (1 - 1e-9)
     # Not vacuous: retimed under the joint limits alone, the notebook would slip.
     free_check = check_trajectory(plant, free.trajectory, limits, grasp)
-    assert free_check.excess["grasp"].value > 0.2, free_check.summary()
+    assert free_check.margins[Margin.GRASP].value < -0.2, free_check.summary()
 
 
 def test_limit_torques_switches_the_torque_limits_on(scenario):

@@ -20,7 +20,7 @@ BLOCK = re.compile(r"^(<!-- test: skip -->\n)?```python\n(.*?)^```", re.S | re.M
 PRINTS = {
     "README.md": ["0.705 s holding the notebook, 0.548 s without"],
     "docs/quickstart.md": ["with the grasp", "object mass must be > 0 kg"],
-    "docs/guides/own-robot.md": ["worst excess"],
+    "docs/guides/own-robot.md": ["min margin"],
     "docs/guides/multi-cup-tools.md": ["one cup:", "W_T: 436 rows", "two cups:"],
     "docs/guides/robust-retiming.md": ["holds every object", "worst excess over"],
     "docs/reference/cli.md": ["True", ", 6) scene"],

@@ -34,6 +34,7 @@ from rt_drake.experiments.transport_experiment import (
 from rt_drake.model.plant import make_arm_plant
 from rt_drake.model.resources import scenarios_dir
 from rt_drake.planning import sample_transports
+from rt_drake.retiming import Margin
 from rt_drake.simulation import OnlineMotions
 
 
@@ -78,9 +79,10 @@ def main() -> None:
             rollout = simulate_move(
                 rollout_scenario(trial, q_grasp), q_grasp, trajectory
             )
+            grasp_excess = -check.margins[Margin.GRASP].value
             print(
                 f"{index:9d}  {sharing:7s}  {move.grasp.F.shape[0]:5d}"
-                f"  {move.retimed.duration:12.3f}  {check.excess['grasp'].value:+14.1e}"
+                f"  {move.retimed.duration:12.3f}  {grasp_excess:+14.1e}"
                 f"  {residual:18.2e}  {1e3 * rollout.slip_translation:6.2f},"
                 f" {np.degrees(rollout.slip_rotation):4.2f}",
                 flush=True,

@@ -25,6 +25,7 @@ from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.retiming import (
     GraspConstraint,
     JointLimits,
+    Margin,
     RetimeError,
     check_trajectory,
     retime,
@@ -76,9 +77,9 @@ def main() -> None:
                     plant, result.trajectory, limits, grasp, context=context
                 )
                 total += 1
-                over += check.worst() > 1e-3
+                over += -check.min_margin() > 1e-3
                 for key in worst:
-                    worst[key] = max(worst[key], check.excess[key].value)
+                    worst[key] = max(worst[key], -check.margins[Margin(key)].value)
         text = ", ".join(f"{k} {100 * v:+.3f} %" for k, v in worst.items())
         print(f"{count} points: {over} of {total} over the contract; worst {text}")
 

@@ -69,6 +69,7 @@ from bench_optimize import Setup  # noqa: E402
 
 from rt_drake import PlanningError, RetimeError, check_trajectory, retime  # noqa: E402
 from rt_drake.planning.dense_check import check_path  # noqa: E402
+from rt_drake.retiming import Margin  # noqa: E402
 from rt_drake.shaping import (
     Clock,
     MoveOptimizer,
@@ -358,7 +359,7 @@ def measure(setup, optimizer, move, grasp, result, args) -> dict:
         kto_s = adaptive.duration
         kto1k = retime(plant, path, limits, grasp, 1000, **kw).duration
         check = check_trajectory(plant, adaptive.trajectory, limits, grasp, **kw)
-        worst = check.worst()
+        worst = -check.min_margin()
     except RetimeError as error:
         print(f"    retime failed: {error}")
         kto_s = kto1k = worst = float("nan")
@@ -372,8 +373,8 @@ def measure(setup, optimizer, move, grasp, result, args) -> dict:
         "collision_free": collision.ok,
         "collision": collision.reason or "ok", "collision_s": collision.s,
         "tilt_deg": float(np.degrees(tilt)), "drift_mm": 1e3 * drift,
-        "kto_own_grasp_excess_pct": 100 * own.excess["grasp"].value,
-        "kto_own_worst_pct": 100 * own.worst(),
+        "kto_own_grasp_excess_pct": -100 * own.margins[Margin.GRASP].value,
+        "kto_own_worst_pct": -100 * own.min_margin(),
         "retimed_check_worst_pct": 100 * worst,
         "snopt": str(solved.get_solution_result()),
         "snopt_info": int(solved.get_solver_details().info),

@@ -154,11 +154,11 @@ def _optimized(scenario, planner, move):
     limits = JointLimits.from_plant(plant, scenario.robot)
     obj = dataclasses.replace(scenario.object(move.object), grasp=Transform(move.X_OC))
     held = held_object_of(obj)
+    grasp: GraspConstraint
     if scenario.tool is None:
         grasp = GraspConstraint.for_cup(held, scenario.cup)
     else:  # the set the cycle retimes a multi-cup tool's MOVE under
-        polytope = move_polytope(scenario)
-        grasp = GraspConstraint(held=held, F=polytope.F, g=polytope.g, cup=polytope.cup)
+        grasp = GraspConstraint.for_polytope(held, move_polytope(scenario))
     warm_up()
     options = MoveOptimizerOptions.from_config(scenario.planning)
     cup = CupFrame.of(plant, scenario.robot.cup_frame)

@@ -84,6 +84,7 @@ def run(args: argparse.Namespace) -> int:
     from rt_drake.cli._progress import Progress
     from rt_drake.experiments import (
         REPORT_FILES,
+        RunSettings,
         cycle_report,
         summary_line,
         table_markdown,
@@ -131,8 +132,7 @@ def run(args: argparse.Namespace) -> int:
     finally:
         progress.close()
     wall_s = time.perf_counter() - start
-    report = cycle_report(
-        result.records,
+    settings = RunSettings(
         scenario=str(path),
         grasp_constraint=not args.no_grasp_constraint,
         speed=args.speed,
@@ -143,12 +143,13 @@ def run(args: argparse.Namespace) -> int:
         max_tracking_error_rad=result.max_tracking_error,
         simulation_wall_s=wall_s,
     )
+    report = cycle_report(result.records, settings)
     json_path, md_path = write_report(report, args.out)
     replay = args.out / REPLAY_FILE
     write_text_atomically(replay, meshcat.StaticHtml())
     print(table_markdown(report))
-    for entry in report["objects"]:
-        print(f"MOVE {entry['name']} holds {entry['guarantee']}")
+    for entry in report.objects:
+        print(f"MOVE {entry.name} holds {entry.guarantee}")
     print(f"{summary_line(report)}; simulated in {wall_s:.1f} s wall")
     print(f"wrote {json_path}, {md_path}, {replay}")
     if args.meshcat:

@@ -1,8 +1,10 @@
 """The held object's wrench along a path: kinematics and Newton-Euler in the cup frame.
 
 - :mod:`.chain` (kernels in :mod:`.chain_kernels`, numba): the serial chain
-  from the world to the cup, batched forward kinematics, the one forward
-  kinematics of the cup.
+  from the world to the cup, batched forward kinematics of the cup with the
+  Jacobian's axes (the retimer's and the optimiser's).
+- :mod:`.body_kinematics` (numpy): the poses of every body of a tree-shaped
+  arm at thousands of samples at once (the planner's dense collision check).
 - :mod:`.cup_frame`: the cup frame C of a plant, looked up once.
 - :mod:`.wrench`: the object wrench and joint torques along a path, Drake's
   route; :mod:`.newton_euler` the equations; :mod:`.regressor` the wrench as

@@ -7,11 +7,14 @@
 - :mod:`.robust_transport`: Table I with objects known only to an
   uncertainty set, nominal and robust plans played with a true object;
   :mod:`.robust_report` writes its report.
-- :mod:`.cycle_report`: Table II, the cycle's timing breakdown.
+- :mod:`.cycle_report`: Table II, the cycle's timing breakdown
+  (:class:`CycleReport`).
 """
 
 from rt_drake.experiments.cycle_report import (
     REPORT_FILES,
+    CycleReport,
+    RunSettings,
     cycle_report,
     summary_line,
     table_markdown,
@@ -53,7 +56,9 @@ __all__ = [
     "SLIP_TRANSLATION",
     "SPEED_FACTORS",
     "TRANSPORT_FILES",
+    "CycleReport",
     "Rollout",
+    "RunSettings",
     "critical_speed",
     "cycle_report",
     "optimized_summary",

@@ -15,6 +15,7 @@ is on it). For the cycle: the totals and the picks per hour,
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from pathlib import Path
@@ -35,61 +36,203 @@ EXEC_KEYS = tuple(phase.value for phase in EXEC_PHASES)
 REPORT_FILES = ("report.json", "report.md")
 
 
-def object_report(record: ObjectRecord) -> dict[str, Any]:
-    """The report entry of one object (see the module docstring)."""
-    times = record.plan_times
-    none = PlanTimes()
-    plan_s = {
-        "approach": times.get(Phase.APPROACH, none).total_s,
-        "reach": times.get(Phase.REACH, none).total_s,
-        "move": times.get(Phase.MOVE, none).plan_s,
-        "retime": times.get(Phase.MOVE, none).retime_s,
-    }
-    exec_s = {phase.value: record.exec_s.get(phase, 0.0) for phase in EXEC_PHASES}
-    return {
-        "name": record.name,
-        "plan_s": plan_s,
-        "exec_s": exec_s,
-        "slip": {
-            "max_translation_mm": 1000.0 * record.max_slip_translation,
-            "max_rotation_deg": math.degrees(record.max_slip_rotation),
-        },
-        "placement_error": {
-            "translation_mm": 1000.0 * record.placement_translation,
-            "rotation_deg": math.degrees(record.placement_rotation),
-        },
-        "plan_on_critical_path_s": record.plan_on_critical_path_s,
-        "move_suction_force_n": record.move_suction_force,
-        "guarantee": record.guarantee,
-        "total_s": record.plan_on_critical_path_s + sum(exec_s.values()),
-    }
+@dataclasses.dataclass(frozen=True)
+class PlanSeconds:
+    """Planning wall times (s) of one object, the paper's Table II rows.
+
+    Attributes:
+        approach: APPROACH, plan and retime.
+        reach: REACH, plan and retime.
+        move: MOVE, plan.
+        retime: MOVE, retime.
+    """
+
+    approach: float
+    reach: float
+    move: float
+    retime: float
+
+    def total(self) -> float:
+        """The sum, in the order of :data:`PLAN_KEYS`."""
+        return sum(dataclasses.astuple(self))
 
 
-def cycle_report(records: tuple[ObjectRecord, ...], **extra: Any) -> dict[str, Any]:
-    """The whole report: ``objects`` (one entry each), totals, ``extra``.
+@dataclasses.dataclass(frozen=True)
+class Slip:
+    """The object's largest displacement on the cup while attached."""
+
+    max_translation_mm: float
+    max_rotation_deg: float
+
+
+@dataclasses.dataclass(frozen=True)
+class PlacementError:
+    """The object's distance from its goal pose after DETACH."""
+
+    translation_mm: float
+    rotation_deg: float
+
+
+@dataclasses.dataclass(frozen=True)
+class ObjectReport:
+    """The report entry of one object (see the module docstring).
+
+    Attributes:
+        name: The object.
+        plan_s: Planning wall times.
+        exec_s: Simulated seconds of each phase of :data:`EXEC_PHASES`, in
+            that order.
+        slip: Its slip on the cup while attached.
+        placement_error: Its error at the goal.
+        plan_on_critical_path_s: Simulated seconds the arm waited for plans.
+        move_suction_force_n: The vacuum's force when the MOVE started, N.
+        guarantee: What the MOVE's retiming holds, in words.
+    """
+
+    name: str
+    plan_s: PlanSeconds
+    exec_s: dict[Phase, float]
+    slip: Slip
+    placement_error: PlacementError
+    plan_on_critical_path_s: float
+    move_suction_force_n: float
+    guarantee: str
+
+    @property
+    def total_s(self) -> float:
+        """Execution plus the plan on the critical path, s."""
+        return self.plan_on_critical_path_s + sum(self.exec_s.values())
+
+    def as_dict(self) -> dict[str, Any]:
+        """The entry of ``report.json`` (phases keyed by their values)."""
+        return {
+            "name": self.name,
+            "plan_s": dataclasses.asdict(self.plan_s),
+            "exec_s": {phase.value: s for phase, s in self.exec_s.items()},
+            "slip": dataclasses.asdict(self.slip),
+            "placement_error": dataclasses.asdict(self.placement_error),
+            "plan_on_critical_path_s": self.plan_on_critical_path_s,
+            "move_suction_force_n": self.move_suction_force_n,
+            "guarantee": self.guarantee,
+            "total_s": self.total_s,
+        }
+
+
+@dataclasses.dataclass(frozen=True)
+class RunSettings:
+    """How the cycle was run (``rt-drake run``'s flags and what it measured).
+
+    Attributes:
+        scenario: The scenario file.
+        grasp_constraint: Whether the MOVEs were retimed under the grasp.
+        speed: The MOVEs' speed factor.
+        pipelined_planning: Whether planning ran ahead of execution.
+        vacuum: The vacuum model (``fixed``, ``first_order``).
+        time_step_s: The simulation step, s.
+        sim_time_s: Simulated time of the whole cycle, s.
+        max_tracking_error_rad: The arm's largest tracking error, rad.
+        simulation_wall_s: Wall time of the simulation, s.
+    """
+
+    scenario: str
+    grasp_constraint: bool
+    speed: float
+    pipelined_planning: bool
+    vacuum: str
+    time_step_s: float
+    sim_time_s: float
+    max_tracking_error_rad: float
+    simulation_wall_s: float
+
+
+@dataclasses.dataclass(frozen=True)
+class CycleReport:
+    """The whole report: one entry per object, the totals, how it was run.
 
     ``total_s`` and ``plan_on_critical_path_s`` sum the objects';
     ``mean_cycle_s`` is ``total_s`` per object and ``picks_per_hour``
     ``objects / total_s * 3600``.
     """
-    objects = [object_report(r) for r in records]
-    total = math.fsum(o["total_s"] for o in objects)
-    return {
-        "objects": objects,
-        "total_s": total,
-        "plan_on_critical_path_s": math.fsum(
-            o["plan_on_critical_path_s"] for o in objects
+
+    objects: tuple[ObjectReport, ...]
+    run: RunSettings | None = None
+
+    @property
+    def total_s(self) -> float:
+        """Execution plus the plan on the critical path, all objects, s."""
+        return math.fsum(o.total_s for o in self.objects)
+
+    @property
+    def plan_on_critical_path_s(self) -> float:
+        """Simulated seconds the arm waited for plans, all objects."""
+        return math.fsum(o.plan_on_critical_path_s for o in self.objects)
+
+    @property
+    def mean_cycle_s(self) -> float:
+        """``total_s`` per object (NaN without objects)."""
+        n = len(self.objects)
+        return self.total_s / n if n else float("nan")
+
+    @property
+    def picks_per_hour(self) -> float:
+        """``objects / total_s * 3600`` (0 if no time passed)."""
+        total = self.total_s
+        return 3600.0 * len(self.objects) / total if total > 0 else 0.0
+
+    def as_dict(self) -> dict[str, Any]:
+        """The content of ``report.json``: objects, totals, then the settings."""
+        return {
+            "objects": [o.as_dict() for o in self.objects],
+            "total_s": self.total_s,
+            "plan_on_critical_path_s": self.plan_on_critical_path_s,
+            "mean_cycle_s": self.mean_cycle_s,
+            "picks_per_hour": self.picks_per_hour,
+            **({} if self.run is None else dataclasses.asdict(self.run)),
+        }
+
+    def to_json(self) -> str:
+        """The text of ``report.json`` (indented, with a final newline)."""
+        return json.dumps(self.as_dict(), indent=2) + "\n"
+
+
+def object_report(record: ObjectRecord) -> ObjectReport:
+    """The report entry of one object (see the module docstring)."""
+    times = record.plan_times
+    none = PlanTimes()
+    return ObjectReport(
+        name=record.name,
+        plan_s=PlanSeconds(
+            approach=times.get(Phase.APPROACH, none).total_s,
+            reach=times.get(Phase.REACH, none).total_s,
+            move=times.get(Phase.MOVE, none).plan_s,
+            retime=times.get(Phase.MOVE, none).retime_s,
         ),
-        "mean_cycle_s": total / len(objects) if objects else float("nan"),
-        "picks_per_hour": 3600.0 * len(objects) / total if total > 0 else 0.0,
-        **extra,
-    }
+        exec_s={phase: record.exec_s.get(phase, 0.0) for phase in EXEC_PHASES},
+        slip=Slip(
+            max_translation_mm=1000.0 * record.max_slip_translation,
+            max_rotation_deg=math.degrees(record.max_slip_rotation),
+        ),
+        placement_error=PlacementError(
+            translation_mm=1000.0 * record.placement_translation,
+            rotation_deg=math.degrees(record.placement_rotation),
+        ),
+        plan_on_critical_path_s=record.plan_on_critical_path_s,
+        move_suction_force_n=record.move_suction_force,
+        guarantee=record.guarantee,
+    )
 
 
-def table_markdown(report: dict[str, Any]) -> str:
+def cycle_report(
+    records: tuple[ObjectRecord, ...], run: RunSettings | None = None
+) -> CycleReport:
+    """The whole report of ``records`` (see :class:`CycleReport`)."""
+    return CycleReport(tuple(object_report(r) for r in records), run)
+
+
+def table_markdown(report: CycleReport) -> str:
     """Table II of the paper for this run: one column per object."""
-    objects = report["objects"]
-    header = "| | " + " | ".join(o["name"] for o in objects) + " |"
+    objects = report.objects
+    header = "| | " + " | ".join(o.name for o in objects) + " |"
     rule = "|---|" + "---:|" * len(objects)
     rows = [header, rule]
 
@@ -101,51 +244,52 @@ def table_markdown(report: dict[str, Any]) -> str:
         ("APPROACH plan", "REACH plan", "MOVE plan", "MOVE retime"),
         strict=True,
     ):
-        row(label, [o["plan_s"][key] for o in objects])
-    row("**Total plan**", [sum(o["plan_s"].values()) for o in objects])
-    row("plan on critical path", [o["plan_on_critical_path_s"] for o in objects])
-    for key in EXEC_KEYS:
+        row(label, [getattr(o.plan_s, key) for o in objects])
+    row("**Total plan**", [o.plan_s.total() for o in objects])
+    row("plan on critical path", [o.plan_on_critical_path_s for o in objects])
+    for phase in EXEC_PHASES:
+        key = phase.value
         label = (
-            f"{key.upper()} exec."
-            if key not in ("attach", "detach")
-            else f"{key.upper()} delay"
+            f"{key.upper()} delay"
+            if phase in (Phase.ATTACH, Phase.DETACH)
+            else f"{key.upper()} exec."
         )
-        row(label, [o["exec_s"][key] for o in objects])
-    row("**Total exec.**", [sum(o["exec_s"].values()) for o in objects])
-    row("**Total (critical plan + exec.)**", [o["total_s"] for o in objects])
-    row("slip (mm)", [o["slip"]["max_translation_mm"] for o in objects], "{:.2f}")
-    row("slip (deg)", [o["slip"]["max_rotation_deg"] for o in objects], "{:.2f}")
+        row(label, [o.exec_s[phase] for o in objects])
+    row("**Total exec.**", [sum(o.exec_s.values()) for o in objects])
+    row("**Total (critical plan + exec.)**", [o.total_s for o in objects])
+    row("slip (mm)", [o.slip.max_translation_mm for o in objects], "{:.2f}")
+    row("slip (deg)", [o.slip.max_rotation_deg for o in objects], "{:.2f}")
     row(
         "placement error (mm)",
-        [o["placement_error"]["translation_mm"] for o in objects],
+        [o.placement_error.translation_mm for o in objects],
         "{:.1f}",
     )
     row(
         "placement error (deg)",
-        [o["placement_error"]["rotation_deg"] for o in objects],
+        [o.placement_error.rotation_deg for o in objects],
         "{:.1f}",
     )
     return "\n".join(rows) + "\n"
 
 
-def summary_line(report: dict[str, Any]) -> str:
+def summary_line(report: CycleReport) -> str:
     """``4 objects in 17.2 s: 4.30 s per object, 837 picks per hour ...``."""
-    n = len(report["objects"])
+    n = len(report.objects)
     return (
-        f"{n} objects in {report['total_s']:.3f} s: {report['mean_cycle_s']:.3f} s "
-        f"per object, {report['picks_per_hour']:.0f} picks per hour; plan on the "
-        f"critical path {report['plan_on_critical_path_s']:.3f} s"
+        f"{n} objects in {report.total_s:.3f} s: {report.mean_cycle_s:.3f} s "
+        f"per object, {report.picks_per_hour:.0f} picks per hour; plan on the "
+        f"critical path {report.plan_on_critical_path_s:.3f} s"
     )
 
 
-def write_report(report: dict[str, Any], out_dir: Path) -> tuple[Path, Path]:
+def write_report(report: CycleReport, out_dir: Path) -> tuple[Path, Path]:
     """Write ``report.json`` and ``report.md`` into ``out_dir``; return both paths.
 
     Each file is written atomically (:mod:`rt_drake.atomic_file`).
     """
     json_path = out_dir / REPORT_FILES[0]
     md_path = out_dir / REPORT_FILES[1]
-    write_text_atomically(json_path, json.dumps(report, indent=2) + "\n")
+    write_text_atomically(json_path, report.to_json())
     lines = [
         "# Pick-and-place cycle",
         "",
@@ -160,7 +304,7 @@ def write_report(report: dict[str, Any], out_dir: Path) -> tuple[Path, Path]:
         "",
         "What each MOVE's retiming guarantees the cup holds:",
         "",
-        *(f"- {o['name']}: {o.get('guarantee') or '-'}" for o in report["objects"]),
+        *(f"- {o.name}: {o.guarantee or '-'}" for o in report.objects),
     ]
     write_text_atomically(md_path, "\n".join(lines) + "\n")
     return json_path, md_path
@@ -171,6 +315,12 @@ __all__ = [
     "EXEC_PHASES",
     "REPORT_FILES",
     "PLAN_KEYS",
+    "CycleReport",
+    "ObjectReport",
+    "PlacementError",
+    "PlanSeconds",
+    "RunSettings",
+    "Slip",
     "cycle_report",
     "object_report",
     "summary_line",

@@ -33,7 +33,7 @@ from rt_drake.experiments.rollout import critical_speed, simulate_move
 from rt_drake.model.plant import make_arm_plant
 from rt_drake.model.scenario import Scenario
 from rt_drake.planning import CyclePlanner, PlannedPath
-from rt_drake.retiming import GraspConstraint, JointLimits, RetimeResult
+from rt_drake.retiming import GraspConstraint, JointLimits, Margin, RetimeResult
 from rt_drake.shaping import (
     Clock,
     MoveOptimizer,
@@ -144,7 +144,7 @@ def cup_profile(chain: CupChain, retimed: RetimeResult) -> dict[str, list[float]
         "z": p[:, 2].tolist(),
         "tilt_deg": np.degrees(chain.tilt(q)).tolist(),
         "t_grid": (retimed.trajectory.times - t[0]).tolist(),
-        "grasp_margin": retimed.margins["grasp"].tolist(),
+        "grasp_margin": retimed.margins[Margin.GRASP].tolist(),
     }
 
 

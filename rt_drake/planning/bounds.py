@@ -17,7 +17,7 @@ from pydrake.geometry import SceneGraph
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.multibody.tree import Body, BodyIndex, JointIndex, ModelInstanceIndex
 
-from rt_drake.planning.body_poses import BodyKinematics
+from rt_drake.dynamics.body_kinematics import BodyKinematics
 from rt_drake.planning.geometry import bounding_radius
 
 

@@ -31,7 +31,7 @@ import dataclasses
 
 import numpy as np
 
-from rt_drake.planning.body_poses import step_motion
+from rt_drake.dynamics.body_kinematics import step_motion
 from rt_drake.planning.scene import PlanningScene
 from rt_drake.types.path import GeometricPath
 

@@ -3,8 +3,11 @@
 The public face of TOPP-RA in rt_drake; everything else in this package is
 internal:
 
-- :mod:`.solve`: :func:`retime` and :class:`RetimeResult`.
-- :mod:`.limits`: joint limits and the grasp constraint ``F w <= g``.
+- :mod:`.solve`: :func:`retime` and :class:`RetimeResult` (its margins keyed
+  by :class:`Margin`; the passes run by an :class:`Engine`).
+- :mod:`.limits`: joint limits and the grasp constraint ``F w <= g``, one
+  class per source of its rows (:class:`GraspConstraint` given by hand,
+  :class:`CupGrasp`, :class:`ToolGrasp`, :class:`ObjectSetGrasp`).
 - :mod:`.path`: the joint path ``q(s)`` in the planner's spline convention.
 - :mod:`.at_rest`: the object and the arm must be holdable at rest.
 - :mod:`.rows`: which grasp rows the stage LPs get, and the exactness check
@@ -26,10 +29,20 @@ internal:
 from rt_drake.retiming.check import (
     DEFAULT_TOLERANCE,
     Excess,
+    Margin,
     TrajectoryCheck,
+    WorstMargin,
     check_trajectory,
 )
-from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming.joint_path import PathLike, WaypointPath
+from rt_drake.retiming.limits import (
+    CupGrasp,
+    GraspConstraint,
+    JointLimits,
+    ObjectSetGrasp,
+    ToolGrasp,
+)
+from rt_drake.retiming.passes import Engine
 from rt_drake.retiming.precompile import warm_up
 from rt_drake.retiming.retime_errors import (
     GraspUnstableAtRestError,
@@ -56,11 +69,16 @@ from rt_drake.types.path import (
 
 __all__ = [
     "DEFAULT_TOLERANCE",
+    "CupGrasp",
+    "Engine",
     "Excess",
     "GraspConstraint",
     "GraspUnstableAtRestError",
     "JointLimits",
     "LimitsBetweenGridPointsError",
+    "Margin",
+    "ObjectSetGrasp",
+    "PathLike",
     "PathNotControllableError",
     "RetimeError",
     "RetimeInputError",
@@ -69,8 +87,11 @@ __all__ = [
     "SavedTrajectory",
     "TimeScaled",
     "TimedPath",
+    "ToolGrasp",
     "TorqueLimitAtRestError",
     "TrajectoryCheck",
+    "WaypointPath",
+    "WorstMargin",
     "check_trajectory",
     "chord_knots",
     "load_trajectory",

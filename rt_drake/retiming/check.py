@@ -8,23 +8,27 @@ independently of the retimer's path coefficients, evaluates at each sample:
   spatial acceleration from Drake's ``CalcSpatialAccelerationsFromVdot`` and
   Newton-Euler (:func:`rt_drake.dynamics.newton_euler.reference_object_wrench`; no
   Jacobian, bias or gravity shortcut of :mod:`rt_drake.dynamics.wrench`), and its
-  g-scaled excess ``max_k (F_k w - g_k) / g_k`` (the Minkowski gauge of W
-  about 0, minus 1);
+  ratio ``max_k F_k w / g_k`` (the Minkowski gauge of W about 0);
 - joint torques by Drake inverse dynamics plus ``J_Coᵀ w`` for that wrench,
   ratio ``|tau_j| / tau_max_j``.
 
-Each is reported as the worst relative excess (``ratio - 1``; negative means
-inside the limit by that fraction) with its time.
+Each is reported as its smallest margin ``1 - ratio`` with its time, in the
+retimer's sign convention (:attr:`RetimeResult.margins
+<rt_drake.retiming.solve.RetimeResult>`): positive is room left, negative is
+over the limit by that fraction. :meth:`TrajectoryCheck.summary` says which
+in words.
 
 Tolerance: the retimer holds every limit between its grid points too
 (:mod:`.between`), to within 5e-4 at its sub-points; sampled at 1 kHz the
-excess stays below :data:`DEFAULT_TOLERANCE` = 1e-3 (the contract; tests
+margin stays above ``-DEFAULT_TOLERANCE`` = -1e-3 (the contract; tests
 check it on random paths).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import enum
+import warnings
 
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
@@ -37,13 +41,56 @@ from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.dynamics.newton_euler import reference_object_wrench
 from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint, JointLimits
 
-#: Allowed relative excess over a limit (and over g for the grasp), see above.
+#: Allowed relative excess over a limit (and over g for the grasp), see above:
+#: a margin down to ``-DEFAULT_TOLERANCE`` passes.
 DEFAULT_TOLERANCE = 1e-3
+
+
+class Margin(enum.Enum):
+    """A constraint the retimer holds, keying its margins and the check's."""
+
+    #: Joint velocity, ``|v_j| <= v_max_j``.
+    VELOCITY = "velocity"
+    #: Joint acceleration, ``|vdot_j| <= a_max_j``.
+    ACCELERATION = "acceleration"
+    #: Joint torque, ``|tau_j| <= tau_max_j`` (when limited).
+    TORQUE = "torque"
+    #: The grasp, ``F w <= g`` (with a held object).
+    GRASP = "grasp"
+
+
+@dataclasses.dataclass(frozen=True)
+class WorstMargin:
+    """Smallest margin of one constraint over the samples.
+
+    Attributes:
+        value: ``1 - max(ratio)``: positive is room left, negative is over
+            the limit by that fraction (the sign of ``RetimeResult.margins``).
+        time: When it occurs, s.
+        index: The joint (0-based) or grasp row it occurs at.
+    """
+
+    value: float
+    time: float
+    index: int
+
+    def words(self, tolerance: float = DEFAULT_TOLERANCE) -> str:
+        """``room 0.006 %`` or ``over by 0.010 %`` (no sign to misread).
+
+        An excess the contract allows (at most ``tolerance``) says so:
+        ``over by 0.010 % (within the 0.100 % tolerance)``.
+        """
+        if self.value >= 0.0:
+            return f"room {100 * self.value:.3f} %"
+        text = f"over by {-100 * self.value:.3f} %"
+        if -self.value <= tolerance:
+            text += f" (within the {100 * tolerance:.3f} % tolerance)"
+        return text
 
 
 @dataclasses.dataclass(frozen=True)
 class Excess:
-    """Worst relative excess of one constraint over the samples.
+    """Deprecated: the old sign, ``max(ratio) - 1`` (see :class:`WorstMargin`).
 
     Attributes:
         value: ``max(ratio) - 1`` (<= 0: within the limit).
@@ -60,27 +107,56 @@ class Excess:
 class TrajectoryCheck:
     """Result of :func:`check_trajectory`.
 
-    ``excess`` maps each constraint name ("velocity", "acceleration", and
-    "torque", "grasp" when checked) to its :class:`Excess`.
+    ``margins`` maps each constraint checked (:attr:`Margin.VELOCITY`,
+    :attr:`Margin.ACCELERATION`, and :attr:`Margin.TORQUE`,
+    :attr:`Margin.GRASP` when checked) to its :class:`WorstMargin`.
     """
 
     times: np.ndarray
-    excess: dict[str, Excess]
+    margins: dict[Margin, WorstMargin]
 
-    def worst(self) -> float:
-        """Largest relative excess over all constraints."""
-        return max(e.value for e in self.excess.values())
+    def min_margin(self) -> float:
+        """Smallest margin over all constraints (negative: over a limit)."""
+        return min(m.value for m in self.margins.values())
 
     def passed(self, tolerance: float = DEFAULT_TOLERANCE) -> bool:
-        """Whether every excess is at most ``tolerance``."""
-        return self.worst() <= tolerance
+        """Whether no constraint is over its limit by more than ``tolerance``."""
+        return self.min_margin() >= -tolerance
 
-    def summary(self) -> str:
-        """One line per constraint: name, worst excess in %, time, index."""
+    def summary(self, tolerance: float = DEFAULT_TOLERANCE) -> str:
+        """One line per constraint: name, margin in words, time, index.
+
+        E.g. ``grasp: room 0.006 % at t = 0.4120 s (#17)`` or ``torque: over
+        by 0.200 % at t = 1.2000 s (#2)`` (:meth:`WorstMargin.words`).
+        """
         return "\n".join(
-            f"{name}: {100 * e.value:+.3f} % at t = {e.time:.4f} s (#{e.index})"
-            for name, e in self.excess.items()
+            f"{kind.value}: {m.words(tolerance)} at t = {m.time:.4f} s (#{m.index})"
+            for kind, m in self.margins.items()
         )
+
+    @property
+    def excess(self) -> dict[str, Excess]:
+        """Deprecated: the old sign (positive = over); use :attr:`margins`."""
+        warnings.warn(
+            "TrajectoryCheck.excess is deprecated (positive meant over the limit): "
+            "use .margins (positive means room, negative over the limit)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return {
+            kind.value: Excess(-m.value, m.time, m.index)
+            for kind, m in self.margins.items()
+        }
+
+    def worst(self) -> float:
+        """Deprecated: the largest excess, ``-min_margin()``; use :meth:`min_margin`."""
+        warnings.warn(
+            "TrajectoryCheck.worst() is deprecated (positive meant over the limit): "
+            "use .min_margin() (positive means room, negative over the limit)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return -self.min_margin()
 
 
 def check_trajectory(
@@ -120,19 +196,19 @@ def check_trajectory(
     times = np.append(np.arange(t0, t1, 1.0 / rate_hz), t1)
     q, v, vdot = _sample(trajectory, times)
     context = context or plant.CreateDefaultContext()
-    excess = {
-        "velocity": _worst(np.abs(v) / limits.velocity, times),
-        "acceleration": _worst(np.abs(vdot) / limits.acceleration, times),
+    margins = {
+        Margin.VELOCITY: _worst(np.abs(v) / limits.velocity, times),
+        Margin.ACCELERATION: _worst(np.abs(vdot) / limits.acceleration, times),
     }
     cup = cup or CupFrame.of(plant)
     w = None
     if grasp is not None:
         w = reference_object_wrench(plant, grasp.held, cup, q, v, vdot, context)
-        excess["grasp"] = _worst((w @ grasp.F.T) / grasp.g, times)
+        margins[Margin.GRASP] = _worst((w @ grasp.F.T) / grasp.g, times)
     if limits.torque is not None:
         tau = _torques(plant, cup, q, v, vdot, w, context)
-        excess["torque"] = _worst(np.abs(tau) / limits.torque, times)
-    return TrajectoryCheck(times=times, excess=excess)
+        margins[Margin.TORQUE] = _worst(np.abs(tau) / limits.torque, times)
+    return TrajectoryCheck(times=times, margins=margins)
 
 
 def _torques(
@@ -168,9 +244,19 @@ def _sample(trajectory: Trajectory, times: np.ndarray) -> list[np.ndarray]:
     return [np.array([d.value(t).reshape(-1) for t in times]) for d in series]
 
 
-def _worst(ratio: np.ndarray, times: np.ndarray) -> Excess:
+def _worst(ratio: np.ndarray, times: np.ndarray) -> WorstMargin:
+    """The smallest margin ``1 - ratio`` over (M, k) ratios, with where."""
     sample, index = np.unravel_index(int(np.argmax(ratio)), ratio.shape)
-    return Excess(float(ratio[sample, index] - 1.0), float(times[sample]), int(index))
+    return WorstMargin(
+        float(1.0 - ratio[sample, index]), float(times[sample]), int(index)
+    )
 
 
-__all__ = ["DEFAULT_TOLERANCE", "Excess", "TrajectoryCheck", "check_trajectory"]
+__all__ = [
+    "DEFAULT_TOLERANCE",
+    "Excess",
+    "Margin",
+    "TrajectoryCheck",
+    "WorstMargin",
+    "check_trajectory",
+]

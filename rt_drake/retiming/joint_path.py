@@ -24,10 +24,11 @@ for others it evaluates the path at the points it needs.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+from typing import Any, Protocol, TypeAlias
 
 import numpy as np
 import toppra
+from numpy.typing import ArrayLike
 from pydrake.trajectories import (
     BsplineTrajectory,
     PiecewisePolynomial,
@@ -83,7 +84,35 @@ class JointPath:
         return values.reshape(*s.shape, self.num_joints)
 
 
-def as_joint_path(path: Any) -> JointPath:
+class WaypointPath(Protocol):
+    """A path given by waypoints and knots, as the planner's ``GeometricPath``.
+
+    The retimer joins the waypoints by the clamped cubic spline through them
+    at the knots (:mod:`.path`).
+    """
+
+    @property
+    def waypoints(self) -> np.ndarray:
+        """(K, n) rad."""
+
+    @property
+    def knots(self) -> np.ndarray:
+        """(K,) s of the waypoints, strictly increasing from 0 to 1."""
+
+
+#: What :func:`as_joint_path` (and so ``retime``) takes: a :class:`JointPath`,
+#: a Drake ``Trajectory`` with derivatives, a toppra interpolator, a
+#: :class:`WaypointPath`, or (K, n) waypoints (chord-length knots).
+PathLike: TypeAlias = (
+    JointPath
+    | Trajectory
+    | toppra.interpolator.AbstractGeometricPath
+    | WaypointPath
+    | ArrayLike
+)
+
+
+def as_joint_path(path: PathLike) -> JointPath:
     """The retimer's view of ``path`` (see the module docstring).
 
     Raises:
@@ -220,4 +249,11 @@ class ToppraPath(toppra.interpolator.AbstractGeometricPath):
         return None
 
 
-__all__ = ["MAX_ORDER", "JointPath", "ToppraPath", "as_joint_path"]
+__all__ = [
+    "MAX_ORDER",
+    "JointPath",
+    "PathLike",
+    "ToppraPath",
+    "WaypointPath",
+    "as_joint_path",
+]

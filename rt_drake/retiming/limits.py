@@ -1,11 +1,20 @@
 """What the retimer constrains: joint limits and the grasp of a held object.
 
-A grasp constraint holds one object (:meth:`GraspConstraint.for_cup`), or
-every object of a set: an uncertainty set around a nominal object with the
-worst friction and suction of the cup (:meth:`GraspConstraint.robust`,
-:mod:`rt_drake.uncertainty.inertial_set`, :mod:`rt_drake.contact.worst_cup`),
-or a finite
-list of objects (:meth:`GraspConstraint.for_objects`).
+A grasp constraint is one of a small family behind :class:`GraspConstraint`
+(``held``, ``F``, ``g``, :attr:`~GraspConstraint.is_robust`,
+:meth:`~GraspConstraint.describe`, :meth:`~GraspConstraint.guarantee`), one
+class per source of the rows:
+
+- :class:`GraspConstraint` itself: rows given by hand, of one object;
+- :class:`CupGrasp`: one object on one cup, its exact set
+  (:meth:`GraspConstraint.for_cup`);
+- :class:`ToolGrasp`: one object on a tool of cups
+  (:meth:`GraspConstraint.for_tool`, :meth:`GraspConstraint.inner_for_tool`);
+- :class:`ObjectSetGrasp`: every object of a set with every cup of a
+  friction and suction range: an uncertainty set around a nominal object
+  (:meth:`GraspConstraint.robust`, :mod:`rt_drake.uncertainty.inertial_set`,
+  :mod:`rt_drake.contact.worst_cup`), or a finite list of objects
+  (:meth:`GraspConstraint.for_objects`).
 """
 
 from __future__ import annotations
@@ -20,7 +29,12 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 
 from rt_drake import arguments
-from rt_drake.contact import CupParameters, ToolParameters, cached_wrench_polytope
+from rt_drake.contact import (
+    CupParameters,
+    ToolParameters,
+    WrenchPolytope,
+    cached_wrench_polytope,
+)
 from rt_drake.contact.load_sharing import SharedLoadSet
 from rt_drake.contact.tool import LoadSharing
 from rt_drake.contact.tool_polytope import DEFAULT_MAX_FACETS
@@ -232,31 +246,29 @@ class GraspConstraint:
     tool frame T: ``held`` is the object's inertia in T, and F, g describe
     the tool's set W_T about T's origin, in T (:meth:`for_tool`).
 
+    Built directly, ``GraspConstraint(held, F, g)`` holds one object under
+    rows given by hand. The classmethods build the family member of each
+    source (module docstring); the retimer and the checks use only what this
+    class has.
+
     Attributes:
         held: Inertia of the object in C or T (the nominal one of a set).
         F: (R, 6) rows (unit norm from :mod:`rt_drake.contact`).
         g: (R,) offsets.
-        cup: The cup or tool the polytope belongs to (for messages), if known.
-        objects: The set of objects to hold (None: ``held`` alone); see
-            :attr:`is_robust` (one cup only).
-        worst_cup: Whether F, g hold for every cup of ``cup``'s friction and
-            suction range (:func:`~rt_drake.contact.worst_cup_polytope`).
     """
 
     held: HeldObject
     F: np.ndarray
     g: np.ndarray
-    cup: CupParameters | ToolParameters | None = None
-    objects: ObjectSet | None = None
-    worst_cup: bool = False
 
     def __post_init__(self) -> None:
         where = "GraspConstraint"
         arguments.instance(
             self.held, "held", HeldObject, where=where, error=RetimeInputError
         )
-        if self.cup is not None:
-            _check_grip(self.cup, where)
+        cup = getattr(self, "cup", None)  # a family member built from a cup
+        if cup is not None:
+            _check_grip(cup, where)
         try:  # shapes, no rows, NaN or inf, an all-zero row (constrains nothing)
             F, g = check_h_representation(self.F, self.g, where)
         except InputError as error:
@@ -273,21 +285,33 @@ class GraspConstraint:
         object.__setattr__(self, "F", F)
         object.__setattr__(self, "g", g)
 
-    @classmethod
-    def for_cup(cls, held: HeldObject, cup: CupParameters) -> GraspConstraint:
+    @staticmethod
+    def for_cup(held: HeldObject, cup: CupParameters) -> CupGrasp:
         """The exact polytope of ``cup`` (cached on disk by rt_drake.contact)."""
         _check_grip(cup, "GraspConstraint.for_cup")
         polytope = cached_wrench_polytope(cup)
-        return cls(held=held, F=polytope.F, g=polytope.g, cup=cup)
+        return CupGrasp(held=held, F=polytope.F, g=polytope.g, cup=cup)
 
-    @classmethod
+    @staticmethod
+    def for_polytope(
+        held: HeldObject, polytope: WrenchPolytope | SharedLoadSet
+    ) -> CupGrasp | ToolGrasp:
+        """The rows of a wrench set already computed for a cup or a tool.
+
+        E.g. ``cached_wrench_polytope(cup)`` or the set the cycle retimes a
+        MOVE under (``rt_drake.simulation.online_motions.move_polytope``).
+        """
+        if isinstance(polytope.cup, ToolParameters):
+            return ToolGrasp(held=held, F=polytope.F, g=polytope.g, tool=polytope.cup)
+        return CupGrasp(held=held, F=polytope.F, g=polytope.g, cup=polytope.cup)
+
+    @staticmethod
     def robust(
-        cls,
         held: HeldObject,
         uncertainty: ObjectUncertainty,
         cup: CupParameters,
         R_CO: np.ndarray | None = None,
-    ) -> GraspConstraint:
+    ) -> ObjectSetGrasp:
         """Hold every object of ``uncertainty`` around ``held`` with every cup.
 
         The wrench set is the one every cup of ``cup``'s friction and suction
@@ -322,19 +346,10 @@ class GraspConstraint:
             )
         F, g = worst_cup_polytope(cup)
         objects = uncertain_object(held, uncertainty, R_CO)
-        return cls(
-            held=held,
-            F=F,
-            g=g,
-            cup=cup,
-            objects=objects,
-            worst_cup=cup.is_uncertain(),
-        )
+        return ObjectSetGrasp(held=held, F=F, g=g, cup=cup, objects=objects)
 
-    @classmethod
-    def for_objects(
-        cls, objects: list[HeldObject], cup: CupParameters
-    ) -> GraspConstraint:
+    @staticmethod
+    def for_objects(objects: list[HeldObject], cup: CupParameters) -> ObjectSetGrasp:
         """Hold each object of a list (the first is the nominal one).
 
         Retiming under it stacks every object's constraint: with a dense
@@ -356,23 +371,17 @@ class GraspConstraint:
                 RetimeInputError,
             )
         F, g = worst_cup_polytope(cup)
-        return cls(
-            held=objects[0],
-            F=F,
-            g=g,
-            cup=cup,
-            objects=object_list(objects),
-            worst_cup=cup.is_uncertain(),
+        return ObjectSetGrasp(
+            held=objects[0], F=F, g=g, cup=cup, objects=object_list(objects)
         )
 
-    @classmethod
+    @staticmethod
     def for_scenario_object(
-        cls,
         obj: ObjectConfig,
         cup: CupParameters,
         X_OC: RigidTransform | None = None,
         robust: bool = True,
-    ) -> GraspConstraint:
+    ) -> CupGrasp | ObjectSetGrasp:
         """The grasp of a scenario object held at ``X_OC`` (default its grasp).
 
         Robust (:meth:`robust`) when ``robust`` and the object has an
@@ -385,37 +394,31 @@ class GraspConstraint:
         uncertainty = obj.uncertainty or ObjectUncertainty()
         if robust and (not uncertainty.is_zero() or cup.is_uncertain()):
             X_CO = obj.grasp.GetDeterministicValue().inverse()
-            return cls.robust(held, uncertainty, cup, X_CO.rotation().matrix())
-        return cls.for_cup(held, cup)
+            return GraspConstraint.robust(
+                held, uncertainty, cup, X_CO.rotation().matrix()
+            )
+        return GraspConstraint.for_cup(held, cup)
 
     @property
     def is_robust(self) -> bool:
         """Whether the constraint holds a set of objects, not one object."""
-        return self.objects is not None and not self.objects.is_single()
+        return False
 
     def guarantee(self) -> str:
         """What a trajectory retimed under this constraint holds, in words."""
-        if self.is_robust:
-            assert self.objects is not None
-            what = f"every object of the set ({self.objects.label})"
-        else:
-            what = f"the nominal object ({self.held.mass:.3g} kg)"
-        if self.worst_cup and isinstance(self.cup, CupParameters):
-            cup = self.cup.worst_case()
-            what += (
-                f", friction down to {cup.friction:.3g} and suction down to "
-                f"{cup.suction_force:.3g} N"
-            )
-        return what
+        return f"the nominal object ({self.held.mass:.3g} kg)"
 
-    @classmethod
+    def describe(self) -> str:
+        """E.g. ``object 0.551 kg`` (a cup adds its suction, a tool its cups)."""
+        return f"object {self.held.mass:.3g} kg"
+
+    @staticmethod
     def for_tool(
-        cls,
         held: HeldObject,
         tool: ToolParameters,
         max_facets: int | None = DEFAULT_MAX_FACETS,
         load_sharing: LoadSharing | str = LoadSharing.ELASTIC,
-    ) -> GraspConstraint:
+    ) -> ToolGrasp:
         """The wrench set of a ``tool``, about and in the tool frame T.
 
         ``held`` is the object's inertia in T, which is the frame given to
@@ -447,19 +450,18 @@ class GraspConstraint:
             ) from None
         if len(tool.cups) > 1 and sharing is LoadSharing.ELASTIC:
             shared = SharedLoadSet.of(tool)
-            return cls(held=held, F=shared.F, g=shared.g, cup=tool)
+            return ToolGrasp(held=held, F=shared.F, g=shared.g, tool=tool)
         polytope = cached_wrench_polytope(tool, max_facets=max_facets)
-        return cls(held=held, F=polytope.F, g=polytope.g, cup=tool)
+        return ToolGrasp(held=held, F=polytope.F, g=polytope.g, tool=tool)
 
-    @classmethod
+    @staticmethod
     def inner_for_tool(
-        cls,
         held: HeldObject,
         tool: ToolParameters,
         guiding_samples: np.ndarray,
         max_vertices: int = 60,
         seed: int = 0,
-    ) -> GraspConstraint:
+    ) -> ToolGrasp:
         """A sound inner approximation of a tool's W_T, without its facets.
 
         The hull of at most ``max_vertices`` support points of W_T chosen to
@@ -487,24 +489,106 @@ class GraspConstraint:
         inner = guided_approximation(
             ToolWrenchSet(tool), samples, max_vertices, seed=seed
         )
-        return cls(held=held, F=inner.F, g=inner.g, cup=tool)
+        return ToolGrasp(held=held, F=inner.F, g=inner.g, tool=tool)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class CupGrasp(GraspConstraint):
+    """One object on one cup, under rows of that cup (the nominal cup).
+
+    Attributes:
+        cup: The cup the rows belong to.
+    """
+
+    cup: CupParameters
 
     def describe(self) -> str:
-        """E.g. ``object 0.551 kg, suction 20 N`` (a tool: ``2 cups, 20 + 20 N``)."""
-        text = f"object {self.held.mass:.3g} kg"
+        """E.g. ``object 0.551 kg, suction 20 N (at least 18 N)``."""
+        return super().describe() + _suction(self.cup)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class ToolGrasp(GraspConstraint):
+    """One object on a tool of cups, in the tool frame T.
+
+    Attributes:
+        tool: The tool the rows belong to.
+    """
+
+    tool: ToolParameters
+
+    def describe(self) -> str:
+        """E.g. ``object 0.551 kg, 2 cups, suction 20 + 20 N``."""
+        cups = self.tool.cups
+        forces = " + ".join(f"{m.cup.suction_force:.3g}" for m in cups)
+        return super().describe() + f", {len(cups)} cups, suction {forces} N"
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class ObjectSetGrasp(GraspConstraint):
+    """Every object of a set, with every cup of ``cup``'s range (one cup).
+
+    F, g hold for every cup of ``cup``'s friction and suction range
+    (:func:`~rt_drake.contact.worst_cup_polytope`); ``held`` is the set's
+    nominal object. A set of one object (zero width) is retimed as that
+    object alone (:attr:`is_robust` is False).
+
+    Attributes:
+        cup: The cup, with its optional friction and suction range.
+        objects: The set of objects to hold.
+    """
+
+    cup: CupParameters
+    objects: ObjectSet
+
+    @property
+    def is_robust(self) -> bool:
+        """Whether the set is more than one object."""
+        return not self.objects.is_single()
+
+    @property
+    def worst_cup(self) -> bool:
+        """Whether F, g are those of the worst cup of a friction or suction range."""
+        return self.cup.is_uncertain()
+
+    def guarantee(self) -> str:
+        """E.g. ``every object of the set (...), friction down to 0.4 and ...``."""
+        what = super().guarantee()
+        if self.is_robust:
+            what = f"every object of the set ({self.objects.label})"
+        if self.worst_cup:
+            cup = self.cup.worst_case()
+            what += (
+                f", friction down to {cup.friction:.3g} and suction down to "
+                f"{cup.suction_force:.3g} N"
+            )
+        return what
+
+    def describe(self) -> str:
+        """E.g. ``every object of the set around object 0.551 kg, suction 20 N``."""
+        text = super().describe()
         if self.is_robust:
             text = f"every object of the set around {text}"
-        if isinstance(self.cup, ToolParameters):
-            forces = " + ".join(f"{m.cup.suction_force:.3g}" for m in self.cup.cups)
-            text += f", {len(self.cup.cups)} cups, suction {forces} N"
-        elif self.cup is not None:
-            text += f", suction {self.cup.suction_force:.3g} N"
-            if self.cup.suction_force_min is not None:
-                text += f" (at least {self.cup.suction_force_min:.3g} N)"
-        return text
+        return text + _suction(self.cup)
+
+
+def _suction(cup: CupParameters) -> str:
+    """``, suction 20 N`` and `` (at least 18 N)`` with a suction range."""
+    text = f", suction {cup.suction_force:.3g} N"
+    if cup.suction_force_min is not None:
+        text += f" (at least {cup.suction_force_min:.3g} N)"
+    return text
 
 
 #: What every grasp constraint has (the retimer's duck-typed check).
 GRASP_ATTRIBUTES = ("held", "F", "g", "is_robust")
 
-__all__ = ["GRASP_ATTRIBUTES", "GraspConstraint", "JointLimits"]
+
+__all__ = [
+    "GRASP_ATTRIBUTES",
+    "CupGrasp",
+    "GraspConstraint",
+    "JointLimits",
+    "ObjectSetGrasp",
+    "ToolGrasp",
+]

@@ -12,7 +12,7 @@ then the greedy forward pass with toppra's numerical safeguards (x_{i+1}
 reduced by 1e-8 or 0.01 % and clamped into K_{i+1}; a failed step retried
 with x_i reduced), on the interpolation discretization.
 
-- ``engine="compiled"`` (default): :func:`stage_rows` projects the
+- :attr:`Engine.COMPILED` (default): :func:`stage_rows` projects the
   constraints to the rows of every stage's 2-variable LP and
   :func:`rt_drake.retiming.seidel.passes` runs both passes compiled (numba),
   with toppra's seidel LP transcribed. It
@@ -26,12 +26,13 @@ with x_i reduced), on the interpolation discretization.
   moves, so ``|q'|, |q''| ~ 1e-5``; grasp rows of norm 0.01 at an angle of
   1e-7): see :mod:`rt_drake.retiming.seidel`; on every LP toppra's rules
   solve, the answer is unchanged to the bit.
-- ``engine="toppra"``: toppra's own ``TOPPRA`` class with its seidel wrapper
+- :attr:`Engine.TOPPRA`: toppra's own ``TOPPRA`` class with its seidel wrapper
   (the reference).
 """
 
 from __future__ import annotations
 
+import enum
 from typing import NamedTuple
 
 import numpy as np
@@ -45,6 +46,34 @@ from rt_drake.retiming.retime_errors import RetimeInputError
 
 #: toppra's box on (u, x) at every stage (cy_seidel_solverwrapper VAR_MIN/MAX).
 VAR_BOUND = 1e8
+
+
+class Engine(enum.Enum):
+    """Which implementation runs TOPP-RA's passes (see the module docstring).
+
+    Both give the same profile (tests compare them to 1e-9).
+    """
+
+    #: rt_drake's compiled passes (numba), the default.
+    COMPILED = "compiled"
+    #: toppra's own ``TOPPRA`` class (the reference; slower).
+    TOPPRA = "toppra"
+
+    @classmethod
+    def of(cls, engine: Engine | str) -> Engine:
+        """``engine`` as an :class:`Engine`; its value (``"toppra"``) also works.
+
+        Raises:
+            RetimeInputError: naming ``engine``, the value and the allowed ones.
+        """
+        if isinstance(engine, cls):
+            return engine
+        if isinstance(engine, str):
+            for member in cls:
+                if engine == member.value:
+                    return member
+        allowed = ", ".join(f"Engine.{m.name} ({m.value!r})" for m in cls)
+        raise RetimeInputError(f"engine must be one of {allowed}, got {engine!r}")
 
 
 class AffineConstraint(LinearConstraint):
@@ -149,23 +178,24 @@ def reachability(
     gridpoints: np.ndarray,
     sd_start: float = 0.0,
     sd_end: float = 0.0,
-    engine: str = "compiled",
+    engine: Engine = Engine.COMPILED,
     base: StageLPs | None = None,
 ) -> Reachability:
     """Run TOPP-RA (see the module docstring).
 
     Args:
         constraints: Precomputed toppra constraints (they ignore ``path``).
-        path: The toppra path; only ``engine="toppra"`` needs it.
+        path: The toppra path; only :attr:`Engine.TOPPRA` needs it.
         gridpoints: (N+1,) grid s_i.
         sd_start: Path velocity at s = 0 (1/s).
         sd_end: Path velocity at s = 1 (1/s).
-        engine: "compiled" or "toppra".
+        engine: Which passes run (an :class:`Engine` or its value).
         base: Constraints already projected by :func:`stage_rows` on this
             grid, which come before ``constraints`` (compiled engine only:
             constraints fixed while others change are projected once).
     """
-    if engine == "toppra":
+    engine = Engine.of(engine)
+    if engine is Engine.TOPPRA:
         algorithm = TOPPRA(constraints, path, gridpoints, solver_wrapper="seidel")
         sdd, sd, _, K = algorithm.compute_parameterization(
             sd_start, sd_end, return_data=True
@@ -174,8 +204,6 @@ def reachability(
             bad = np.flatnonzero(np.isnan(K).any(axis=1))
             return Reachability(None, None, K, int(bad.max()) if bad.size else 0)
         return Reachability(sd**2, sdd, K, None)
-    if engine != "compiled":
-        raise RetimeInputError(f"engine must be 'compiled' or 'toppra', got {engine!r}")
     ds = np.diff(gridpoints)
     x, u, K, failed = seidel.passes(
         *stage_rows(constraints, ds, base), ds, float(sd_start), float(sd_end)
@@ -239,6 +267,7 @@ def stage_rows(
 
 __all__ = [
     "AffineConstraint",
+    "Engine",
     "Reachability",
     "StageLPs",
     "StageRows",

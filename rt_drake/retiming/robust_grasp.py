@@ -43,7 +43,7 @@ from rt_drake.retiming import stage_rows as R
 from rt_drake.retiming.at_rest import set_grasp_at_rest, set_torque_at_rest
 from rt_drake.retiming.between import ROW_SCREEN, Segments, subpoint_x
 from rt_drake.retiming.grasp_rows import ROW_TOLERANCE, Check
-from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming.limits import JointLimits, ObjectSetGrasp
 from rt_drake.retiming.passes import StageRows
 from rt_drake.retiming.robust_rows import vertex_weights, worst_rows
 from rt_drake.retiming.samples import PathSamples
@@ -82,8 +82,7 @@ class SetRows:
 
     robust = True
 
-    def __init__(self, grasp: GraspConstraint, limits: JointLimits) -> None:
-        assert grasp.objects is not None
+    def __init__(self, grasp: ObjectSetGrasp, limits: JointLimits) -> None:
         self.grasp = grasp
         self.limits = limits
         self.columns, self.layout = parameter_columns(grasp.objects)

@@ -49,7 +49,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-from typing import Any, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 import toppra
@@ -70,13 +70,24 @@ from rt_drake.retiming.between import (
     refinement_points,
 )
 from rt_drake.retiming.between_kernels import position_excess
-from rt_drake.retiming.check import DEFAULT_TOLERANCE
+from rt_drake.retiming.check import DEFAULT_TOLERANCE, Margin
 from rt_drake.retiming.grasp_rows import ROW_TOLERANCE, ObjectRows
 from rt_drake.retiming.grid import bound_steps, initial_grid
-from rt_drake.retiming.joint_path import JointPath, ToppraPath, as_joint_path
-from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint, JointLimits
+from rt_drake.retiming.joint_path import (
+    JointPath,
+    PathLike,
+    ToppraPath,
+    as_joint_path,
+)
+from rt_drake.retiming.limits import (
+    GRASP_ATTRIBUTES,
+    GraspConstraint,
+    JointLimits,
+    ObjectSetGrasp,
+)
 from rt_drake.retiming.passes import (
     AffineConstraint,
+    Engine,
     StageRows,
     XBound,
     reachability,
@@ -120,9 +131,12 @@ class RetimeResult:
         sdd: (N,) constant path acceleration ``s''`` on each segment, 1/s^2.
         margin: (N+1,) smallest relative slack of all constraints at each grid
             point (1 - |value| / limit; for the grasp ``min (g - F w) / g``),
-            taking the acceleration of the segment that starts there.
-        margins: The same per constraint ("velocity", "acceleration",
-            "torque", "grasp"), for those in force.
+            taking the acceleration of the segment that starts there:
+            positive is room left, negative over the limit (as
+            :class:`~.check.TrajectoryCheck`).
+        margins: The same per constraint in force (:attr:`Margin.VELOCITY`,
+            :attr:`Margin.ACCELERATION`, and :attr:`Margin.TORQUE`,
+            :attr:`Margin.GRASP` when limited).
         status: Always ``RetimeStatus.OK`` (failures raise ``RetimeError``).
         grasp_rows: Rows of the grasp polytope the stage LPs used (of
             ``len(grasp.g)``); for a set of objects, (row, vertex) pairs.
@@ -142,7 +156,7 @@ class RetimeResult:
     sd: np.ndarray
     sdd: np.ndarray
     margin: np.ndarray
-    margins: dict[str, np.ndarray]
+    margins: dict[Margin, np.ndarray]
     status: RetimeStatus
     grasp_rows: int
     repairs: int
@@ -153,7 +167,7 @@ class RetimeResult:
 
 def retime(
     plant: MultibodyPlant,
-    path: Any,
+    path: PathLike,
     limits: JointLimits,
     grasp: GraspConstraint | None = None,
     gridpoints: int | np.ndarray = 100,
@@ -162,7 +176,7 @@ def retime(
     sd_end: float = 0.0,
     start_time: float = 0.0,
     context: Context | None = None,
-    engine: str = "compiled",
+    engine: Engine | str = Engine.COMPILED,
     cup: CupFrame | None = None,
 ) -> RetimeResult:
     """Retime ``path`` time-optimally under ``limits`` and ``grasp``.
@@ -170,8 +184,10 @@ def retime(
     Args:
         plant: Finalized plant of the arm and tool only (objects welded or
             left out); positions = the path's joints; frame ``suction_cup``.
-        path: ``GeometricPath`` (``.waypoints``, ``.knots``) or (K, n)
-            waypoints (chord-length knots).
+        path: (K, n) waypoints (chord-length knots) or a ``GeometricPath``
+            (``.waypoints``, ``.knots``), joined by the clamped cubic spline;
+            or a Drake ``Trajectory`` or toppra interpolator (see
+            :data:`~.joint_path.PathLike`).
         limits: Joint limits (torques limited if ``limits.torque``).
         grasp: Held object and grasp polytope; None: no object.
         gridpoints: Number of uniform grid points in s (>= 2), to which the
@@ -183,14 +199,17 @@ def retime(
         sd_end: Path velocity ds/dt at the end (1/s; 0 = rest).
         start_time: Time (s) at which the trajectory starts.
         context: Scratch context of ``plant``.
-        engine: "compiled" or "toppra" (see :mod:`rt_drake.retiming.passes`).
+        engine: :attr:`Engine.COMPILED` or :attr:`Engine.TOPPRA` (see
+            :mod:`rt_drake.retiming.passes`); the values ``"compiled"`` and
+            ``"toppra"`` are taken too.
         cup: The cup frame C (default: the plant's ``suction_cup``); build it
             once with ``CupFrame.of(plant, ...)`` when retiming often.
 
     Raises:
         RetimeInputError: malformed path, limits or grid, a path that
-            leaves the joint position limits, or ``sd_start``, ``sd_end``
-            not finite and >= 0, ``start_time`` not finite.
+            leaves the joint position limits, ``sd_start``, ``sd_end``
+            not finite and >= 0, ``start_time`` not finite, or an unknown
+            ``engine``.
         GraspUnstableAtRestError: gravity alone breaks the grasp somewhere.
         TorqueLimitAtRestError: holding the arm still exceeds a torque limit.
         PathNotControllableError: no admissible speed reaches the end.
@@ -198,6 +217,7 @@ def retime(
             points, beyond the 1e-3 contract, after the last refinement.
     """
     _check_arguments(sd_start, sd_end, start_time)
+    engine = Engine.of(engine)
     _check_objects(plant, limits, grasp, context, cup)
     spline = as_joint_path(path)  # checks the path
     n = spline.num_joints
@@ -212,7 +232,7 @@ def retime(
     family: ObjectRows | SetRows | None = None
     held = columns = None
     if grasp is not None and grasp.is_robust:
-        assert grasp.objects is not None
+        assert isinstance(grasp, ObjectSetGrasp)  # the only robust kind
         family = SetRows(grasp, limits)
         columns = parameter_columns(grasp.objects)[0]
     elif grasp is not None:
@@ -234,7 +254,7 @@ def retime(
     check_position_limits(plant, samples, spline)
     hold_at_rest(samples)
     # The compiled passes do not need the path; toppra's TOPPRA class does.
-    toppra_spline = ToppraPath(spline) if engine == "toppra" else None
+    toppra_spline = ToppraPath(spline) if engine is Engine.TOPPRA else None
     refinements = cut_rounds = set_cut_rounds = total_cuts = 0
     cuts: StageRows | None = None
     segments = Segments(samples, knots, spline)
@@ -301,9 +321,9 @@ def retime(
         assert isinstance(family, SetRows)
         torque_margin = family.torque_margin(samples, profile.x, u)
         if torque_margin is not None:
-            margins["torque"] = torque_margin
+            margins[Margin.TORQUE] = torque_margin
     if profile.ratio is not None:
-        margins["grasp"] = 1.0 - profile.ratio
+        margins[Margin.GRASP] = 1.0 - profile.ratio
     return RetimeResult(
         trajectory=trajectory,
         duration=trajectory.duration,
@@ -486,7 +506,7 @@ def _solve_exact(
     spline: toppra.SplineInterpolator | None,
     sd_start: float,
     sd_end: float,
-    engine: str,
+    engine: Engine,
 ) -> _Profile:
     """TOPP-RA with the grasp rows selected, adding missed rows until none.
 
@@ -499,7 +519,7 @@ def _solve_exact(
     base = None
     if family is not None:
         family.begin()
-        if engine == "compiled":
+        if engine is Engine.COMPILED:
             base = stage_rows(fixed, np.diff(s))
     while True:
         constraints = [] if base is not None else list(fixed)
@@ -567,7 +587,7 @@ def _margins(
     x: np.ndarray,
     u: np.ndarray,
     tau: PathCoefficients | None,
-) -> dict[str, np.ndarray]:
+) -> dict[Margin, np.ndarray]:
     """Relative slack of the joint constraints at the grid points.
 
     See RetimeResult; the grasp's comes from the exactness check.
@@ -575,13 +595,14 @@ def _margins(
     u = np.append(u, u[-1])[:, None]
     xc = x[:, None]
     out = {
-        "velocity": 1.0 - np.max(np.abs(dq) * np.sqrt(xc) / limits.velocity, axis=1),
-        "acceleration": 1.0
+        Margin.VELOCITY: 1.0
+        - np.max(np.abs(dq) * np.sqrt(xc) / limits.velocity, axis=1),
+        Margin.ACCELERATION: 1.0
         - np.max(np.abs(dq * u + ddq * xc) / limits.acceleration, axis=1),
     }
     if tau is not None:
         torque = tau.a * u + tau.b * xc + tau.c
-        out["torque"] = 1.0 - np.max(np.abs(torque) / limits.torque, axis=1)
+        out[Margin.TORQUE] = 1.0 - np.max(np.abs(torque) / limits.torque, axis=1)
     return out
 
 

@@ -61,6 +61,7 @@ from rt_drake.planning import CyclePlanner, GeometricPath, PlannedPath
 from rt_drake.retiming import (
     GraspConstraint,
     JointLimits,
+    ObjectSetGrasp,
     RetimeResult,
     TimeScaled,
     retime,
@@ -229,20 +230,12 @@ class OnlineMotions:
         )
         if not robust or (uncertainty.is_zero() and not uncertain_cup):
             polytope = self._polytope or move_polytope(self._scenario)
-            return GraspConstraint(
-                held=held, F=polytope.F, g=polytope.g, cup=polytope.cup
-            )
+            return GraspConstraint.for_polytope(held, polytope)
         cup = move_cup(self._scenario)
         F, g = self._worst_cup or worst_cup_polytope(cup)
         R_CO = X_OC.inverse().rotation().matrix()
-        return GraspConstraint(
-            held=held,
-            F=F,
-            g=g,
-            cup=cup,
-            objects=uncertain_object(held, uncertainty, R_CO),
-            worst_cup=cup.is_uncertain(),
-        )
+        objects = uncertain_object(held, uncertainty, R_CO)
+        return ObjectSetGrasp(held=held, F=F, g=g, cup=cup, objects=objects)
 
     def velocity_bound(self, path: GeometricPath, s: np.ndarray) -> np.ndarray:
         """Largest s' (1/s) the joint velocity limits allow at each s."""

@@ -365,6 +365,11 @@ def test_report_numbers_equal_an_independent_sql_aggregation(tmp_path):
             summary["rows"]
             == sql.execute("SELECT COUNT(*) FROM rollouts").fetchone()[0]
         )
+        by_status = dict(
+            sql.execute("SELECT status, COUNT(*) FROM rollouts GROUP BY status")
+        )
+        assert summary["status"] == {s.value: by_status.get(s.value, 0) for s in Status}
+        assert list(summary["status"]) == ["ok", "infeasible", "error", "crashed"]
         counts = sql.execute(
             "SELECT object, cup, variant, COUNT(*),"
             " SUM(status = 'ok'), SUM(CASE WHEN status = 'ok' THEN success END),"

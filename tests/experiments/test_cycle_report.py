@@ -3,12 +3,37 @@
 from __future__ import annotations
 
 import json
+import math
+from pathlib import Path
 
 import pytest
 
-from rt_drake.experiments import cycle_report, table_markdown, write_report
+from rt_drake.experiments import (
+    CycleReport,
+    RunSettings,
+    cycle_report,
+    table_markdown,
+    write_report,
+)
 from rt_drake.simulation import ObjectRecord, PlanTimes
 from rt_drake.types.phase import Phase
+
+#: report.json of :func:`_stored_records` with :data:`_SETTINGS`, written by
+#: the report before it was a dataclass (a dict, ``json.dumps(report,
+#: indent=2)``, at 60ab596).
+STORED = Path(__file__).parent / "data" / "cycle_report_small.json"
+
+_SETTINGS = RunSettings(
+    scenario="scenarios/pick_and_place.yaml",
+    grasp_constraint=True,
+    speed=1.0,
+    pipelined_planning=True,
+    vacuum="fixed",
+    time_step_s=0.001,
+    sim_time_s=9.4,
+    max_tracking_error_rad=0.0012,
+    simulation_wall_s=12.5,
+)
 
 
 def _record(name, wait):
@@ -30,23 +55,59 @@ def _record(name, wait):
     )
 
 
+def _stored_records():
+    """A full record and one with phases, plans and measurements missing."""
+    full = ObjectRecord(
+        name="notebook",
+        plan_times={
+            Phase.APPROACH: PlanTimes(0.02, 0.004),
+            Phase.REACH: PlanTimes(0.01),
+            Phase.MOVE: PlanTimes(0.03, 0.005),
+        },
+        plan_wait_s={Phase.APPROACH: 0.034, Phase.MOVE: 0.0},
+        exec_s={
+            Phase.APPROACH: 0.7,
+            Phase.REACH: 0.3,
+            Phase.ATTACH: 1.0,
+            Phase.MOVE: 1.2,
+            Phase.DETACH: 1.0,
+        },
+        max_slip_translation=0.0016,
+        max_slip_rotation=0.01,
+        placement_translation=0.002,
+        placement_rotation=0.02,
+        move_suction_force=20.0,
+        guarantee="the nominal object (0.551 kg)",
+    )
+    partial = ObjectRecord(
+        name="carton_box",
+        plan_times={
+            Phase.APPROACH: PlanTimes(0.025, 0.003),
+            Phase.MOVE: PlanTimes(0.04),
+        },
+        plan_wait_s={Phase.APPROACH: 0.0},
+        exec_s={Phase.APPROACH: 0.8, Phase.ATTACH: 1.0, Phase.MOVE: 1.4},
+    )
+    return (full, partial)
+
+
 def test_report_totals_and_picks_per_hour(tmp_path):
     report = cycle_report((_record("a", 0.034), _record("b", 0.0)))
-    a, b = report["objects"]
-    assert a["plan_on_critical_path_s"] == pytest.approx(0.034)
-    assert a["total_s"] == pytest.approx(4.2 + 0.034)
-    assert b["total_s"] == pytest.approx(4.2)
+    a, b = report.objects
+    assert a.plan_on_critical_path_s == pytest.approx(0.034)
+    assert a.total_s == pytest.approx(4.2 + 0.034)
+    assert b.total_s == pytest.approx(4.2)
     # The paper's rows stay: planning time however much of it ran ahead.
-    assert b["plan_s"] == pytest.approx(
-        {"approach": 0.024, "reach": 0.01, "move": 0.03, "retime": 0.005}
+    assert (b.plan_s.approach, b.plan_s.reach, b.plan_s.move, b.plan_s.retime) == (
+        pytest.approx((0.024, 0.01, 0.03, 0.005))
     )
-    assert report["total_s"] == pytest.approx(8.434)
-    assert report["plan_on_critical_path_s"] == pytest.approx(0.034)
-    assert report["mean_cycle_s"] == pytest.approx(4.217)
-    assert report["picks_per_hour"] == pytest.approx(2 * 3600 / 8.434)
+    assert report.total_s == pytest.approx(8.434)
+    assert report.plan_on_critical_path_s == pytest.approx(0.034)
+    assert report.mean_cycle_s == pytest.approx(4.217)
+    assert report.picks_per_hour == pytest.approx(2 * 3600 / 8.434)
     json_path, md_path = write_report(report, tmp_path)
     written = json.loads(json_path.read_text())
-    assert written["picks_per_hour"] == pytest.approx(report["picks_per_hour"])
+    assert written["picks_per_hour"] == pytest.approx(report.picks_per_hour)
     assert "plan_on_critical_path_s" in written["objects"][0]
     text = md_path.read_text()
     assert "| plan on critical path | 0.034 | 0.000 |" in text
@@ -54,3 +115,31 @@ def test_report_totals_and_picks_per_hour(tmp_path):
     assert "**Total (critical plan + exec.)** | 4.234 | 4.200 |" in table_markdown(
         report
     )
+
+
+def test_report_json_is_the_one_the_dict_report_wrote(tmp_path):
+    """Same text as the stored report.json of the dict form, NaN included."""
+    report = cycle_report(_stored_records(), _SETTINGS)
+    assert isinstance(report, CycleReport)
+    stored = STORED.read_text()
+    assert report.to_json() == stored
+    json_path, _ = write_report(report, tmp_path)
+    assert json_path.read_text() == stored
+    # The totals are those of the stored entries, summed independently.
+    data = json.loads(stored)
+    for entry, obj in zip(data["objects"], report.objects, strict=True):
+        assert entry["total_s"] == entry["plan_on_critical_path_s"] + sum(
+            entry["exec_s"].values()
+        )
+        assert [entry["exec_s"][p.value] for p in obj.exec_s] == list(
+            obj.exec_s.values()
+        )
+    assert data["total_s"] == math.fsum(e["total_s"] for e in data["objects"])
+    assert data["simulation_wall_s"] == _SETTINGS.simulation_wall_s
+    assert math.isnan(data["objects"][1]["move_suction_force_n"])
+
+
+def test_an_empty_cycle_has_no_mean_and_no_picks():
+    report = cycle_report(())
+    assert math.isnan(report.mean_cycle_s) and report.picks_per_hour == 0.0
+    assert json.loads(report.to_json())["objects"] == []

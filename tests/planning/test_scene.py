@@ -7,9 +7,9 @@ import pytest
 from pydrake.geometry import Box
 from pydrake.math import RigidTransform, RotationMatrix
 
+from rt_drake.dynamics.body_kinematics import step_motion
 from rt_drake.model.plant import home_configuration
 from rt_drake.model.scenario import load_scenario
-from rt_drake.planning.body_poses import step_motion
 from rt_drake.planning.dense_check import check_path
 from rt_drake.planning.geometry import object_geometries
 from rt_drake.planning.scene import PlanningScene

@@ -22,15 +22,19 @@ from rt_drake.dynamics.wrench import (
 )
 from rt_drake.model.held import held_object_of
 from rt_drake.retiming import (
+    Engine,
     GraspConstraint,
     GraspUnstableAtRestError,
     JointLimits,
     LimitsBetweenGridPointsError,
+    Margin,
     PathNotControllableError,
     RetimeError,
     RetimeInputError,
     RetimeStatus,
     TorqueLimitAtRestError,
+    TrajectoryCheck,
+    WorstMargin,
     check_trajectory,
     retime,
 )
@@ -106,8 +110,8 @@ def test_grasp_binds_and_the_joint_limit_trajectory_breaks_it(plant, limits, gra
     held = retime(plant, path, limits, grasps["notebook"])
     assert held.duration > 1.05 * free.duration
     check = check_trajectory(plant, free.trajectory, limits, grasps["notebook"])
-    assert check.excess["grasp"].value > 0.2
-    assert held.margins["grasp"].min() == pytest.approx(0.0, abs=1e-6)
+    assert check.margins[Margin.GRASP].value < -0.2
+    assert held.margins[Margin.GRASP].min() == pytest.approx(0.0, abs=1e-6)
 
 
 def test_torque_limits_hold_with_the_object(plant, scenario, grasps):
@@ -128,7 +132,7 @@ def test_torque_limits_hold_with_the_object(plant, scenario, grasps):
         result = retime(plant, path, lim, grasp)
         check = check_trajectory(plant, result.trajectory, lim, grasp)
         assert check.passed(), check.summary()
-    assert result.margins["torque"].min() == pytest.approx(0.0, abs=1e-6)
+    assert result.margins[Margin.TORQUE].min() == pytest.approx(0.0, abs=1e-6)
     assert result.duration > free.duration
 
 
@@ -198,11 +202,88 @@ def test_row_selection_is_exact(plant, limits, grasps, object_name, monkeypatch)
 
 def test_compiled_passes_equal_toppra_algorithm(plant, limits, grasps):
     path = np.array(PATHS["back"])
-    compiled = retime(plant, path, limits, grasps["notebook"], engine="compiled")
-    stock = retime(plant, path, limits, grasps["notebook"], engine="toppra")
+    grasp = grasps["notebook"]
+    compiled = retime(plant, path, limits, grasp, engine=Engine.COMPILED)
+    stock = retime(plant, path, limits, grasp, engine=Engine.TOPPRA)
     np.testing.assert_allclose(compiled.sd, stock.sd, rtol=1e-9, atol=1e-12)
-    with pytest.raises(ValueError, match="engine must be 'compiled' or 'toppra'"):
-        retime(plant, path, limits, engine="lean")
+    # The old strings name the same engines: the same profiles, to the bit.
+    for name, result in (("compiled", compiled), ("toppra", stock)):
+        by_name = retime(plant, path, limits, grasp, engine=name)
+        np.testing.assert_array_equal(by_name.sd, result.sd)
+
+
+@pytest.mark.parametrize("engine", ["lean", "TOPPRA", "", None, 1])
+def test_an_unknown_engine_is_refused_naming_engine_and_the_choices(
+    plant, limits, engine
+):
+    allowed = "Engine.COMPILED ('compiled'), Engine.TOPPRA ('toppra')"
+    with pytest.raises(RetimeInputError) as info:
+        retime(plant, np.array(PATHS["back"]), limits, engine=engine)
+    assert str(info.value) == f"engine must be one of {allowed}, got {engine!r}"
+
+
+def test_the_check_and_the_result_share_one_sign_said_in_words(plant, limits, grasps):
+    """Margins are slack everywhere: positive is room, negative is over.
+
+    Retimed without the grasp, the notebook's trajectory breaks the grasp
+    (the wrench of an independent Newton-Euler route exceeds g by > 20 %)
+    while the retimer's velocity limit binds; checked against twice its
+    joint limits, each joint velocity uses half of its limit at most, so the
+    velocity margin is ``1 - max|v| / (2 v_max)``, max|v| of dense samples.
+    """
+    path = np.array(PATHS["back"])
+    grasp = grasps["notebook"]
+    free = retime(plant, path, limits)
+    check = check_trajectory(plant, free.trajectory, limits, grasp)
+    over = check.margins[Margin.GRASP]
+    assert over.value < -0.2 and not check.passed()
+    assert f"grasp: over by {-100 * over.value:.3f} % at" in check.summary()
+    assert check.min_margin() == over.value
+    assert free.margins[Margin.VELOCITY].min() == pytest.approx(0.0, abs=1e-6)
+    assert check.margins[Margin.VELOCITY].value == pytest.approx(0.0, abs=1e-3)
+    trajectory = free.trajectory
+    t = np.linspace(trajectory.start_time(), trajectory.end_time(), 4001)
+    v = np.array([trajectory.EvalDerivative(ti, 1).ravel() for ti in t])
+    double = JointLimits(2 * limits.velocity, 2 * limits.acceleration)
+    half = check_trajectory(plant, trajectory, double).margins[Margin.VELOCITY]
+    assert half.value == pytest.approx(
+        1.0 - np.max(np.abs(v) / double.velocity), abs=1e-4
+    )
+    assert half.value == pytest.approx(0.5, abs=1e-3)
+    assert half.words() == f"room {100 * half.value:.3f} %"
+    held = retime(plant, path, limits, grasp)
+    check = check_trajectory(plant, held.trajectory, limits, grasp)
+    assert check.passed()
+    for line, (kind, worst) in zip(
+        check.summary().splitlines(), check.margins.items(), strict=True
+    ):
+        words = "room" if worst.value >= 0 else "over by"
+        assert line.startswith(f"{kind.value}: {words} {100 * abs(worst.value):.3f} %")
+    # The old attribute is kept for a while, with the old sign and a warning.
+    with pytest.warns(DeprecationWarning, match="use .margins"):
+        excess = check.excess
+    assert excess["grasp"].value == -check.margins[Margin.GRASP].value
+
+
+@pytest.mark.parametrize(
+    ("value", "words", "passes"),
+    [
+        (6e-5, "room 0.006 %", True),
+        (-1e-4, "over by 0.010 % (within the 0.100 % tolerance)", True),
+        (-2e-3, "over by 0.200 %", False),
+        (0.0, "room 0.000 %", True),
+    ],
+)
+def test_a_margin_reads_as_room_or_over(value, words, passes):
+    check = TrajectoryCheck(
+        np.zeros(1),
+        {
+            Margin.VELOCITY: WorstMargin(0.5, 0.0, 0),
+            Margin.GRASP: WorstMargin(value, 1.5, 7),
+        },
+    )
+    assert check.summary().splitlines()[1] == f"grasp: {words} at t = 1.5000 s (#7)"
+    assert check.passed() is passes
 
 
 def test_trajectory_is_the_retimed_motion(plant, limits, grasps):
@@ -277,7 +358,7 @@ def test_every_limit_holds_at_1khz_within_1e3(
     assert held.duration >= free.duration * (1 - 1e-9)
     for result, grasp in ((held, grasps[object_name]), (free, None)):
         check = check_trajectory(plant, result.trajectory, limits, grasp)
-        assert check.worst() <= 1e-3, check.summary()
+        assert check.min_margin() >= -1e-3, check.summary()
 
 
 @pytest.mark.parametrize("gridpoints", [8, 12, 20])
@@ -294,7 +375,7 @@ def test_every_limit_holds_at_1khz_on_a_coarse_grid(
     for object_name in OBJECTS:
         result = retime(plant, path, limits, grasps[object_name], gridpoints)
         check = check_trajectory(plant, result.trajectory, limits, grasps[object_name])
-        assert check.worst() <= 1e-3, f"{object_name}: {check.summary()}"
+        assert check.min_margin() >= -1e-3, f"{object_name}: {check.summary()}"
 
 
 def test_a_tiny_joint_step_beside_a_large_one_is_retimed(plant, limits, grasps):
@@ -316,7 +397,7 @@ def test_a_tiny_joint_step_beside_a_large_one_is_retimed(plant, limits, grasps):
         path = np.vstack([HOME, HOME + step])
         held = retime(plant, path, limits, grasps["notebook"], gridpoints)
         check = check_trajectory(plant, held.trajectory, limits, grasps["notebook"])
-        assert check.worst() <= 1e-3, check.summary()
+        assert check.min_margin() >= -1e-3, check.summary()
         turn = np.vstack([HOME, HOME + np.eye(6)[big] * step[big]])
         plain = retime(plant, turn, limits, grasps["notebook"], gridpoints)
         assert held.duration == pytest.approx(plain.duration, rel=1e-4)
@@ -334,7 +415,7 @@ def test_acceleration_peaking_between_sub_points_holds_at_1khz(plant, limits):
     data = np.load(Path(__file__).parent / "data" / "peak_between_sub_points.npz")
     result = retime(plant, data["waypoints"], limits, None, data["grid"])
     check = check_trajectory(plant, result.trajectory, limits, None)
-    assert check.excess["acceleration"].value <= 1e-3, check.summary()
+    assert check.margins[Margin.ACCELERATION].value >= -1e-3, check.summary()
 
 
 def test_cuts_that_do_not_converge_split_the_segment(plant, limits, monkeypatch):
@@ -347,7 +428,7 @@ def test_cuts_that_do_not_converge_split_the_segment(plant, limits, monkeypatch)
     assert result.cuts == 0 and result.refinements >= 1
     assert len(result.gridpoints) > len(np.unique(data["grid"]))
     check = check_trajectory(plant, result.trajectory, limits, None)
-    assert check.excess["acceleration"].value <= 1e-3, check.summary()
+    assert check.margins[Margin.ACCELERATION].value >= -1e-3, check.summary()
 
 
 def test_a_limit_exceeded_after_the_last_refinement_is_refused(

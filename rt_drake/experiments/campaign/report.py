@@ -44,23 +44,36 @@ from rt_drake.experiments.campaign.group_summary import (
     robust_summary,
 )
 from rt_drake.experiments.campaign.report_plots import write_plots
-from rt_drake.experiments.campaign.row_types import Variant
+from rt_drake.experiments.campaign.row_types import (
+    Status,
+    Variant,
+)
 from rt_drake.experiments.campaign.store import connect, read_meta
 
 
 def read_rows(database: Path) -> tuple[dict[str, str], list[dict[str, Any]]]:
-    """The database's meta table and its rows (as dicts), read-only."""
+    """The database's meta table and its rows (as dicts), read-only.
+
+    A row's ``status`` is a :class:`~.rows.Status` (the database stores its
+    value); the other columns are as stored.
+    """
     connection = connect(database, readonly=True)
     try:
         meta = read_meta(connection, database)
-        rows = [dict(r) for r in connection.execute("SELECT * FROM rollouts")]
+        rows = [
+            {**r, "status": Status(r["status"])}
+            for r in map(dict, connection.execute("SELECT * FROM rollouts"))
+        ]
     finally:
         connection.close()
     return meta, rows
 
 
 def summarize_rows(rows: list[dict[str, Any]]) -> list[GroupSummary]:
-    """One :class:`GroupSummary` per (object, cup), sorted by name."""
+    """One :class:`GroupSummary` per (object, cup), sorted by name.
+
+    ``rows`` as :func:`read_rows` gives them (``status`` a :class:`~.rows.Status`).
+    """
     groups: dict[tuple[str, str], list[dict[str, Any]]] = defaultdict(list)
     for row in rows:
         groups[(row["object"], row["cup"])].append(row)
@@ -79,7 +92,7 @@ def _summarize(obj: str, cup: str, rows: list[dict[str, Any]]) -> GroupSummary:
     duration = {
         (row["variant"], row["seed"], row["trial"]): row["duration_s"]
         for row in rows
-        if row["status"] == "ok"
+        if row["status"] is Status.OK
     }
     extension = []
     for (variant, seed, trial), d_c in sorted(duration.items()):
@@ -87,17 +100,19 @@ def _summarize(obj: str, cup: str, rows: list[dict[str, Any]]) -> GroupSummary:
         if variant == Variant.CONSTRAINED.value and d_u is not None:
             extension.append(100.0 * (d_c - d_u) / d_c)
     sweeps = [
-        row for row in by_variant[Variant.SPEED_SWEEP.value] if row["status"] == "ok"
+        row
+        for row in by_variant[Variant.SPEED_SWEEP.value]
+        if row["status"] is Status.OK
     ]
     optimized = [
         json.loads(row["detail"])
         for row in by_variant[Variant.OPTIMIZED.value]
-        if row["status"] == "ok"
+        if row["status"] is Status.OK
     ]
     robust = [
         json.loads(row["detail"])
         for row in by_variant[Variant.ROBUST.value]
-        if row["status"] == "ok"
+        if row["status"] is Status.OK
     ]
     return GroupSummary(
         object=obj,
@@ -116,13 +131,13 @@ def _summarize(obj: str, cup: str, rows: list[dict[str, Any]]) -> GroupSummary:
 
 
 def _counts(rows: list[dict[str, Any]]) -> VariantCounts:
-    ran = [row for row in rows if row["status"] == "ok"]
+    ran = [row for row in rows if row["status"] is Status.OK]
     return VariantCounts(
         rows=len(rows),
         ran=len(ran),
         held=sum(bool(row["success"]) for row in ran),
-        infeasible=sum(row["status"] == "infeasible" for row in rows),
-        failed=sum(row["status"] in ("error", "crashed") for row in rows),
+        infeasible=sum(row["status"] is Status.INFEASIBLE for row in rows),
+        failed=sum(row["status"] in _FAILED for row in rows),
     )
 
 
@@ -182,7 +197,7 @@ def write_campaign_report(database: str | Path, out: str | Path) -> list[Path]:
     meta, rows = read_rows(database)
     groups = summarize_rows(rows)
     out.mkdir(parents=True, exist_ok=True)
-    status = {s: sum(r["status"] == s for r in rows) for s in _STATUSES}
+    status = {s.value: sum(r["status"] is s for r in rows) for s in Status}
     summary: dict[str, Any] = {
         "content_hash": meta.get("content_hash"),
         "campaign_file": meta.get("campaign_file"),
@@ -214,7 +229,8 @@ def write_campaign_report(database: str | Path, out: str | Path) -> list[Path]:
     return paths + write_plots(groups, out)
 
 
-_STATUSES = ("ok", "infeasible", "error", "crashed")
+#: The statuses counted as failed rows (not infeasible, not rollouts).
+_FAILED = (Status.ERROR, Status.CRASHED)
 
 
 def _total_counts(groups: list[GroupSummary], variant: Variant) -> VariantCounts | None:
