@@ -212,6 +212,16 @@ CASES = [
      ["for_tool needs a ToolParameters", "got CupParameters"]),
     ("GraspConstraint", lambda e: GraspConstraint.inner_for_tool(HELD, TOOL, None),
      ["inner_for_tool: guiding_samples must be a (count, 6) array", "got None"]),
+    ("CupGrasp", lambda e: retiming.CupGrasp(HELD, e.W.F, e.W.g, cup=None),
+     ["CupGrasp: cup must be a CupParameters", "got None"]),
+    ("CupGrasp",
+     lambda e: retiming.CupGrasp(HELD, e.W.F, e.W.g, CupParameters(friction=0.0)),
+     ["CupGrasp: cup.friction must be > 0", "got 0.0"]),
+    ("ToolGrasp", lambda e: retiming.ToolGrasp(HELD, e.W.F, e.W.g, tool=CUP),
+     ["ToolGrasp: tool must be a ToolParameters", "got CupParameters"]),
+    ("ObjectSetGrasp",
+     lambda e: retiming.ObjectSetGrasp(HELD, e.W.F, e.W.g, CUP, objects=[HELD]),
+     ["ObjectSetGrasp: objects must be an ObjectSet", "got list"]),
     ("retime", lambda e: retime(None, PATH, e.limits),
      ["retime: plant must be a MultibodyPlant", "got None"]),
     ("retime", lambda e: retime(e.plant, PATH, None),
@@ -304,9 +314,14 @@ def test_a_bad_argument_is_refused_in_one_line_naming_it(env, name, call, words)
 #: own ValueError), results the package builds rather than takes, and
 #: functions of no argument.
 NOT_CALLED = {
+    "Engine",
     "LoadSharing",
+    "Margin",
     "Phase",
     "RetimeStatus",
+    "PathLike",  # type annotations (a union, a Protocol), not constructed
+    "WaypointPath",
+    "WorstMargin",
     "Excess",
     "GuidedApproximation",
     "OptimizedMove",

@@ -262,13 +262,24 @@ class GraspConstraint:
     g: np.ndarray
 
     def __post_init__(self) -> None:
-        where = "GraspConstraint"
+        where = type(self).__name__
         arguments.instance(
             self.held, "held", HeldObject, where=where, error=RetimeInputError
         )
-        cup = getattr(self, "cup", None)  # a family member built from a cup
-        if cup is not None:
-            _check_grip(cup, where)
+        fields = {field.name for field in dataclasses.fields(self)}
+        sources = (
+            ("cup", CupParameters),
+            ("tool", ToolParameters),
+            ("objects", ObjectSet),
+        )
+        for name, kind in sources:
+            if name in fields:  # a family member built from a cup, tool or set
+                value = getattr(self, name)
+                arguments.instance(
+                    value, name, kind, where=where, error=RetimeInputError
+                )
+                if name != "objects":
+                    _check_grip(value, where)
         try:  # shapes, no rows, NaN or inf, an all-zero row (constrains nothing)
             F, g = check_h_representation(self.F, self.g, where)
         except InputError as error:
