@@ -3,6 +3,12 @@
 Property tests draw the same examples on every run (hypothesis profile
 ``deterministic``, the default), so CI never turns red at random; run
 ``python -m pytest --hypothesis-profile=explore`` to search new examples.
+
+The suite runs on pytest-xdist workers (``-n auto --dist loadgroup`` in
+pyproject.toml): :func:`pytest_collection_modifyitems` makes each test
+module one group, so that a worker builds a module's fixtures once, and
+puts the modules with a slow test first, so that the short ones fill the
+end. ``python -m pytest -p no:xdist`` runs the same tests in one process.
 """
 
 from __future__ import annotations
@@ -34,13 +40,35 @@ def scenario_paths() -> dict[str, Path]:
     return {name: scenarios_dir() / f"{name}.yaml" for name in SCENARIO_NAMES}
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def scenario() -> Scenario:
-    """The four-object stacking scenario (Table II)."""
+    """The four-object stacking scenario (Table II); tests do not change it."""
     return load_scenario(scenarios_dir() / "stack_four_objects.yaml")
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def plant(scenario: Scenario) -> MultibodyPlant:
-    """The arm-and-tool plant of ``scenario`` (the retimer's plant)."""
+    """The arm-and-tool plant of ``scenario`` (the retimer's plant), finalized."""
     return make_arm_plant(scenario)
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """One xdist group per test module; the modules with a slow test first.
+
+    The order within a module is kept, and a module's tests stay together
+    (its module fixtures are built once, also without xdist).
+    """
+    modules: dict[str, list[pytest.Item]] = {}
+    for item in items:
+        modules.setdefault(item.nodeid.split("::", 1)[0], []).append(item)
+    for module, module_items in modules.items():
+        for item in module_items:
+            item.add_marker(pytest.mark.xdist_group(module))
+
+    def slow_first(module: str) -> bool:
+        return not any(item.get_closest_marker("slow") for item in modules[module])
+
+    items[:] = [
+        item for module in sorted(modules, key=slow_first) for item in modules[module]
+    ]
