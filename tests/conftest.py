@@ -4,11 +4,11 @@ Property tests draw the same examples on every run (hypothesis profile
 ``deterministic``, the default), so CI never turns red at random; run
 ``python -m pytest --hypothesis-profile=explore`` to search new examples.
 
-The suite runs on pytest-xdist workers (``-n auto --dist loadgroup`` in
-pyproject.toml): :func:`pytest_collection_modifyitems` makes each test
-module one group, so that a worker builds a module's fixtures once, and
-puts the modules with a slow test first, so that the short ones fill the
-end. ``python -m pytest -p no:xdist`` runs the same tests in one process.
+The suite runs on pytest-xdist workers (``-n auto --dist loadfile`` in
+pyproject.toml): a worker runs a whole test module, so it builds the
+module's fixtures once; :func:`pytest_collection_modifyitems` puts the
+modules with a slow test first, so that the short ones fill the end.
+``python -m pytest -n 0`` runs the same tests in one process.
 """
 
 from __future__ import annotations
@@ -52,19 +52,17 @@ def plant(scenario: Scenario) -> MultibodyPlant:
     return make_arm_plant(scenario)
 
 
-@pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    """One xdist group per test module; the modules with a slow test first.
+    """The modules with a slow test first, in collection order; then the rest.
 
     The order within a module is kept, and a module's tests stay together
-    (its module fixtures are built once, also without xdist).
+    (its module fixtures are built once, also without xdist). With
+    ``--dist loadfile --no-loadscope-reorder`` xdist hands the modules out
+    in this order: the longest start first, as in longest-job-first.
     """
     modules: dict[str, list[pytest.Item]] = {}
     for item in items:
         modules.setdefault(item.nodeid.split("::", 1)[0], []).append(item)
-    for module, module_items in modules.items():
-        for item in module_items:
-            item.add_marker(pytest.mark.xdist_group(module))
 
     def slow_first(module: str) -> bool:
         return not any(item.get_closest_marker("slow") for item in modules[module])
