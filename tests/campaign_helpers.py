@@ -14,7 +14,11 @@ import warnings
 from pathlib import Path
 from typing import Any
 
-from rt_drake.experiments.campaign.rows import Outcome, RowResult, Status
+from rt_drake.experiments.campaign.row_types import (
+    Outcome,
+    RowResult,
+    Status,
+)
 from rt_drake.experiments.campaign.worker import Task
 
 #: Environment variable: directory of the marker files of crash_once.

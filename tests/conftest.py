@@ -19,9 +19,12 @@ import pytest
 from hypothesis import settings
 from pydrake.multibody.plant import MultibodyPlant
 
-from rt_drake.plant import make_arm_plant
-from rt_drake.resources import scenarios_dir
-from rt_drake.scenario import Scenario, load_scenario
+from rt_drake.model.plant import make_arm_plant
+from rt_drake.model.resources import scenarios_dir
+from rt_drake.model.scenario import (
+    Scenario,
+    load_scenario,
+)
 
 settings.register_profile("deterministic", derandomize=True)
 settings.register_profile("explore", derandomize=False)

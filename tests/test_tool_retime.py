@@ -8,7 +8,7 @@ for the tool (about a second). The reference is an LP written apart
 combination of its friction pyramid's vertices (not the H-form of
 ``rt_drake.contact.lp``), applied to the object wrenches of the retimed
 motion computed by Newton-Euler from the bodies' accelerations
-(:mod:`rt_drake.newton_euler`). ``for_tool``'s default set (the rims as
+(:mod:`rt_drake.dynamics.newton_euler`). ``for_tool``'s default set (the rims as
 equal springs, ``load_sharing="elastic"``) is checked by
 ``rt_drake.contact.shared_load_residual``, an LP that ties each normal force
 to a rigid displacement instead of using the set's rows; the tests of the
@@ -34,8 +34,8 @@ from rt_drake import (
     retime,
 )
 from rt_drake.contact import shared_load_residual
-from rt_drake.newton_euler import reference_object_wrench
-from rt_drake.plant import make_parser
+from rt_drake.dynamics.newton_euler import reference_object_wrench
+from rt_drake.model.parser import make_parser
 from rt_drake.retiming import GraspUnstableAtRestError, RetimeInputError
 
 CUP = CupParameters(points=4, sides=3)

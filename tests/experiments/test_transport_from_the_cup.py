@@ -6,11 +6,14 @@ import numpy as np
 import pytest
 
 from rt_drake import CupFrame, load_scenario, make_arm_plant
-from rt_drake.experiments.transport import move_from_the_cup, transport_scenario
-from rt_drake.phase import Phase
+from rt_drake.experiments.transport_experiment import (
+    move_from_the_cup,
+    transport_scenario,
+)
+from rt_drake.types.phase import Phase
 from rt_drake.planning import sample_transports
-from rt_drake.planning.shape.kinematics import CupChain
-from rt_drake.resources import resolve_scenario_path
+from rt_drake.shaping.cup_chain import CupChain
+from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.simulation import OnlineMotions
 
 #: random_transport_paper, seed 0: the transport whose first grasp flip puts

@@ -1,7 +1,7 @@
 """Robust retiming: every object of an uncertainty set held, checked independently.
 
 Soundness is checked by another route than the retimer's (Drake's body
-accelerations and Newton-Euler, :mod:`rt_drake.newton_euler`), at 1 kHz,
+accelerations and Newton-Euler, :mod:`rt_drake.dynamics.newton_euler`), at 1 kHz,
 for corners of the set and objects drawn from it; tightness against the
 retime that holds a dense sample of the set (a lower bound of the robust
 optimum). The paths are MOVE-like (lift, swing, set down; the cup near
@@ -17,9 +17,16 @@ import numpy as np
 import pytest
 
 from rt_drake.contact import CupParameters, cached_wrench_polytope
-from rt_drake.cup_frame import CupFrame
-from rt_drake.newton_euler import reference_object_wrench, reference_object_wrenches
-from rt_drake.object_samples import ObjectInertia, corners, random_objects
+from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.dynamics.newton_euler import (
+    reference_object_wrench,
+    reference_object_wrenches,
+)
+from rt_drake.uncertainty.object_samples import (
+    ObjectInertia,
+    corners,
+    random_objects,
+)
 from rt_drake.retiming import (
     DEFAULT_TOLERANCE,
     GraspConstraint,
@@ -29,8 +36,11 @@ from rt_drake.retiming import (
     retime,
 )
 from rt_drake.retiming.check import _sample
-from rt_drake.retiming.rows import normalised_rows, wrench_ratios
-from rt_drake.uncertainty import ObjectUncertainty
+from rt_drake.retiming.stage_rows import (
+    normalised_rows,
+    wrench_ratios,
+)
+from rt_drake.types.object_uncertainty import ObjectUncertainty
 
 sys.path.insert(0, str(Path(__file__).parents[2] / "benchmarks"))
 from bench_retime import move_paths  # noqa: E402

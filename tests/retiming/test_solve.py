@@ -16,7 +16,11 @@ from scipy.interpolate import CubicSpline
 from toppra.algorithm import TOPPRA
 from toppra.constraint import JointAccelerationConstraint, JointVelocityConstraint
 
-from rt_drake.dynamics import HeldObject, joint_torques, path_wrench_coefficients
+from rt_drake.types.held_object import HeldObject
+from rt_drake.dynamics.wrench import (
+    joint_torques,
+    path_wrench_coefficients,
+)
 from rt_drake.retiming import (
     GraspConstraint,
     GraspUnstableAtRestError,
@@ -29,13 +33,13 @@ from rt_drake.retiming import (
     TorqueLimitAtRestError,
     check_trajectory,
     retime,
-    rows,
+    stage_rows as rows,
 )
 from rt_drake.retiming import solve as solve_module
 from rt_drake.retiming.between import Segments, grasp_midpoint_rows, interior_rows
 from rt_drake.retiming.joint_path import as_joint_path
 from rt_drake.retiming.passes import AffineConstraint
-from rt_drake.retiming.path import drake_path
+from rt_drake.types.path import drake_path
 from rt_drake.retiming.samples import PathSamples
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
@@ -71,7 +75,7 @@ def limits(plant, scenario):
 def grasps(scenario):
     return {
         name: GraspConstraint.for_cup(
-            HeldObject.from_scenario_object(scenario.object(name)), scenario.cup
+            held_object_of(scenario.object(name)), scenario.cup
         )
         for name in OBJECTS
     }

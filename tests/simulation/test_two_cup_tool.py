@@ -25,9 +25,13 @@ from pydrake.systems.primitives import (
 from pydrake.trajectories import PiecewisePolynomial
 
 from rt_drake import CupFrame, GraspConstraint, JointLimits, retime
-from rt_drake.plant import CUP_FRAME, OBJECT_BODY, make_arm_plant
-from rt_drake.resources import scenarios_dir
-from rt_drake.scenario import load_scenario
+from rt_drake.model.plant import (
+    CUP_FRAME,
+    make_arm_plant,
+)
+from rt_drake.model.object_model import OBJECT_BODY
+from rt_drake.model.resources import scenarios_dir
+from rt_drake.model.scenario import load_scenario
 from rt_drake.simulation.online_motions import held_object
 from rt_drake.simulation.station import MakeStation
 
