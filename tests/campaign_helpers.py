@@ -124,12 +124,18 @@ seed: 0
 
 
 def init_local_ray(ray: Any, env: dict[str, str] | None = None) -> None:
-    """Start a 2-CPU Ray here; its workers see tests/ (and ``env``)."""
+    """Start a 2-CPU Ray here; its workers see tests/ (and ``env``).
+
+    Always a new local instance (``address="local"``): never one found
+    running on this machine (another test worker's, or a test cluster's
+    head, which writes ``/tmp/ray/ray_current_cluster``).
+    """
     tests = str(Path(__file__).resolve().parent)
     path = os.pathsep.join(p for p in (tests, os.environ.get("PYTHONPATH")) if p)
     with warnings.catch_warnings():  # Ray's notices of future changes
         warnings.simplefilter("ignore", FutureWarning)
         ray.init(
+            address="local",
             num_cpus=2,
             include_dashboard=False,
             log_to_driver=False,

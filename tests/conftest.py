@@ -3,6 +3,12 @@
 Property tests draw the same examples on every run (hypothesis profile
 ``deterministic``, the default), so CI never turns red at random; run
 ``python -m pytest --hypothesis-profile=explore`` to search new examples.
+
+The suite runs on pytest-xdist workers (``-n auto --dist loadfile`` in
+pyproject.toml): a worker runs a whole test module, so it builds the
+module's fixtures once; :func:`pytest_collection_modifyitems` puts the
+modules with a slow test first, so that the short ones fill the end.
+``python -m pytest -n 0`` runs the same tests in one process.
 """
 
 from __future__ import annotations
@@ -37,13 +43,33 @@ def scenario_paths() -> dict[str, Path]:
     return {name: scenarios_dir() / f"{name}.yaml" for name in SCENARIO_NAMES}
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def scenario() -> Scenario:
-    """The four-object stacking scenario (Table II)."""
+    """The four-object stacking scenario (Table II); tests do not change it."""
     return load_scenario(scenarios_dir() / "stack_four_objects.yaml")
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def plant(scenario: Scenario) -> MultibodyPlant:
-    """The arm-and-tool plant of ``scenario`` (the retimer's plant)."""
+    """The arm-and-tool plant of ``scenario`` (the retimer's plant), finalized."""
     return make_arm_plant(scenario)
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The modules with a slow test first, in collection order; then the rest.
+
+    The order within a module is kept, and a module's tests stay together
+    (its module fixtures are built once, also without xdist). With
+    ``--dist loadfile --no-loadscope-reorder`` xdist hands the modules out
+    in this order: the longest start first, as in longest-job-first.
+    """
+    modules: dict[str, list[pytest.Item]] = {}
+    for item in items:
+        modules.setdefault(item.nodeid.split("::", 1)[0], []).append(item)
+
+    def slow_first(module: str) -> bool:
+        return not any(item.get_closest_marker("slow") for item in modules[module])
+
+    items[:] = [
+        item for module in sorted(modules, key=slow_first) for item in modules[module]
+    ]

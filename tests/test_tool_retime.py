@@ -140,6 +140,7 @@ def test_two_cups_move_an_offset_box_faster_than_one(arm, limits):
     assert _residual(_object_wrenches(arm, two, held), ONE).max() > 1e-2
 
 
+@pytest.mark.slow
 def test_an_inner_approximation_is_sound_and_no_faster_than_the_exact_set(arm, limits):
     held = _box(2.5, [0.0, 0.0, 0.03])
     exact = retime(

@@ -1,16 +1,16 @@
 """Campaigns in the physics: local and Ray executors, kill and resume, crashes.
 
-One small campaign, 2 objects x 2 cups x 2 trials, the ``constrained``
-variant only (one rollout per row, the cheapest variant): 8 rows, of which
-the 2 of the notebook on the small cup are infeasible (it slips off even at
-rest), so 6 physics rollouts per run.
+One small campaign, 2 objects x 2 cups x 1 trial, the ``constrained``
+variant only (one rollout per row, the cheapest variant): 4 rows, of which
+the one of the notebook on the small cup is infeasible (it slips off even
+at rest), so 3 physics rollouts per run.
 
 - The local run is killed (SIGKILL to the driver and its workers) once its
   first row is committed, then rerun with the same command to completion.
 - The Ray run uses a Ray instance the test starts on this machine
   (``ray.init(num_cpus=2)``), so CI needs no external service.
 
-Each run takes 1-2 minutes on 2 busy cores.
+Each run takes about a minute on 2 busy cores.
 """
 
 from __future__ import annotations
@@ -42,6 +42,10 @@ from rt_drake.experiments.campaign.local_executor import LocalExecutor
 
 pytestmark = pytest.mark.slow
 
+#: Rows of the campaign: 2 objects x 2 cups x TRIALS.
+TRIALS = 1
+ROWS = 2 * 2 * TRIALS
+
 #: The columns that depend only on the combination (not wall times, workers).
 RESULT_COLUMNS = (
     "object, cup, seed, trial, variant, status, duration_s, speed, success, "
@@ -66,7 +70,8 @@ def _count(db: Path) -> int:
 
 @pytest.fixture(scope="module")
 def campaign_file(tmp_path_factory) -> Path:
-    return write_campaign(tmp_path_factory.mktemp("campaign") / "campaign.yaml")
+    path = tmp_path_factory.mktemp("campaign") / "campaign.yaml"
+    return write_campaign(path, trials=TRIALS)
 
 
 @pytest.fixture(scope="module")
@@ -118,11 +123,11 @@ def test_kill_and_resume_loses_no_row_and_duplicates_none(
         for k in load_campaign(campaign_file).row_keys()
     }
     keys = [row[:5] for row in _rows(db, "object, cup, seed, trial, variant")]
-    assert len(keys) == len(set(keys)) == 8
+    assert len(keys) == len(set(keys)) == len(expected) == ROWS
     assert set(keys) == expected
     # Killed midway: some rows were committed, not all; they were kept as
     # they were (not computed again).
-    assert 1 <= len(before) < 8
+    assert 1 <= len(before) < ROWS
     after = set(_rows(db, "object, cup, seed, trial, variant, finished_at"))
     assert set(before) <= after
 
@@ -146,7 +151,7 @@ def test_local_and_ray_executors_give_the_same_rows(killed_and_resumed, ray_run)
     local_db, _ = killed_and_resumed
     _, ray_db = ray_run
     local, remote = _rows(local_db), _rows(ray_db)
-    assert len(local) == len(remote) == 8
+    assert len(local) == len(remote) == ROWS
     assert local == remote
     for db in (local_db, ray_db):
         (versions,) = zip(*_rows(db, "code_version"), strict=True)
@@ -157,7 +162,7 @@ def test_report_equals_the_rows(killed_and_resumed, tmp_path):
     db, _ = killed_and_resumed
     assert main(["experiment", "report", str(db), "--out", str(tmp_path)]) == 0
     summary = json.loads((tmp_path / "summary.json").read_text())
-    assert summary["rows"] == summary["total_rows"] == 8
+    assert summary["rows"] == summary["total_rows"] == ROWS
     groups = {(g["object"], g["cup"]): g for g in summary["groups"]}
     with sqlite3.connect(db) as sql:
         for obj, cup, ran, held, infeasible in sql.execute(
@@ -171,8 +176,9 @@ def test_report_equals_the_rows(killed_and_resumed, tmp_path):
                 infeasible,
             )
     table = (tmp_path / "summary.md").read_text()
-    assert "| notebook | small | 0/0 | - | 2 | 0 | - | - | - |" in table
-    assert "| notebook | paper | 2/2 | - | 0 | 0 | - | - | - |" in table
+    n = TRIALS
+    assert f"| notebook | small | 0/0 | - | {n} | 0 | - | - | - |" in table
+    assert f"| notebook | paper | {n}/{n} | - | 0 | 0 | - | - | - |" in table
 
 
 def test_local_worker_crash_is_retried_once_then_recorded(

@@ -82,6 +82,7 @@ def box_hits_obstacle(planner, X_OC, box, path: GeometricPath) -> np.ndarray:
     return np.array(hits)
 
 
+@pytest.mark.slow
 def test_straight_path_is_free_for_the_robot_but_drags_the_box_through(query):
     planner, name, X_OC, box, q_start, q_goal = query
     straight = GeometricPath.from_waypoints(np.array([q_start, q_goal]))

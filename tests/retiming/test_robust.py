@@ -184,6 +184,7 @@ def test_set_too_wide_to_hold_at_rest_names_the_worst_object(
     assert error.value.s is not None
 
 
+@pytest.mark.slow
 def test_robust_torque_limits_hold_for_every_sampled_object(
     plant, scenario, notebook, samples, paths
 ):

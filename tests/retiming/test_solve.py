@@ -334,6 +334,7 @@ def _inside_position_limits(plant, path):
 
 # The same 12 paths on every run (the tests' hypothesis profile); the one
 # failure a random search found is kept below as a test of its own.
+@pytest.mark.slow
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     steps=st.lists(

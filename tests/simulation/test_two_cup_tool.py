@@ -143,6 +143,7 @@ def scenarios_and_move(tmp_path_factory):
     return two, one, result
 
 
+@pytest.mark.slow
 def test_two_cups_carry_the_carton_one_cup_drops_it(scenarios_and_move):
     two, one, result = scenarios_and_move
     trajectory = _delayed(result, T_HOLD)
