@@ -43,8 +43,8 @@ from rt_drake.experiments.campaign import (  # noqa: E402
     make_executor,
     run_campaign,
 )
-from rt_drake.experiments.campaign.report import read_rows  # noqa: E402
-from rt_drake.experiments.campaign.row_types import Status  # noqa: E402
+from rt_drake.experiments.campaign._report import read_rows  # noqa: E402
+from rt_drake.experiments.campaign._row_types import Status  # noqa: E402
 
 CAMPAIGN = """\
 scenario: random_transport

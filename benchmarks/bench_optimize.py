@@ -114,7 +114,7 @@ def spline_move(planner, name, X_start, X_goal, free_space, duration):
     From the bin: APPROACH and REACH from home, then the MOVE. In free space:
     the MOVE of every grasp yaw flip whose start has an IK solution, and the
     one whose ``duration(move)`` is shortest
-    (``rt_drake.experiments.transport_experiment.move_from_the_cup``); plan s counts
+    (``rt_drake.experiments._transport_experiment.move_from_the_cup``); plan s counts
     every flip's MOVE planning.
     """
     planner.set_object_pose(name, X_start)

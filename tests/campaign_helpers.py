@@ -14,12 +14,12 @@ import warnings
 from pathlib import Path
 from typing import Any
 
-from rt_drake.experiments.campaign.row_types import (
+from rt_drake.experiments.campaign._row_types import (
     Outcome,
     RowResult,
     Status,
 )
-from rt_drake.experiments.campaign.worker import Task
+from rt_drake.experiments.campaign._worker import Task
 
 #: Environment variable: directory of the marker files of crash_once.
 CRASH_DIR = "RT_DRAKE_TEST_CRASH_DIR"

@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import rt_drake.contact.adjacency as adjacency
-import rt_drake.contact.cache as cache
+import rt_drake.contact._adjacency as adjacency
+import rt_drake.contact._cache as cache
 from rt_drake.contact import (
     CupMount,
     CupParameters,
@@ -31,8 +31,8 @@ from rt_drake.contact import (
     tool_symmetry,
     tool_wrench_polytope,
 )
-from rt_drake.contact.adjacency import minkowski_sum_walk
-from rt_drake.contact.minkowski import minkowski_sum
+from rt_drake.contact._adjacency import minkowski_sum_walk
+from rt_drake.contact._minkowski import minkowski_sum
 from rt_drake.contact.tool_polytope import tool_summands
 from rt_drake.contact.wrench_polytope import wrench_scale
 from rt_drake.errors import InputError, RtDrakeError

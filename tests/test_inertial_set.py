@@ -3,8 +3,11 @@
 import numpy as np
 import pytest
 
-from rt_drake.retiming.robust_rows import Layout, vertex_weights
-from rt_drake.retiming.set_tables import parameter_columns
+from rt_drake.retiming._robust_rows import (
+    Layout,
+    vertex_weights,
+)
+from rt_drake.retiming._set_tables import parameter_columns
 from rt_drake.types.held_object import HeldObject
 from rt_drake.types.object_uncertainty import ObjectUncertainty
 from rt_drake.uncertainty.inertial_set import (

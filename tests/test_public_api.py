@@ -57,7 +57,7 @@ def test_cli_reports_a_bug_as_an_internal_error_with_its_traceback(monkeypatch, 
     import pytest
 
     from rt_drake import cli
-    from rt_drake.cli import show
+    from rt_drake.cli import _show as show
 
     def broken(args):
         raise ZeroDivisionError("a bug")

@@ -6,7 +6,7 @@ friction polygons) keeps the exact sets small: 100 rows for one cup, 4266
 for the tool (about a second). The reference is an LP written apart
 (``tests/tool_reference.py``), over every rim force of every cup as a convex
 combination of its friction pyramid's vertices (not the H-form of
-``rt_drake.contact.lp``), applied to the object wrenches of the retimed
+``rt_drake.contact._lp``), applied to the object wrenches of the retimed
 motion computed by Newton-Euler from the bodies' accelerations
 (:mod:`rt_drake.dynamics.newton_euler`). ``for_tool``'s default set (the rims as
 equal springs, ``load_sharing="elastic"``) is checked by

@@ -1,7 +1,7 @@
 """An LP reference for multi-cup tools, written apart from rt_drake.contact.
 
 Every rim force of every cup is a convex combination of its friction
-pyramid's vertices (not the H-form of ``rt_drake.contact.lp``): the tests
+pyramid's vertices (not the H-form of ``rt_drake.contact._lp``): the tests
 of the tool's exact set and of retiming under it compare against this.
 A tool is given as ``[(CupParameters, p_TC), ...]`` (cups with the tool
 frame's axes).

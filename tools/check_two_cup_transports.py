@@ -26,8 +26,11 @@ import numpy as np
 from rt_drake import CupFrame, JointLimits, check_trajectory, load_scenario
 from rt_drake.contact import shared_load_residual
 from rt_drake.dynamics.newton_euler import reference_object_wrench
-from rt_drake.experiments.rollout import rollout_scenario, simulate_move
-from rt_drake.experiments.transport_experiment import (
+from rt_drake.experiments._rollout import (
+    rollout_scenario,
+    simulate_move,
+)
+from rt_drake.experiments._transport_experiment import (
     move_from_the_cup,
     transport_scenario,
 )

@@ -4,7 +4,7 @@ For each of n transports of a scenario (planned as in bench_optimize.py),
 a long search (``--evaluations`` paths, CMA-ES, no time budget) shortens
 the MOVE; the via points of the returned path become a library entry: their
 cup poses as offsets from the spline path's corners in the transport's frame,
-and the transport's features (rt_drake.shaping.starts).
+and the transport's features (rt_drake.shaping._starts).
 
     # round 1, from x = 0 only; round 2, from round 1's library as well
     python tools/learn_starts.py --scenario random_transport --seed 3 \\
@@ -38,11 +38,11 @@ from rt_drake.shaping import (
     MoveOptimizer,
     MoveOptimizerOptions,
 )  # noqa: E402
-from rt_drake.shaping.cup_chain import _rotation_vector  # noqa: E402
-from rt_drake.shaping.starts import (
+from rt_drake.shaping._starts import (
     features,
     transport_frame,
 )  # noqa: E402
+from rt_drake.shaping.cup_chain import _rotation_vector  # noqa: E402
 
 LIBRARY = Path(__file__).parents[1] / "rt_drake/shaping/data/warm_starts.npz"
 

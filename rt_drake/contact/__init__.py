@@ -1,6 +1,6 @@
 """Suction-cup grasp stability (paper Section II): numpy, scipy and cdd only.
 
-Conventions (details in :mod:`rt_drake.contact.cup`): cup frame C at the
+Conventions (details in :mod:`rt_drake.contact._cup`): cup frame C at the
 centre of the contact face, +z out of the cup into the object; a wrench is
 ``w = [torque; force]`` (N*m, N) that the cup exerts on the object, about C's
 origin, expressed in C. The grasp is stable when ``F w <= g``.
@@ -21,7 +21,7 @@ origin, expressed in C. The grasp is stable when ``F w <= g``.
 - :func:`worst_cup_polytope`: the wrenches every cup of a friction and
   suction range can exert (``friction_min``, ``suction_force_min``).
 
-Only :mod:`rt_drake.contact.cup` and :mod:`rt_drake.contact.tool` (numpy)
+Only :mod:`rt_drake.contact._cup` and :mod:`rt_drake.contact.tool` (numpy)
 are imported with the package, so a scenario can name ``CupParameters`` and
 ``ToolParameters`` cheaply; the rest (scipy) loads on first use of its names.
 """
@@ -29,7 +29,11 @@ are imported with the package, so a scenario can name ``CupParameters`` and
 import importlib
 from typing import TYPE_CHECKING
 
-from rt_drake.contact.cup import CupParameters, grasp_matrices, suction_wrench
+from rt_drake.contact._cup import (
+    CupParameters,
+    grasp_matrices,
+    suction_wrench,
+)
 from rt_drake.contact.tool import (
     CupMount,
     LoadSharing,
@@ -38,25 +42,25 @@ from rt_drake.contact.tool import (
 )
 
 if TYPE_CHECKING:  # the lazy names below, for type checkers
-    from rt_drake.contact.adjacency import TooManyFacetsError
-    from rt_drake.contact.approximation import (
-        GuidedApproximation,
-        guided_approximation,
-    )
-    from rt_drake.contact.cache import (
+    from rt_drake.contact._adjacency import TooManyFacetsError
+    from rt_drake.contact._cache import (
         cache_path,
         cached_wrench_polytope,
         default_cache_dir,
         load_polytope,
         save_polytope,
     )
-    from rt_drake.contact.load_sharing import SharedLoadSet, shared_load_polytope
-    from rt_drake.contact.lp import (
+    from rt_drake.contact._lp import (
         is_realizable_lp,
         lp_residual,
         shared_load_residual,
     )
-    from rt_drake.contact.samplers import object_wrench_sampler
+    from rt_drake.contact._samplers import object_wrench_sampler
+    from rt_drake.contact.approximation import (
+        GuidedApproximation,
+        guided_approximation,
+    )
+    from rt_drake.contact.load_sharing import SharedLoadSet, shared_load_polytope
     from rt_drake.contact.tool_polytope import (
         ToolWrenchSet,
         tool_summands,

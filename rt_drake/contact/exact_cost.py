@@ -1,6 +1,6 @@
 """Memory and time the exact W_c will take, estimated before computing it.
 
-The enumeration of :mod:`rt_drake.contact.minkowski` grows steeply with the
+The enumeration of :mod:`rt_drake.contact._minkowski` grows steeply with the
 number m of contact points and the number k of sides of the friction polygon
 (m = 10, k = 4 takes 1.4 GB and 1.5-4 min; m = 12 would need 30 GB; k = 64
 at m = 6 far more than any machine has). :func:`exact_cost` estimates, from
@@ -29,7 +29,10 @@ import itertools
 import math
 from typing import NamedTuple
 
-from rt_drake.contact.cup import COUNT_RANGES, CupParameters
+from rt_drake.contact._cup import (
+    COUNT_RANGES,
+    CupParameters,
+)
 from rt_drake.errors import TooLargeError
 
 #: Default memory limit of the exact enumeration, bytes (the machines that

@@ -22,7 +22,7 @@ affine in w (the 2024 load-sharing model's split by spring energy, for
 equal springs). The tangential part ``t(w) = (tau_z, f_x, f_y)`` must come
 from friction: with normal forces n, point i adds any point of ``n_i Q_i``,
 Q_i its friction polygon (vertices ``mu (cos a_j, sin a_j)`` in its contact
-frame, :mod:`rt_drake.contact.cup`) mapped to ``(x_i f_y - y_i f_x, f_x,
+frame, :mod:`rt_drake.contact._cup`) mapped to ``(x_i f_y - y_i f_x, f_x,
 f_y)``. So
 
     W_shared = {w : 0 <= n_i(w) <= f_max_i,  t(w) in sum_i n_i(w) Q_i}.
@@ -51,7 +51,10 @@ import dataclasses
 import numpy as np
 
 from rt_drake import arguments
-from rt_drake.contact.cup import contact_positions, contact_rotations
+from rt_drake.contact._cup import (
+    contact_positions,
+    contact_rotations,
+)
 from rt_drake.contact.tool import ToolParameterError, ToolParameters
 from rt_drake.contact.wrench_polytope import check_h_representation, is_realizable
 

@@ -1,8 +1,8 @@
 """Multi-cup tools: N suction cups mounted on one tool frame T.
 
-Cup i is a :class:`~rt_drake.contact.cup.CupParameters` with its own frame
+Cup i is a :class:`~rt_drake.contact._cup.CupParameters` with its own frame
 C_i (origin at the centre of the contact face, +z out of the cup into the
-object, see :mod:`rt_drake.contact.cup`), posed in the tool frame T by the
+object, see :mod:`rt_drake.contact._cup`), posed in the tool frame T by the
 rotation ``R_TCi`` and the position ``p_TCi`` (m) of C_i's origin.
 
 A wrench is ``w = [torque; force]`` (N*m, N) exerted by the cups ON THE
@@ -22,7 +22,7 @@ import enum
 
 import numpy as np
 
-from rt_drake.contact.cup import CupParameters
+from rt_drake.contact._cup import CupParameters
 from rt_drake.errors import InputError
 
 #: Largest ``|R R^T - I|`` (max entry) and ``|det R - 1|`` accepted for R_TC.

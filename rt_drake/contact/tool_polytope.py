@@ -11,7 +11,7 @@ its adjoint, and the cups act together, so
 with every rim force f_ij in its cup's bounded friction pyramid. It is a
 Minkowski sum of all cups' rim pyramids, each mapped by ``Ad_i G_ij``, plus
 the sum of the mapped suction wrenches: its facets and vertices come from
-:func:`rt_drake.contact.adjacency.minkowski_sum_walk`, in scaled coordinates
+:func:`rt_drake.contact._adjacency.minkowski_sum_walk`, in scaled coordinates
 ``[torque / L; force]`` with L = :attr:`ToolParameters.length_scale`, the
 rows then mapped back and normalised (``F w - g`` is a signed distance in
 raw wrench units).
@@ -34,10 +34,14 @@ import dataclasses
 import numpy as np
 
 from rt_drake import arguments
-from rt_drake.contact.adjacency import minkowski_sum_walk
-from rt_drake.contact.cup import friction_pyramid, grasp_matrices, suction_wrench
+from rt_drake.contact._adjacency import minkowski_sum_walk
+from rt_drake.contact._cup import (
+    friction_pyramid,
+    grasp_matrices,
+    suction_wrench,
+)
+from rt_drake.contact._lp import is_realizable_lp
 from rt_drake.contact.exact_cost import DEFAULT_MAX_MEMORY
-from rt_drake.contact.lp import is_realizable_lp
 from rt_drake.contact.tool import ToolParameters, is_identity_pose
 from rt_drake.contact.wrench_polytope import (
     WrenchPolytope,

@@ -5,7 +5,7 @@ A cup known only down to ``friction_min`` and ``suction_force_min``
 in ``[friction_min, friction]`` and suction ``P A`` in ``[suction_force_min,
 suction_force]``. A wrench is safe when it lies in W_c of every one of them:
 the intersection of their wrench sets. With R(mu) the set of rim wrenches
-``sum_i G_i f_i`` (:mod:`rt_drake.contact.cup`),
+``sum_i G_i f_i`` (:mod:`rt_drake.contact._cup`),
 ``W_c(mu, P A) = R(mu) - P A e_fz``:
 
 - R(mu) grows with mu (each friction polygon contains those of lower
@@ -28,8 +28,8 @@ from __future__ import annotations
 import numpy as np
 
 from rt_drake import arguments
-from rt_drake.contact.cache import cached_wrench_polytope
-from rt_drake.contact.cup import CupParameters
+from rt_drake.contact._cache import cached_wrench_polytope
+from rt_drake.contact._cup import CupParameters
 
 #: Index of the force along the cup axis in a wrench [torque; force].
 FORCE_Z = 5

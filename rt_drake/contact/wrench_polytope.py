@@ -1,13 +1,13 @@
 """The exact contact wrench set W_c of a suction cup (paper Section II-C).
 
 ``W_c = {sum_i G_i f_i + [0, 0, 0, 0, 0, -P A] : f_i in pyramid_i}`` (eqs 8-9,
-Assumption 1), in the conventions of :mod:`rt_drake.contact.cup`: wrenches
+Assumption 1), in the conventions of :mod:`rt_drake.contact._cup`: wrenches
 ``[torque; force]`` in N*m and N that the cup exerts on the object, about the
 cup frame's origin, expressed in C.
 
 W_c is a Minkowski sum of m pyramids (each ``G_i`` times the bounded friction
 cone, apex 0 plus k base vertices) plus a constant, so its facets and vertices
-come from :func:`rt_drake.contact.minkowski.minkowski_sum`, using the cup's
+come from :func:`rt_drake.contact._minkowski.minkowski_sum`, using the cup's
 symmetry (rotating the wrench by 2 pi/m about z maps contact i onto i + 1).
 The enumeration runs in scaled coordinates ``[torque / r; force]`` (all in N)
 and the rows are mapped back and normalised: ``F w <= g`` with ``|F_j| = 1``,
@@ -23,15 +23,15 @@ import dataclasses
 import numpy as np
 
 from rt_drake import arguments
-from rt_drake.contact.cup import (
+from rt_drake.contact._cup import (
     CupParameters,
     contact_rotations,
     friction_pyramid,
     grasp_matrices,
     suction_wrench,
 )
+from rt_drake.contact._minkowski import minkowski_sum
 from rt_drake.contact.exact_cost import DEFAULT_MAX_MEMORY, check_exact_cost
-from rt_drake.contact.minkowski import minkowski_sum
 from rt_drake.contact.tool import ToolParameters
 from rt_drake.errors import InputError
 

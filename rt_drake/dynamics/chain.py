@@ -5,7 +5,7 @@ Python (:func:`rt_drake.dynamics.wrench.path_kinematics`); when the plant's
 positions are exactly the joints from the world to the cup, the same
 quantities come from a few compiled loops over all grid points at once
 (:mod:`rt_drake.dynamics.chain_kernels`). The retimer samples the object wrench this
-way (:mod:`rt_drake.retiming.samples`) and the MOVE optimiser scores its
+way (:mod:`rt_drake.retiming._samples`) and the MOVE optimiser scores its
 candidate paths (:mod:`rt_drake.shaping.cup_chain`);
 :func:`rt_drake.retiming.check_trajectory` keeps Drake's own route.
 

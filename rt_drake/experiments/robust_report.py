@@ -3,7 +3,7 @@
 :func:`write_robust_report` writes ``results.json``, ``report.md`` (the
 table: each trial's true object, both durations, whether each plan held it,
 the price of robustness and the tightness ratio) and ``robustness.png``
-(:func:`~.plots.plot_robustness`).
+(:func:`~._plots.plot_robustness`).
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from rt_drake.atomic_file import write_text_atomically
-from rt_drake.experiments.plots import plot_robustness
+from rt_drake.experiments._plots import plot_robustness
 
 #: The files :func:`write_robust_report` writes into its directory.
 ROBUST_FILES = ("results.json", "robustness.png", "report.md")

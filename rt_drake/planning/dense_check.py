@@ -4,9 +4,9 @@ The path q(s) is sampled on a grid where no point of any robot body (tool
 and carried load included) moves more than ``GRID_STEP`` between
 neighbours: the motion of body b from sample k to k+1 is bounded by
 ``m_bk = |p_WB(k+1) - p_WB(k)| + theta_k rho_b`` (origin displacement plus
-rotation angle times the body's bounding radius; :mod:`.kinematics`). The
-cup is a point of the tool, so the grid is at most ``GRID_STEP`` of cup
-travel.
+rotation angle times the body's bounding radius;
+:mod:`rt_drake.dynamics.body_kinematics`). The cup is a point of the tool,
+so the grid is at most ``GRID_STEP`` of cup travel.
 
 Walking the grid, each visited sample i gets its clearance rows (signed
 distance d of each pair of bodies closer than ``INFLUENCE``). A pair cannot
@@ -18,7 +18,7 @@ collision-free without a query (conservative advancement). Bounds:
 - robot bodies a, o (every pair the checker does not filter): the smaller
   of ``sum_k (m_ak + m_ok)`` and ``sum_j R_ao[j] |dq_j|`` (lever arms of
   the joints that move exactly one of them,
-  :meth:`~rt_drake.planning.bounds.MotionBounds.pair_levers`);
+  :meth:`~rt_drake.planning._bounds.MotionBounds.pair_levers`);
 - a pair not reported is at least ``INFLUENCE`` apart.
 
 Where the clearance is smaller than a grid step the walk just visits the

@@ -41,8 +41,8 @@ from rt_drake.model.plant import (
     scenario_cup_frame,
 )
 from rt_drake.model.scenario import Scenario
-from rt_drake.planning.bounds import MotionBounds
-from rt_drake.planning.geometry import (
+from rt_drake.planning._bounds import MotionBounds
+from rt_drake.planning._geometry import (
     PosedShape,
     bounding_radius,
     object_geometries,
@@ -51,7 +51,7 @@ from rt_drake.planning.geometry import (
 
 #: Edge step of the checker's straight-line checks, in the weighted metric
 #: ``||R_max * dq||_2`` (m; ``R_max[j]`` the largest lever arm of joint j,
-#: :class:`~rt_drake.planning.bounds.MotionBounds`, with the scenario's
+#: :class:`~rt_drake.planning._bounds.MotionBounds`, with the scenario's
 #: largest load), about how far the farthest robot point moves per check.
 EDGE_STEP = 0.02
 
@@ -243,8 +243,9 @@ class PlanningScene:
     def cup_frames(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """R_WC (N, 3, 3) and p_WC (N, 3) (m) at each row of q (N, n), vectorised.
 
-        The cup's body pose from :class:`~.kinematics.BodyKinematics`, times
-        the cup frame's fixed pose in that body: :meth:`cup_poses` as arrays.
+        The cup's body pose from
+        :class:`~rt_drake.dynamics.body_kinematics.BodyKinematics`, times the cup
+        frame's fixed pose in that body: :meth:`cup_poses` as arrays.
         """
         column = self.bounds.column_lookup[int(self.cup_frame.body().index())]
         R, p = self.bounds.kinematics.poses(q)

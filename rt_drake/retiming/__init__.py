@@ -1,32 +1,30 @@
 """Time-optimal retiming under joint limits and grasp stability (paper III).
 
-The public face of TOPP-RA in rt_drake; everything else in this package is
-internal:
+The public face of TOPP-RA in rt_drake: import from here. Four modules are
+public because the MOVE optimiser's surrogate (:mod:`rt_drake.shaping`)
+reuses them on batches of paths:
 
-- :mod:`.solve`: :func:`retime` and :class:`RetimeResult` (its margins keyed
-  by :class:`Margin`; the passes run by an :class:`Engine`).
 - :mod:`.limits`: joint limits and the grasp constraint ``F w <= g``, one
   class per source of its rows (:class:`GraspConstraint` given by hand,
-  :class:`CupGrasp`, :class:`ToolGrasp`, :class:`ObjectSetGrasp`).
-- :mod:`.path`: the joint path ``q(s)`` in the planner's spline convention.
-- :mod:`.at_rest`: the object and the arm must be holdable at rest.
-- :mod:`.rows`: which grasp rows the stage LPs get, and the exactness check
-  (compiled); :mod:`.grasp_rows` applies them for one object.
-- :mod:`.robust_grasp`: the grasp of a set of objects (robust to what the
-  robot does not know): (row, vertex) pairs built as they bind, with
-  :mod:`.robust_rows` (the worst vertex of every row, compiled),
-  :mod:`.set_tables` and :mod:`.set_pairs`.
-- :mod:`.passes`: TOPP-RA's passes on precomputed constraints.
-- :mod:`.seidel`: toppra's seidel LP and the passes, compiled with numba.
-- :mod:`.warm`: compiles the kernels before anything is timed.
-- :mod:`.timed_path`: the retimed trajectory as a Drake ``Trajectory``;
-  :mod:`.time_scaled`: a trajectory played faster.
-- :mod:`.check`: dense (1 kHz) verification of a timed trajectory.
-- :mod:`.trajectory_file`: the ``.npz`` trajectory format.
-- :mod:`.errors`: typed errors and statuses.
+  :class:`CupGrasp`, :class:`ToolGrasp`, :class:`ObjectSetGrasp`);
+- :mod:`.stage_rows`: which grasp rows the stage LPs get, and the exactness
+  check (compiled);
+- :mod:`.passes` and :mod:`.seidel`: TOPP-RA's passes on precomputed
+  constraints, and toppra's seidel LP compiled with numba;
+- :mod:`.grid`: the grid of path parameters.
+
+The rest is private (``_x.py``): ``_solve`` (:func:`retime`,
+:class:`RetimeResult`), ``_at_rest``, ``_grasp_rows``, ``_robust_grasp``,
+``_robust_rows``, ``_set_tables``, ``_set_pairs`` (the grasp of a set of
+objects), ``_between`` (limits held between grid points), ``_samples``,
+``_joint_path`` (any path as ``q(s)``; the path type itself is
+:class:`rt_drake.types.path.GeometricPath`), ``_precompile`` (compiles the
+kernels before anything is timed), ``_timed_path``, ``_time_scaled``,
+``_check`` (dense 1 kHz verification), ``_trajectory_file`` (the ``.npz``
+format) and ``_retime_errors`` (typed errors and statuses).
 """
 
-from rt_drake.retiming.check import (
+from rt_drake.retiming._check import (
     DEFAULT_TOLERANCE,
     Excess,
     Margin,
@@ -34,17 +32,12 @@ from rt_drake.retiming.check import (
     WorstMargin,
     check_trajectory,
 )
-from rt_drake.retiming.joint_path import PathLike, WaypointPath
-from rt_drake.retiming.limits import (
-    CupGrasp,
-    GraspConstraint,
-    JointLimits,
-    ObjectSetGrasp,
-    ToolGrasp,
+from rt_drake.retiming._joint_path import (
+    PathLike,
+    WaypointPath,
 )
-from rt_drake.retiming.passes import Engine
-from rt_drake.retiming.precompile import warm_up
-from rt_drake.retiming.retime_errors import (
+from rt_drake.retiming._precompile import warm_up
+from rt_drake.retiming._retime_errors import (
     GraspUnstableAtRestError,
     LimitsBetweenGridPointsError,
     PathNotControllableError,
@@ -53,15 +46,26 @@ from rt_drake.retiming.retime_errors import (
     RetimeStatus,
     TorqueLimitAtRestError,
 )
-from rt_drake.retiming.solve import RetimeResult, retime
-from rt_drake.retiming.time_scaled import TimeScaled
-from rt_drake.retiming.timed_path import TimedPath
-from rt_drake.retiming.trajectory_file import (
+from rt_drake.retiming._solve import (
+    RetimeResult,
+    retime,
+)
+from rt_drake.retiming._time_scaled import TimeScaled
+from rt_drake.retiming._timed_path import TimedPath
+from rt_drake.retiming._trajectory_file import (
     SavedTrajectory,
     load_trajectory,
     sample_trajectory,
     save_trajectory,
 )
+from rt_drake.retiming.limits import (
+    CupGrasp,
+    GraspConstraint,
+    JointLimits,
+    ObjectSetGrasp,
+    ToolGrasp,
+)
+from rt_drake.retiming.passes import Engine
 from rt_drake.types.path import (
     chord_knots,
     path_waypoints_and_knots,

@@ -13,7 +13,7 @@ planned MOVE at both 100 and 200 uniform points). Hence :func:`initial_grid`:
   (where the constraint functions are smooth);
 - at least :data:`MIN_PIECE_SEGMENTS` segments in every piece, so that the
   values between grid points can be estimated from neighbours of the same
-  piece (:mod:`.between`);
+  piece (:mod:`._between`);
 - no step longer than :data:`MAX_JOINT_STEP` in joint space
   (:func:`bound_steps`): those estimates interpolate the torque and wrench
   coefficients from the grid points, with an error of fourth order in the
@@ -27,7 +27,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from rt_drake.retiming.retime_errors import RetimeInputError
+from rt_drake.retiming._retime_errors import RetimeInputError
 
 #: Segments per cubic piece of the path, at least.
 MIN_PIECE_SEGMENTS = 3

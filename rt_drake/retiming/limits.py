@@ -46,7 +46,7 @@ from rt_drake.model.scenario import (
     ObjectConfig,
     RobotConfig,
 )
-from rt_drake.retiming.retime_errors import RetimeInputError
+from rt_drake.retiming._retime_errors import RetimeInputError
 from rt_drake.types.held_object import HeldObject
 from rt_drake.types.object_uncertainty import ObjectUncertainty
 from rt_drake.uncertainty.inertial_set import (

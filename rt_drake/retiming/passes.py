@@ -42,7 +42,7 @@ from toppra.constraint import DiscretizationType, LinearConstraint
 from toppra.constraint.linear_constraint import canlinear_colloc_to_interpolate
 
 from rt_drake.retiming import seidel
-from rt_drake.retiming.retime_errors import RetimeInputError
+from rt_drake.retiming._retime_errors import RetimeInputError
 
 #: toppra's box on (u, x) at every stage (cy_seidel_solverwrapper VAR_MIN/MAX).
 VAR_BOUND = 1e8
@@ -114,7 +114,7 @@ class StageRows(LinearConstraint):
     """Rows ``A_i u + B_i x + C_i <= 0`` of stage i's own (u_i, x_i), i < N.
 
     For constraints at points inside segment i (the retimer's cuts between
-    grid points, :mod:`.between`), expressed in the stage's variables; a row
+    grid points, :mod:`._between`), expressed in the stage's variables; a row
     with ``A = B = 0, C = -1`` is inactive. Toppra sees them as collocation
     constraints ``I (a_i u + b_i x + c_i) <= 0`` (the last grid point has
     none).

@@ -27,7 +27,11 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from rt_drake.retiming.row_groups import RowGroups, group_rows, grouped_ratios
+from rt_drake.retiming._row_groups import (
+    RowGroups,
+    group_rows,
+    grouped_ratios,
+)
 from rt_drake.retiming.seidel import kernel_array
 
 #: Heights, as fractions of the height x_top reached from rest along +x, of
@@ -91,7 +95,7 @@ def wrench_ratios(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Evaluate every grasp row at every wrench (rows far below skipped).
 
-    Rows are grouped in boxes (:mod:`.row_groups`); a group that can hold
+    Rows are grouped in boxes (:mod:`._row_groups`); a group that can hold
     neither a wrench's largest value nor a value above ``floor`` is skipped
     at that wrench, which changes none of the results below (nor does the
     grouping: any grouping of these rows gives the same results).

@@ -6,32 +6,32 @@ limits and the exact grasp polytope ``F w <= g``) is as short as it finds
 within a time budget. It starts from the planner's spline path and never
 returns a slower one. Modules:
 
-- :mod:`.optimizer`: :class:`MoveOptimizer` and :func:`optimize_move`;
-  :mod:`.options`: their options and result;
-- :mod:`.family`: the paths searched (vertical end segments, free via
+- :mod:`._optimizer`: :class:`MoveOptimizer` and :func:`optimize_move`;
+  :mod:`._options`: their options and result;
+- :mod:`._family`: the paths searched (vertical end segments, free via
   points in joint space starting at the spline path's corners);
-- :mod:`.search`: CMA-ES until a deadline; :mod:`.objective`: its objective;
-- :mod:`.starts`: warm starts learned on other transports (package data
+- :mod:`._search`: CMA-ES until a deadline; :mod:`._objective`: its objective;
+- :mod:`._starts`: warm starts learned on other transports (package data
   ``data/warm_starts.npz``);
-- :mod:`.surrogate`: batched TOPP-RA on a coarse grid (the duration part);
-- :mod:`.kinematics`, :mod:`.spline`: batched cup kinematics, object wrench
+- :mod:`._surrogate`: batched TOPP-RA on a coarse grid (the duration part);
+- :mod:`.cup_chain`, :mod:`._spline`: batched cup kinematics, object wrench
   coefficients and clamped splines (numba);
-- :mod:`.clearance`: the search's cheap clearance estimate;
-- :mod:`.finish`: the final retime on an adaptive grid, the vertical check;
-- :mod:`.compile_kernels`: compiles the numba kernels before anything is timed.
+- :mod:`._clearance`: the search's cheap clearance estimate;
+- :mod:`._finish`: the final retime on an adaptive grid, the vertical check;
+- :mod:`._compile_kernels`: compiles the numba kernels before anything is timed.
 """
 
-from rt_drake.shaping.compile_kernels import warm_up
-from rt_drake.shaping.family import FamilyError
-from rt_drake.shaping.finish import (
+from rt_drake.shaping._compile_kernels import warm_up
+from rt_drake.shaping._family import FamilyError
+from rt_drake.shaping._finish import (
     retime_adaptive,
     vertical_drift,
 )
-from rt_drake.shaping.optimizer import (
+from rt_drake.shaping._optimizer import (
     MoveOptimizer,
     optimize_move,
 )
-from rt_drake.shaping.options import (
+from rt_drake.shaping._options import (
     Clock,
     MoveOptimizerError,
     MoveOptimizerOptions,

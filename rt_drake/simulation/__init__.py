@@ -1,26 +1,40 @@
 """The simulated cell: a Drake Diagram that runs the pick-and-place cycle.
 
-- :mod:`.station`: ``MakeStation(scenario) -> Station``, the cell's Diagram.
-- :mod:`.suction`: the vacuum force (``SuctionCup`` LeafSystem);
-  :mod:`.vacuum`: its build-up, "part present" and release.
-- :mod:`.sequencer`: APPROACH .. DETACH per object (``Sequencer`` LeafSystem);
+- :mod:`._station`: ``MakeStation(scenario) -> Station``, the cell's Diagram.
+- :mod:`._suction`: the vacuum force (``SuctionCup`` LeafSystem);
+  :mod:`rt_drake.model.vacuum`: its build-up, "part present" and release.
+- :mod:`._sequencer`: APPROACH .. DETACH per object (``Sequencer`` LeafSystem);
   :mod:`.records`: what it measures (``ObjectRecord``).
 - :mod:`.motion`: what the sequencer asks for (``Motion``, ``MotionSource``)
   and the planning-ahead clock (``PendingMotion``).
 - :mod:`.online_motions`: the planner plus retimer as the online motion
   source (``OnlineMotions``).
-- :mod:`.retimer_system`: the retimer as a LeafSystem (``Retimer``).
-- :mod:`.cycle_runner`: station + sequencer, simulated to the end
+- :mod:`._retimer_system`: the retimer as a LeafSystem (``Retimer``).
+- :mod:`._cycle_runner`: station + sequencer, simulated to the end
   (``run_cycle``).
 """
 
 from rt_drake.model.vacuum import VacuumTimeout
-from rt_drake.simulation.cycle_runner import (
+from rt_drake.simulation._cycle_runner import (
     CycleResult,
     CycleTimeout,
     build_cycle,
     run_cycle,
 )
+from rt_drake.simulation._retimer_system import (
+    Retimer,
+    RetimeRequest,
+)
+from rt_drake.simulation._sequencer import (
+    UPDATE_PERIOD,
+    Sequencer,
+)
+from rt_drake.simulation._station import (
+    MakeStation,
+    Station,
+    StationOptions,
+)
+from rt_drake.simulation._suction import SuctionCup
 from rt_drake.simulation.motion import (
     Motion,
     MotionSource,
@@ -30,10 +44,6 @@ from rt_drake.simulation.motion import (
 )
 from rt_drake.simulation.online_motions import OnlineMotions, held_object
 from rt_drake.simulation.records import ObjectRecord, pose_difference
-from rt_drake.simulation.retimer_system import Retimer, RetimeRequest
-from rt_drake.simulation.sequencer import UPDATE_PERIOD, Sequencer
-from rt_drake.simulation.station import MakeStation, Station, StationOptions
-from rt_drake.simulation.suction import SuctionCup
 
 __all__ = [
     "UPDATE_PERIOD",

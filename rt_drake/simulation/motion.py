@@ -1,7 +1,7 @@
 """What the sequencer asks for and gets: timed motions, planned ahead.
 
 A :class:`MotionSource` (e.g. :class:`~.online_motions.OnlineMotions`, which
-plans and retimes online) hands the :class:`~.sequencer.Sequencer` two
+plans and retimes online) hands the :class:`~._sequencer.Sequencer` two
 :class:`Motion` per object: the pick (APPROACH and REACH in one motion,
 split by :class:`PhasePart`) and the MOVE. A motion carries everything a
 caller needs afterwards (its path, its retiming, the grasp it was retimed

@@ -23,7 +23,7 @@ with a ``first_order`` vacuum the suction range then reaches down to
 ``part_present_fraction`` of its lowest P A.
 
 The pick (:meth:`OnlineMotions.pick`) is one motion through the approach
-pose (:mod:`rt_drake.planning.pick`), retimed rest to rest; APPROACH ends
+pose (:mod:`rt_drake.planning._pick`), retimed rest to rest; APPROACH ends
 when it passes the approach pose.
 """
 

@@ -62,7 +62,7 @@ the first and third parts are the same). Every piece is a "box" of one form::
 ``S(delta)`` widths into Gz, parallel generators merged). Since ``w`` is
 linear in pi, ``F_k w(pi) <= g_k`` holds on Q iff it holds at Q's vertices,
 and the worst vertex of row k at a motion point is known in closed form (no
-enumeration; :mod:`rt_drake.retiming.robust_rows`)::
+enumeration; :mod:`rt_drake.retiming._robust_rows`)::
 
     max_Q n.w = max(m_lo B, m_hi B) + n.w(cz) + sum_j |n.w(Gz_j)|,
     B = n.w(c1) + sum_j |n.w(G1_j)|

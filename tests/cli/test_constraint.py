@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import rt_drake.cli as cli
-from rt_drake.cli import constraint
+from rt_drake.cli import _constraint as constraint
 from rt_drake.contact import CupParameters, contact_wrench_polytope
 
 

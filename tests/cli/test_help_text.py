@@ -64,7 +64,7 @@ def test_the_walk_reaches_every_subcommand():
     "text",
     [
         "``rt-drake run [SCENARIO]``: simulate",
-        "see :mod:`rt_drake.cli.campaign_command`",
+        "see :mod:`rt_drake.cli._campaign_command`",
         "checked (``rt_drake.cli._output``: a directory)",
         "shape each MOVE for speed (issue\n   13)",
         "a :func:`retime` and a :class:`HeldObject`",

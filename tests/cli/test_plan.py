@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from toppra.interpolator import SplineInterpolator
 
-from rt_drake.cli import plan
+from rt_drake.cli import _plan as plan
 from rt_drake.errors import ScenarioError
 from rt_drake.model.scenario import load_scenario
 from rt_drake.planning import CyclePlanner

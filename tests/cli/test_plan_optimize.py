@@ -7,7 +7,7 @@ import argparse
 import numpy as np
 import pytest
 
-from rt_drake.cli import plan
+from rt_drake.cli import _plan as plan
 
 
 def run(argv: list[str]) -> int:

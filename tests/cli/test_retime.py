@@ -5,7 +5,7 @@ import argparse
 import numpy as np
 import pytest
 
-from rt_drake.cli import retime as command
+from rt_drake.cli import _retime as command
 from rt_drake.errors import RtDrakeError
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])

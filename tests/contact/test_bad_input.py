@@ -15,7 +15,7 @@ from rt_drake.contact import (
     is_realizable,
     object_wrench_sampler,
 )
-from rt_drake.contact.cup import PARAMETER_RANGES
+from rt_drake.contact._cup import PARAMETER_RANGES
 from rt_drake.contact.wrench_polytope import check_polytope
 from rt_drake.errors import InputError
 

@@ -12,7 +12,7 @@ import shutil
 import numpy as np
 import pytest
 
-import rt_drake.contact.cache as cache
+import rt_drake.contact._cache as cache
 from rt_drake.contact import (
     CupParameters,
     WrenchPolytope,

@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from rt_drake.contact import CupParameters, grasp_matrices
-from rt_drake.contact.cup import (
+from rt_drake.contact._cup import (
     contact_positions,
     contact_rotations,
     friction_halfspaces,

@@ -9,13 +9,17 @@ import numpy as np
 import pytest
 
 from rt_drake.contact import CupParameters, contact_wrench_polytope
-from rt_drake.contact.cup import friction_pyramid, grasp_matrices, suction_wrench
+from rt_drake.contact._cup import (
+    friction_pyramid,
+    grasp_matrices,
+    suction_wrench,
+)
+from rt_drake.contact._minkowski import minkowski_sum
 from rt_drake.contact.exact_cost import (
     DEFAULT_MAX_MEMORY,
     check_exact_cost,
     exact_cost,
 )
-from rt_drake.contact.minkowski import minkowski_sum
 from rt_drake.contact.wrench_polytope import rotation_symmetry, wrench_scale
 from rt_drake.errors import TooLargeError
 

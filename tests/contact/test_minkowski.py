@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.optimize import linprog
 
-from rt_drake.contact.minkowski import minkowski_sum
+from rt_drake.contact._minkowski import minkowski_sum
 
 
 def _random_summands(seed: int, count: int, n: int = 6):

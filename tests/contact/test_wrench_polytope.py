@@ -18,8 +18,12 @@ from rt_drake.contact import (
     lp_residual,
     with_suction_force,
 )
-from rt_drake.contact.cup import friction_pyramid, grasp_matrices, suction_wrench
-from rt_drake.contact.minkowski import minkowski_sum
+from rt_drake.contact._cup import (
+    friction_pyramid,
+    grasp_matrices,
+    suction_wrench,
+)
+from rt_drake.contact._minkowski import minkowski_sum
 from rt_drake.contact.wrench_polytope import rotation_symmetry, wrench_scale
 
 GRAVITY_W = np.array([0.0, 0.0, -9.81])

@@ -31,8 +31,8 @@ from rt_drake.experiments.campaign import (
     load_campaign,
     write_campaign_report,
 )
-from rt_drake.experiments.campaign.campaign_progress import Progress
-from rt_drake.experiments.campaign.store import ResultStore
+from rt_drake.experiments.campaign._campaign_progress import Progress
+from rt_drake.experiments.campaign._store import ResultStore
 from rt_drake.model.resources import scenarios_dir
 
 SHIPPED = scenarios_dir() / "campaigns" / "two_objects_two_cups.yaml"

@@ -34,7 +34,7 @@ from campaign_helpers import (
 )
 
 from rt_drake.experiments.campaign import Status, load_campaign, run_campaign
-from rt_drake.experiments.campaign.local_executor import LocalExecutor
+from rt_drake.experiments.campaign._local_executor import LocalExecutor
 
 pytestmark = pytest.mark.slow
 
@@ -107,7 +107,7 @@ def ray_crash_dir(tmp_path_factory):
 
 
 def test_ray_killed_worker_is_retried_once_then_recorded(ray_crash_dir):
-    from rt_drake.experiments.campaign.ray_executor import RayExecutor
+    from rt_drake.experiments.campaign._ray_executor import RayExecutor
 
     campaign = _campaign(ray_crash_dir, "ray")
     db = ray_crash_dir / "ray.db"
@@ -122,7 +122,7 @@ def test_ray_killed_worker_is_retried_once_then_recorded(ray_crash_dir):
 
 
 def test_ray_row_whose_worker_dies_once_is_stored_with_two_attempts(ray_crash_dir):
-    from rt_drake.experiments.campaign.ray_executor import RayExecutor
+    from rt_drake.experiments.campaign._ray_executor import RayExecutor
 
     campaign = _campaign(ray_crash_dir, "once")
     db = ray_crash_dir / "once.db"

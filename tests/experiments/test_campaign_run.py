@@ -38,7 +38,7 @@ from campaign_helpers import (
 import rt_drake
 from rt_drake.cli import main
 from rt_drake.experiments.campaign import RowKey, Status, Variant, load_campaign
-from rt_drake.experiments.campaign.local_executor import LocalExecutor
+from rt_drake.experiments.campaign._local_executor import LocalExecutor
 
 pytestmark = pytest.mark.slow
 
@@ -198,7 +198,7 @@ def test_local_worker_crash_is_retried_once_then_recorded(
 
 
 def test_ray_worker_crash_is_retried_once_then_recorded(campaign_file, ray_run):
-    from rt_drake.experiments.campaign.ray_executor import RayExecutor
+    from rt_drake.experiments.campaign._ray_executor import RayExecutor
 
     campaign = load_campaign(campaign_file)
     keys = [RowKey("notebook", "paper", 0, t, Variant.CONSTRAINED) for t in (0, 1)]

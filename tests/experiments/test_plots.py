@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rt_drake.experiments.plots import plot_profiles
+from rt_drake.experiments._plots import plot_profiles
 
 
 def test_profiles_plot_takes_two_grids(tmp_path):

@@ -15,7 +15,10 @@ import pytest
 from pydrake.common.schema import Transform
 
 from rt_drake.cli import main
-from rt_drake.experiments.rollout import rollout_scenario, simulate_move
+from rt_drake.experiments._rollout import (
+    rollout_scenario,
+    simulate_move,
+)
 from rt_drake.model.resources import scenarios_dir
 from rt_drake.model.scenario import load_scenario
 from rt_drake.planning import sample_transports

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from rt_drake import CupFrame, load_scenario, make_arm_plant
-from rt_drake.experiments.transport_experiment import (
+from rt_drake.experiments._transport_experiment import (
     move_from_the_cup,
     transport_scenario,
 )

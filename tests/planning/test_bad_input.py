@@ -9,7 +9,7 @@ from pydrake.math import RigidTransform
 from rt_drake.errors import InputError
 from rt_drake.model.scenario import load_scenario
 from rt_drake.planning import CyclePlanner
-from rt_drake.planning.planning_errors import (
+from rt_drake.planning._planning_errors import (
     PlanningError,
     PlanningInputError,
 )

@@ -18,8 +18,8 @@ from pydrake.math import RigidTransform, RotationMatrix
 
 from rt_drake.model.scenario import load_scenario
 from rt_drake.planning import CyclePlanner, GeometricPath
+from rt_drake.planning._geometry import object_geometries
 from rt_drake.planning.dense_check import check_path
-from rt_drake.planning.geometry import object_geometries
 from rt_drake.types.phase import Phase
 
 OBSTACLE_CENTER = np.array([0.55, 0.0, 0.05])  # cell.sdf table_obstacle

@@ -7,7 +7,12 @@ from pydrake.multibody.inverse_kinematics import InverseKinematics
 from pydrake.solvers import SnoptSolver, SolverOptions
 
 from rt_drake.model.plant import CUP_FRAME
-from rt_drake.planning.ik import _POINTS_C, OPTIMALITY_TOLERANCE, TOLERANCE, CupIk
+from rt_drake.planning._ik import (
+    _POINTS_C,
+    OPTIMALITY_TOLERANCE,
+    TOLERANCE,
+    CupIk,
+)
 
 
 def fresh_solve(plant, X_WC, q_near, q_guess):

@@ -14,7 +14,7 @@ import pytest
 
 from rt_drake.model.plant import CUP_FRAME
 from rt_drake.planning import CyclePlanner
-from rt_drake.planning.pick import RETREAT_HEIGHT
+from rt_drake.planning._pick import RETREAT_HEIGHT
 from rt_drake.retiming import JointLimits, retime
 from rt_drake.types.phase import Phase
 

@@ -10,8 +10,8 @@ from pydrake.math import RigidTransform, RotationMatrix
 from rt_drake.dynamics.body_kinematics import step_motion
 from rt_drake.model.plant import home_configuration
 from rt_drake.model.scenario import load_scenario
+from rt_drake.planning._geometry import object_geometries
 from rt_drake.planning.dense_check import check_path
-from rt_drake.planning.geometry import object_geometries
 from rt_drake.planning.scene import PlanningScene
 from rt_drake.types.path import GeometricPath
 from rt_drake.types.phase import Phase
@@ -110,7 +110,7 @@ def test_collisions_are_named_and_load_is_not_checked_against_its_cup(scene):
 
 def test_touch_allowance_lets_the_cup_press_the_grasped_face_only(scene):
     """With a 2 mm allowance the cup may press 1 mm into the face, not 3 mm."""
-    from rt_drake.planning.cycle_planner import CyclePlanner
+    from rt_drake.planning._cycle_planner import CyclePlanner
 
     planner = CyclePlanner(scene.scenario, scene=scene)
     obj = scene.scenario.objects[0]  # top of the stack

@@ -280,9 +280,9 @@ def test_kernels_only_take_the_layout_warm_up_compiles(moves):
     from numba.core import types
 
     from rt_drake.dynamics import chain_kernels as _chain_kernels
-    from rt_drake.shaping.clearance import _clearance
-    from rt_drake.shaping.spline import _splines
-    from rt_drake.shaping.surrogate import _batch_durations
+    from rt_drake.shaping._clearance import _clearance
+    from rt_drake.shaping._spline import _splines
+    from rt_drake.shaping._surrogate import _batch_durations
 
     warm_up()
     kernels = (

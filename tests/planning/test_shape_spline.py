@@ -6,7 +6,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from rt_drake.retiming import chord_knots
-from rt_drake.shaping.spline import (
+from rt_drake.shaping._spline import (
     chord_knots_batch,
     evaluate_splines,
 )

@@ -6,14 +6,14 @@ import numpy as np
 import pytest
 
 from rt_drake import CupFrame, GeometricPath
-from rt_drake.shaping.cup_chain import CupChain
-from rt_drake.shaping.family import PathFamily
-from rt_drake.shaping.starts import (
+from rt_drake.shaping._family import PathFamily
+from rt_drake.shaping._starts import (
     offset_parameters,
     start_parameters,
     transport_frame,
     warm_start_library,
 )
+from rt_drake.shaping.cup_chain import CupChain
 
 
 @pytest.fixture(scope="module")

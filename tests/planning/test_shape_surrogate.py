@@ -12,8 +12,8 @@ from rt_drake.dynamics.wrench import path_wrench_coefficients
 from rt_drake.model.held import held_object_of
 from rt_drake.retiming import chord_knots
 from rt_drake.retiming.passes import AffineConstraint, XBound, reachability
+from rt_drake.shaping._surrogate import CoarseRetimer
 from rt_drake.shaping.cup_chain import CupChain
-from rt_drake.shaping.surrogate import CoarseRetimer
 
 
 def classic_toppra(plant, waypoints, limits, grasp, gridpoints):

@@ -7,13 +7,13 @@ import pytest
 from pydrake.trajectories import CompositeTrajectory, PiecewisePolynomial
 
 from rt_drake.retiming import JointLimits, RetimeInputError, retime
+from rt_drake.retiming._joint_path import as_joint_path
 from rt_drake.retiming.grid import (
     MAX_JOINT_STEP,
     MIN_PIECE_SEGMENTS,
     bound_steps,
     initial_grid,
 )
-from rt_drake.retiming.joint_path import as_joint_path
 
 
 def _steps(path, s: np.ndarray) -> np.ndarray:

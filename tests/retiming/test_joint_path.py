@@ -23,7 +23,7 @@ from rt_drake.retiming import (
     chord_knots,
     retime,
 )
-from rt_drake.retiming.joint_path import as_joint_path
+from rt_drake.retiming._joint_path import as_joint_path
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 WAYPOINTS = np.array(

@@ -31,7 +31,7 @@ from rt_drake.retiming import (
     check_trajectory,
     retime,
 )
-from rt_drake.retiming.check import _sample
+from rt_drake.retiming._check import _sample
 from rt_drake.retiming.stage_rows import (
     normalised_rows,
     wrench_ratios,
@@ -211,7 +211,7 @@ def test_between_grid_points_a_set_is_held_by_cuts(
     plant, limits, scenario, notebook, samples, paths, monkeypatch
 ):
     """With a tiny tolerance between grid points, cuts hold the worst object."""
-    from rt_drake.retiming import solve
+    from rt_drake.retiming import _solve as solve
 
     monkeypatch.setattr(solve, "BETWEEN_TOLERANCE", 1e-5)
     robust = GraspConstraint.for_scenario_object(notebook, scenario.cup)

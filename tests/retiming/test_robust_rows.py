@@ -5,7 +5,7 @@ import itertools
 import numpy as np
 import pytest
 
-from rt_drake.retiming.robust_rows import (
+from rt_drake.retiming._robust_rows import (
     BOX_SHIFT,
     Layout,
     key,

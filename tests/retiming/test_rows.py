@@ -9,16 +9,18 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rt_drake.contact.cache import cached_wrench_polytope
+from rt_drake.contact._cache import cached_wrench_polytope
 from rt_drake.model.held import held_object_of
 from rt_drake.retiming import (
-    row_groups,
+    _row_groups as row_groups,
+)
+from rt_drake.retiming import (
     seidel,
 )
 from rt_drake.retiming import (
     stage_rows as rows,
 )
-from rt_drake.retiming.precompile import warm_up
+from rt_drake.retiming._precompile import warm_up
 
 
 @pytest.fixture(scope="module")
@@ -120,9 +122,13 @@ def test_warm_up_compiles_what_retime_uses(plant, scenario, polytope):
     from rt_drake.retiming import (
         GraspConstraint,
         JointLimits,
-        between,
-        between_kernels,
         retime,
+    )
+    from rt_drake.retiming import (
+        _between as between,
+    )
+    from rt_drake.retiming import (
+        _between_kernels as between_kernels,
     )
 
     kernels = [

@@ -38,14 +38,18 @@ from rt_drake.retiming import (
     check_trajectory,
     retime,
 )
-from rt_drake.retiming import solve as solve_module
+from rt_drake.retiming import _solve as solve_module
 from rt_drake.retiming import (
     stage_rows as rows,
 )
-from rt_drake.retiming.between import Segments, grasp_midpoint_rows, interior_rows
-from rt_drake.retiming.joint_path import as_joint_path
+from rt_drake.retiming._between import (
+    Segments,
+    grasp_midpoint_rows,
+    interior_rows,
+)
+from rt_drake.retiming._joint_path import as_joint_path
+from rt_drake.retiming._samples import PathSamples
 from rt_drake.retiming.passes import AffineConstraint
-from rt_drake.retiming.samples import PathSamples
 from rt_drake.types.held_object import HeldObject
 from rt_drake.types.path import drake_path
 

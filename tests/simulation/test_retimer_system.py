@@ -1,4 +1,4 @@
-"""rt_drake.simulation.retimer_system: the LeafSystem outputs what retime() computes."""
+"""rt_drake.simulation._retimer_system: the LeafSystem outputs what retime() does."""
 
 import numpy as np
 import pytest
@@ -12,7 +12,10 @@ from rt_drake.model.plant import make_arm_plant
 from rt_drake.model.resources import scenarios_dir
 from rt_drake.model.scenario import load_scenario
 from rt_drake.retiming import GraspConstraint, JointLimits, retime
-from rt_drake.simulation.retimer_system import Retimer, RetimeRequest
+from rt_drake.simulation._retimer_system import (
+    Retimer,
+    RetimeRequest,
+)
 
 HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 PATH = np.array(

@@ -14,8 +14,8 @@ from pydrake.trajectories import PiecewisePolynomial
 from rt_drake.model.object_model import OBJECT_BODY
 from rt_drake.model.plant import CUP_FRAME
 from rt_drake.model.scenario import load_scenario
-from rt_drake.simulation.station import MakeStation
-from rt_drake.simulation.suction import find_seal
+from rt_drake.simulation._station import MakeStation
+from rt_drake.simulation._suction import find_seal
 
 #: rad; the PD + inverse-dynamics arm tracks a 1 s, 15 cm lift within this.
 TRACKING_TOLERANCE = 2e-3

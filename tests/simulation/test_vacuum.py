@@ -19,7 +19,7 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import ConstantVectorSource, TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
-from rt_drake.experiments.rollout import Replay
+from rt_drake.experiments._rollout import Replay
 from rt_drake.model.scenario import load_scenario
 from rt_drake.model.vacuum import (
     Vacuum,

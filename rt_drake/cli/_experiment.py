@@ -1,0 +1,205 @@
+"""rt-drake experiment transport|cycle|campaign|report: experiments in simulation.
+
+transport: Table I. Random start and goal poses of one object, each MOVE
+retimed with and without the grasp constraint and played in the cycle's
+physics, plus a speed sweep to the slip. Writes results.json, report.md and
+PNG plots. With --optimize, each trial also shapes its MOVE for speed from
+the same grasp to the same goal, plays it in the same physics with its own
+sweep, and the report compares both (plus optimized.png and
+optimized_replay.html). With --robust: each MOVE retimed for the nominal
+object and for every object of its uncertainty set, both played with a true
+object drawn from the set's hardest corners.
+
+cycle: Table II. The four-object cycle with its timing breakdown (as
+rt-drake run), into report.json, report.md and replay.html.
+
+campaign and report: validation campaigns over many objects, cups and
+transports, into SQLite (see rt-drake experiment campaign --help).
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from rt_drake.cli import _campaign_command as campaign
+from rt_drake.cli._args import add_optimize_flag, int_in, nonnegative_int
+
+#: Most random paths (each is planned, retimed twice and simulated ~12 times).
+MAX_TRIALS = 1000
+#: Most worker processes.
+MAX_WORKERS = 64
+
+
+def register(subparsers: argparse._SubParsersAction) -> None:
+    """Add the ``experiment`` subcommand and its two experiments."""
+    parser = subparsers.add_parser(
+        "experiment",
+        help="reproduce the paper's experiments in simulation",
+        description=__doc__,
+    )
+    which = parser.add_subparsers(dest="experiment", required=True)
+
+    transport = which.add_parser(
+        "transport", help="Table I: random transports, with and without the constraint"
+    )
+    transport.add_argument(
+        "--scenario",
+        default="random_transport",
+        help="scenario with a random_transport section",
+    )
+    transport.add_argument(
+        "--n",
+        type=int_in(1, MAX_TRIALS),
+        default=20,
+        help=f"number of random paths (default 20, at most {MAX_TRIALS})",
+    )
+    transport.add_argument(
+        "--seed",
+        type=nonnegative_int,
+        default=0,
+        help="sampling and planning seed (default 0)",
+    )
+    transport.add_argument(
+        "--object", default=None, help="object to carry (default: the scenario's)"
+    )
+    transport.add_argument(
+        "--workers",
+        type=int_in(1, MAX_WORKERS),
+        default=1,
+        help=f"parallel processes (default 1, at most {MAX_WORKERS})",
+    )
+    transport.add_argument(
+        "--robust",
+        action="store_true",
+        help="nominal vs robust plans, played with true objects from the object's "
+        "uncertainty set",
+    )
+    add_optimize_flag(transport, "also optimise each MOVE and play it")
+    transport.add_argument("--out", type=Path, required=True, help="output directory")
+    transport.set_defaults(run=run_transport)
+
+    cycle = which.add_parser(
+        "cycle", help="Table II: the four-object cycle's timing breakdown"
+    )
+    cycle.add_argument(
+        "--scenario",
+        default="stack_four_objects",
+        help="scenario (default stack_four_objects)",
+    )
+    cycle.add_argument("--out", type=Path, required=True, help="output directory")
+    cycle.set_defaults(run=run_cycle_experiment)
+
+    campaign.register(which)  # ``campaign`` and ``report``
+
+
+def run_transport(args: argparse.Namespace) -> int:
+    """Run the transport experiment and write its outputs; return 0."""
+    import time
+
+    from rt_drake.cli._output import output_directory
+    from rt_drake.cli._progress import Progress
+    from rt_drake.experiments import (
+        TRANSPORT_FILES,
+        optimized_summary,
+        run_transport_experiment,
+        transport_table,
+        write_transport_report,
+    )
+    from rt_drake.model.resources import resolve_scenario_path
+
+    if args.robust:
+        return run_robust_transport(args)
+    path = resolve_scenario_path(args.scenario)
+    output_directory(args.out, "--out", TRANSPORT_FILES, {"scenario file": path})
+    progress = Progress("rt-drake experiment transport", args.n, "trial", eta=True)
+    start = time.perf_counter()
+    try:
+        results = run_transport_experiment(
+            path,
+            n=args.n,
+            seed=args.seed,
+            object_name=args.object,
+            workers=args.workers,
+            optimize=args.optimize,
+            out_dir=args.out,
+            progress=lambda done, n: progress.step(done, "trials done"),
+        )
+    finally:
+        progress.close()
+    results["wall_s"] = time.perf_counter() - start
+    written = write_transport_report(results, args.out)
+    s = results["summary"]
+    print(transport_table(results))
+    print(
+        f"with the constraint {s['success_constrained']}/{s['n']} succeed, without "
+        f"{s['success_unconstrained']}/{s['n']}; critical speed factors "
+        f"{s['critical_speed_factors']}; {results['wall_s']:.0f} s"
+    )
+    if results["optimize"]:
+        print(optimized_summary(s))
+    print("wrote " + ", ".join(str(p) for p in written))
+    return 0
+
+
+def run_robust_transport(args: argparse.Namespace) -> int:
+    """The robust transport experiment: write its outputs; return 0."""
+    import time
+
+    from rt_drake.cli._output import output_directory
+    from rt_drake.cli._progress import Progress
+    from rt_drake.errors import InputError
+    from rt_drake.experiments import (
+        ROBUST_FILES,
+        robust_table,
+        run_robust_transport_experiment,
+        write_robust_report,
+    )
+    from rt_drake.experiments.robust_report import summary_lines
+    from rt_drake.model.resources import resolve_scenario_path
+
+    if args.optimize:
+        raise InputError(
+            "--robust plays the planner's spline MOVEs: it does not take --optimize"
+        )
+    path = resolve_scenario_path(args.scenario)
+    output_directory(args.out, "--out", ROBUST_FILES, {"scenario file": path})
+    progress = Progress(
+        "rt-drake experiment transport --robust", args.n, "trial", eta=True
+    )
+    start = time.perf_counter()
+    try:
+        results = run_robust_transport_experiment(
+            path,
+            n=args.n,
+            seed=args.seed,
+            object_name=args.object,
+            workers=args.workers,
+            progress=lambda done, n: progress.step(done, "trials done"),
+        )
+    finally:
+        progress.close()
+    results["wall_s"] = time.perf_counter() - start
+    written = write_robust_report(results, args.out)
+    print(robust_table(results))
+    print("\n".join(summary_lines(results)))
+    print(f"{results['wall_s']:.0f} s; wrote " + ", ".join(str(p) for p in written))
+    return 0
+
+
+def run_cycle_experiment(args: argparse.Namespace) -> int:
+    """The four-object cycle via ``rt-drake run``; return its exit code."""
+    from rt_drake.cli import _run as run_command
+
+    namespace = argparse.Namespace(
+        scenario=args.scenario,
+        out=args.out,
+        meshcat=False,
+        no_grasp_constraint=False,
+        speed=1.0,
+        sequential_planning=False,
+        seed=0,
+        time_step=1e-3,
+        optimize=None,
+    )
+    return run_command.run(namespace)

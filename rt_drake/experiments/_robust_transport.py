@@ -1,0 +1,290 @@
+"""Table I with objects the robot does not know exactly (issue 15).
+
+For each of n random transports (the poses of :mod:`._transport_experiment`), the MOVE
+is planned once and retimed twice: for the nominal object (the one of the
+scenario's model) and for every object of its uncertainty set with every
+cup of the cup's range (:meth:`~rt_drake.retiming.GraspConstraint.robust`).
+Each trial then plays both trajectories in the cycle's physics with the same
+TRUE object, drawn (seeded) from the set's hardest corners (heaviest, largest
+moments, centre of mass at a random corner:
+:func:`~rt_drake.uncertainty.object_samples.hardest_corner`), and the worst cup of the
+range. The robust duration is also compared with a lower bound of the true
+robust optimum: the retime that holds a dense sample of the set (its
+corners and ``SAMPLE`` random objects, bodies only), stacked. And the robust
+trajectory is checked, at 1 kHz, for every object of that sample by another
+route than the retimer's
+(:func:`~rt_drake.dynamics.newton_euler.reference_object_wrenches`):
+``sound_excess`` is the largest ``max_k F_k w / g_k - 1`` found (the
+retimer's contract: at most 1e-3).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from pydrake.math import RigidTransform
+from pydrake.multibody.tree import SpatialInertia
+
+from rt_drake.contact import worst_cup_polytope
+from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.dynamics.newton_euler import reference_object_wrenches
+from rt_drake.errors import ScenarioError
+from rt_drake.experiments._rollout import (
+    rollout_scenario,
+    simulate_move,
+)
+from rt_drake.experiments._transport_experiment import (
+    transport_inputs,
+    transport_scenario,
+)
+from rt_drake.experiments._trial_pool import run_trials
+from rt_drake.model.plant import make_arm_plant
+from rt_drake.model.scenario import (
+    ObjectConfig,
+    Scenario,
+    load_scenario,
+)
+from rt_drake.planning import sample_transports
+from rt_drake.retiming import GraspConstraint, TimedPath
+from rt_drake.retiming.stage_rows import (
+    normalised_rows,
+    wrench_ratios,
+)
+from rt_drake.simulation import OnlineMotions
+from rt_drake.types.object_uncertainty import ObjectUncertainty
+from rt_drake.uncertainty.object_samples import (
+    ObjectInertia,
+    corners,
+    hardest_corner,
+    random_objects,
+)
+
+#: Random objects of the dense sample (besides the corners).
+SAMPLE = 200
+
+
+def robust_trial(
+    scenario: Scenario,
+    object_name: str,
+    index: int,
+    X_WO_start: RigidTransform,
+    X_WO_goal: RigidTransform,
+    seed: int,
+) -> dict[str, Any]:
+    """Plan one transport, retime it nominal and robust, play both (true object)."""
+    obj = scenario.object(object_name)
+    uncertainty = _uncertainty(obj)
+    trial = transport_scenario(scenario, object_name, X_WO_start, X_WO_goal)
+    motions = OnlineMotions(
+        trial, grasp_constraint=True, seed=seed + index, robust=False
+    )
+    planned_obj = trial.objects[0]
+    approach = motions.approach(motions.q_home, planned_obj)
+    reach = motions.reach(approach.q_end, planned_obj)
+    q_grasp = reach.q_end
+    nominal = motions.move(q_grasp, planned_obj, reach)
+    assert nominal.planned is not None and nominal.retimed is not None
+    path, X_OC = nominal.planned.path, nominal.planned.X_OC
+    robust_grasp = motions.grasp_for(planned_obj, X_OC, robust=True)
+    start = time.perf_counter()
+    robust = motions.retime_path(path, robust_grasp)
+    robust_s = time.perf_counter() - start
+
+    rng = np.random.default_rng([seed, index])
+    world, inertias, true = true_object_world(trial, q_grasp, obj, uncertainty, rng)
+    model = ObjectInertia.of_model(obj)
+    sample = corners(model, uncertainty) + random_objects(
+        model, uncertainty, SAMPLE, rng
+    )
+    cup = trial.cup
+    held_sample = [o.held(X_OC) for o in sample]
+    bound = motions.retime_path(path, GraspConstraint.for_objects(held_sample, cup))
+    excess = sound_excess(trial, robust.trajectory, held_sample)
+    played = {
+        name: simulate_move(world, q_grasp, trajectory, object_inertias=inertias)
+        for name, trajectory in (
+            ("nominal", nominal.trajectory),
+            ("robust", robust.trajectory),
+        )
+    }
+    d_n, d_r = nominal.retimed.duration, robust.duration
+    return {
+        "index": index,
+        "start": _pose_list(X_WO_start),
+        "goal": _pose_list(X_WO_goal),
+        "true_object": true.as_dict(),
+        "duration_nominal_s": d_n,
+        "duration_robust_s": d_r,
+        "duration_lower_bound_s": bound.duration,
+        "price": d_r / d_n,
+        "tightness": d_r / bound.duration,
+        "sound_excess": excess,
+        "sample_objects": len(held_sample),
+        "success_nominal": played["nominal"].success,
+        "success_robust": played["robust"].success,
+        "slip_nominal": played["nominal"].as_dict(),
+        "slip_robust": played["robust"].as_dict(),
+        "retime_nominal_s": nominal.times.retime_s,
+        "retime_robust_s": robust_s,
+        "robust_pairs": robust.grasp_rows,
+        "robust_vertex_objects": robust.grasp_objects,
+        "guarantee_robust": robust_grasp.guarantee(),
+    }
+
+
+def true_object_world(
+    trial: Scenario,
+    q_grasp: np.ndarray,
+    obj: ObjectConfig,
+    uncertainty: ObjectUncertainty,
+    rng: np.random.Generator,
+) -> tuple[Scenario, dict[str, SpatialInertia], ObjectInertia]:
+    """The physics a robust plan is played in: a hard TRUE object, the worst cup.
+
+    The true object is drawn from the set's hardest corners
+    (:func:`~rt_drake.uncertainty.object_samples.hardest_corner`, one draw of ``rng``);
+    the cup is the worst of its range (``friction_min``,
+    ``suction_force_min``).
+
+    Returns:
+        The rollout scenario (arm at ``q_grasp``), the object inertias to
+        pass to :func:`._rollout.simulate_move`, and the true object.
+    """
+    true = hardest_corner(ObjectInertia.of_model(obj), uncertainty, rng)
+    world = dataclasses.replace(
+        rollout_scenario(trial, q_grasp), cup=trial.cup.worst_case()
+    )
+    return world, {obj.name: true.spatial_inertia()}, true
+
+
+def sound_excess(scenario: Scenario, trajectory: TimedPath, objects: list) -> float:
+    """Largest ``max_k F_k w / g_k - 1`` of the objects along ``trajectory``.
+
+    At 1 kHz, the wrench by Drake's body accelerations and Newton-Euler (not
+    the retimer's route), the wrench set every cup of the scenario's range
+    exerts.
+    """
+    plant = make_arm_plant(scenario)
+    times = np.append(np.arange(0.0, trajectory.duration, 1e-3), trajectory.duration)
+    q, v, vdot = trajectory.sample(times + trajectory.start_time(), order=2)
+    wrenches = reference_object_wrenches(plant, objects, CupFrame.of(plant), q, v, vdot)
+    F, g = worst_cup_polytope(scenario.cup)
+    ratio, _, _ = wrench_ratios(
+        wrenches.reshape(-1, 6), normalised_rows(F, g), g, np.inf
+    )
+    return float(ratio.max()) - 1.0
+
+
+def _uncertainty(obj: ObjectConfig) -> ObjectUncertainty:
+    if obj.uncertainty is None or obj.uncertainty.is_zero():
+        raise ScenarioError(
+            f"object '{obj.name}' has no uncertainty set: give it one in the "
+            "scenario (objects[].uncertainty) to compare nominal and robust plans"
+        )
+    return obj.uncertainty
+
+
+def _pose_list(X: RigidTransform) -> list[float]:
+    """[x, y, z, yaw_deg]."""
+    R = X.rotation().matrix()
+    return [*map(float, X.translation()), math.degrees(math.atan2(R[1, 0], R[0, 0]))]
+
+
+def _trial_job(args: tuple) -> dict[str, Any]:
+    """One trial in a worker: scenarios do not pickle, so it is loaded again."""
+    path, object_name, index, X_start, X_goal, seed = args
+    return robust_trial(
+        load_scenario(path),
+        object_name,
+        index,
+        RigidTransform(X_start),
+        RigidTransform(X_goal),
+        seed,
+    )
+
+
+def run_robust_transport_experiment(
+    scenario_path: str | Path,
+    n: int = 20,
+    seed: int = 0,
+    object_name: str | None = None,
+    workers: int = 1,
+    progress: Callable[[int, int], None] | None = None,
+) -> dict[str, Any]:
+    """Run n trials (in ``workers`` processes); return results and a summary.
+
+    ``progress(done, n)`` is called as each trial finishes (and with 0 first).
+
+    Raises:
+        InputError: fewer than one trial or one worker.
+        ScenarioError: no ``random_transport`` section, no such object, or
+            an object without an uncertainty set.
+    """
+    scenario, name = transport_inputs(scenario_path, n, workers, object_name)
+    _uncertainty(scenario.object(name))
+    pairs = sample_transports(scenario, n, seed)
+    jobs = [
+        (str(scenario_path), name, i, X_s.GetAsMatrix4(), X_g.GetAsMatrix4(), seed)
+        for i, (X_s, X_g) in enumerate(pairs)
+    ]
+    trials = run_trials(_trial_job, jobs, workers, progress)
+    obj = scenario.object(name)
+    assert obj.uncertainty is not None
+    return {
+        "object": name,
+        "seed": seed,
+        "n": n,
+        "uncertainty": dataclasses.asdict(obj.uncertainty),
+        "cup": {
+            "friction_min": scenario.cup.friction_min,
+            "suction_force_min": scenario.cup.suction_force_min,
+        },
+        "trials": trials,
+        "summary": summarize_robust(trials),
+    }
+
+
+def summarize_robust(trials: list[dict[str, Any]]) -> dict[str, Any]:
+    """Successes of both plans, durations, price and tightness statistics."""
+
+    def stats(key: str) -> dict[str, float]:
+        values = np.array([t[key] for t in trials], dtype=float)
+        return {
+            "min": float(values.min()),
+            "median": float(np.median(values)),
+            "mean": float(values.mean()),
+            "max": float(values.max()),
+        }
+
+    return {
+        "n": len(trials),
+        "success_nominal": sum(t["success_nominal"] for t in trials),
+        "success_robust": sum(t["success_robust"] for t in trials),
+        "duration_nominal_s": stats("duration_nominal_s"),
+        "duration_robust_s": stats("duration_robust_s"),
+        "price": stats("price"),
+        "tightness": stats("tightness"),
+        "sound_excess_max": max(t["sound_excess"] for t in trials),
+        "retime_nominal_s": stats("retime_nominal_s"),
+        "retime_robust_s": stats("retime_robust_s"),
+        "slip_robust_max_mm": max(
+            t["slip_robust"]["max_translation_mm"] for t in trials
+        ),
+        "slip_robust_max_deg": max(
+            t["slip_robust"]["max_rotation_deg"] for t in trials
+        ),
+    }
+
+
+__all__ = [
+    "SAMPLE",
+    "robust_trial",
+    "run_robust_transport_experiment",
+    "true_object_world",
+]

@@ -1,0 +1,262 @@
+"""Dense verification of a timed joint trajectory against the retimer's limits.
+
+:func:`check_trajectory` samples q, q', q'' at 1 kHz (and at the end) and,
+independently of the retimer's path coefficients, evaluates at each sample:
+
+- velocity and acceleration ratios ``|v_j| / v_max_j``, ``|vdot_j| / a_max_j``;
+- the object wrench by another route than the retimer's: the cup body's
+  spatial acceleration from Drake's ``CalcSpatialAccelerationsFromVdot`` and
+  Newton-Euler (:func:`rt_drake.dynamics.newton_euler.reference_object_wrench`; no
+  Jacobian, bias or gravity shortcut of :mod:`rt_drake.dynamics.wrench`), and its
+  ratio ``max_k F_k w / g_k`` (the Minkowski gauge of W about 0);
+- joint torques by Drake inverse dynamics plus ``J_Coᵀ w`` for that wrench,
+  ratio ``|tau_j| / tau_max_j``.
+
+Each is reported as its smallest margin ``1 - ratio`` with its time, in the
+retimer's sign convention (:attr:`RetimeResult.margins
+<rt_drake.retiming._solve.RetimeResult>`): positive is room left, negative is
+over the limit by that fraction. :meth:`TrajectoryCheck.summary` says which
+in words.
+
+Tolerance: the retimer holds every limit between its grid points too
+(:mod:`._between`), to within 5e-4 at its sub-points; sampled at 1 kHz the
+margin stays above ``-DEFAULT_TOLERANCE`` = -1e-3 (the contract; tests
+check it on random paths).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+import warnings
+
+import numpy as np
+from pydrake.multibody.plant import MultibodyPlant
+from pydrake.multibody.tree import JacobianWrtVariable, MultibodyForces
+from pydrake.systems.framework import Context
+from pydrake.trajectories import Trajectory
+
+from rt_drake import arguments
+from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.dynamics.newton_euler import reference_object_wrench
+from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint, JointLimits
+
+#: Allowed relative excess over a limit (and over g for the grasp), see above:
+#: a margin down to ``-DEFAULT_TOLERANCE`` passes.
+DEFAULT_TOLERANCE = 1e-3
+
+
+class Margin(enum.Enum):
+    """A constraint the retimer holds, keying its margins and the check's."""
+
+    #: Joint velocity, ``|v_j| <= v_max_j``.
+    VELOCITY = "velocity"
+    #: Joint acceleration, ``|vdot_j| <= a_max_j``.
+    ACCELERATION = "acceleration"
+    #: Joint torque, ``|tau_j| <= tau_max_j`` (when limited).
+    TORQUE = "torque"
+    #: The grasp, ``F w <= g`` (with a held object).
+    GRASP = "grasp"
+
+
+@dataclasses.dataclass(frozen=True)
+class WorstMargin:
+    """Smallest margin of one constraint over the samples.
+
+    Attributes:
+        value: ``1 - max(ratio)``: positive is room left, negative is over
+            the limit by that fraction (the sign of ``RetimeResult.margins``).
+        time: When it occurs, s.
+        index: The joint (0-based) or grasp row it occurs at.
+    """
+
+    value: float
+    time: float
+    index: int
+
+    def words(self, tolerance: float = DEFAULT_TOLERANCE) -> str:
+        """``room 0.006 %`` or ``over by 0.010 %`` (no sign to misread).
+
+        An excess the contract allows (at most ``tolerance``) says so:
+        ``over by 0.010 % (within the 0.100 % tolerance)``.
+        """
+        if self.value >= 0.0:
+            return f"room {100 * self.value:.3f} %"
+        text = f"over by {-100 * self.value:.3f} %"
+        if -self.value <= tolerance:
+            text += f" (within the {100 * tolerance:.3f} % tolerance)"
+        return text
+
+
+@dataclasses.dataclass(frozen=True)
+class Excess:
+    """Deprecated: the old sign, ``max(ratio) - 1`` (see :class:`WorstMargin`).
+
+    Attributes:
+        value: ``max(ratio) - 1`` (<= 0: within the limit).
+        time: When it occurs, s.
+        index: The joint (0-based) or grasp row it occurs at.
+    """
+
+    value: float
+    time: float
+    index: int
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class TrajectoryCheck:
+    """Result of :func:`check_trajectory`.
+
+    ``margins`` maps each constraint checked (:attr:`Margin.VELOCITY`,
+    :attr:`Margin.ACCELERATION`, and :attr:`Margin.TORQUE`,
+    :attr:`Margin.GRASP` when checked) to its :class:`WorstMargin`.
+    """
+
+    times: np.ndarray
+    margins: dict[Margin, WorstMargin]
+
+    def min_margin(self) -> float:
+        """Smallest margin over all constraints (negative: over a limit)."""
+        return min(m.value for m in self.margins.values())
+
+    def passed(self, tolerance: float = DEFAULT_TOLERANCE) -> bool:
+        """Whether no constraint is over its limit by more than ``tolerance``."""
+        return self.min_margin() >= -tolerance
+
+    def summary(self, tolerance: float = DEFAULT_TOLERANCE) -> str:
+        """One line per constraint: name, margin in words, time, index.
+
+        E.g. ``grasp: room 0.006 % at t = 0.4120 s (#17)`` or ``torque: over
+        by 0.200 % at t = 1.2000 s (#2)`` (:meth:`WorstMargin.words`).
+        """
+        return "\n".join(
+            f"{kind.value}: {m.words(tolerance)} at t = {m.time:.4f} s (#{m.index})"
+            for kind, m in self.margins.items()
+        )
+
+    @property
+    def excess(self) -> dict[str, Excess]:
+        """Deprecated: the old sign (positive = over); use :attr:`margins`."""
+        warnings.warn(
+            "TrajectoryCheck.excess is deprecated (positive meant over the limit): "
+            "use .margins (positive means room, negative over the limit)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return {
+            kind.value: Excess(-m.value, m.time, m.index)
+            for kind, m in self.margins.items()
+        }
+
+    def worst(self) -> float:
+        """Deprecated: the largest excess, ``-min_margin()``; use :meth:`min_margin`."""
+        warnings.warn(
+            "TrajectoryCheck.worst() is deprecated (positive meant over the limit): "
+            "use .min_margin() (positive means room, negative over the limit)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return -self.min_margin()
+
+
+def check_trajectory(
+    plant: MultibodyPlant,
+    trajectory: Trajectory,
+    limits: JointLimits,
+    grasp: GraspConstraint | None = None,
+    rate_hz: float = 1000.0,
+    context: Context | None = None,
+    cup: CupFrame | None = None,
+) -> TrajectoryCheck:
+    """Sample ``trajectory`` at ``rate_hz`` and measure every limit's excess.
+
+    Args:
+        plant: The retimer's plant (arm and tool; objects welded or absent).
+        trajectory: q(t) with derivatives (any Drake ``Trajectory``).
+        limits: Joint limits; torques checked if ``limits.torque``.
+        grasp: Held object and grasp polytope; None: not checked.
+        rate_hz: Sampling rate, Hz.
+        context: Scratch context of ``plant``.
+        cup: The cup frame C (default: the plant's ``suction_cup``).
+    """
+    where = "check_trajectory"
+    arguments.instance(plant, "plant", MultibodyPlant, where=where)
+    arguments.instance(trajectory, "trajectory", Trajectory, where=where)
+    arguments.instance(limits, "limits", JointLimits, where=where)
+    if grasp is not None:
+        arguments.having(
+            grasp, "grasp", "GraspConstraint", GRASP_ATTRIBUTES, where=where
+        )
+    arguments.number(rate_hz, "rate_hz", where=where, above=0.0)
+    if context is not None:
+        arguments.instance(context, "context", Context, where=where)
+    if cup is not None:
+        arguments.instance(cup, "cup", CupFrame, where=where)
+    t0, t1 = trajectory.start_time(), trajectory.end_time()
+    times = np.append(np.arange(t0, t1, 1.0 / rate_hz), t1)
+    q, v, vdot = _sample(trajectory, times)
+    context = context or plant.CreateDefaultContext()
+    margins = {
+        Margin.VELOCITY: _worst(np.abs(v) / limits.velocity, times),
+        Margin.ACCELERATION: _worst(np.abs(vdot) / limits.acceleration, times),
+    }
+    cup = cup or CupFrame.of(plant)
+    w = None
+    if grasp is not None:
+        w = reference_object_wrench(plant, grasp.held, cup, q, v, vdot, context)
+        margins[Margin.GRASP] = _worst((w @ grasp.F.T) / grasp.g, times)
+    if limits.torque is not None:
+        tau = _torques(plant, cup, q, v, vdot, w, context)
+        margins[Margin.TORQUE] = _worst(np.abs(tau) / limits.torque, times)
+    return TrajectoryCheck(times=times, margins=margins)
+
+
+def _torques(
+    plant: MultibodyPlant,
+    cup: CupFrame,
+    q: np.ndarray,
+    v: np.ndarray,
+    vdot: np.ndarray,
+    w: np.ndarray | None,
+    context: Context,
+) -> np.ndarray:
+    """Inverse dynamics (gravity as applied force) plus ``J_Coᵀ w`` per sample."""
+    forces = MultibodyForces(plant)
+    frame, world = cup.frame, plant.world_frame()
+    tau = np.empty_like(q)
+    for i in range(len(q)):
+        plant.SetPositionsAndVelocities(context, np.concatenate([q[i], v[i]]))
+        plant.CalcForceElementsContribution(context, forces)
+        tau[i] = plant.CalcInverseDynamics(context, vdot[i], forces)
+        if w is not None:
+            J_Co = plant.CalcJacobianSpatialVelocity(
+                context, JacobianWrtVariable.kV, frame, np.zeros(3), world, frame
+            )
+            tau[i] += J_Co.T @ w[i]
+    return tau
+
+
+def _sample(trajectory: Trajectory, times: np.ndarray) -> list[np.ndarray]:
+    """q, q', q'' at ``times``, each (M, n)."""
+    if hasattr(trajectory, "sample"):
+        return trajectory.sample(times, order=2)
+    series = [trajectory, trajectory.MakeDerivative(1), trajectory.MakeDerivative(2)]
+    return [np.array([d.value(t).reshape(-1) for t in times]) for d in series]
+
+
+def _worst(ratio: np.ndarray, times: np.ndarray) -> WorstMargin:
+    """The smallest margin ``1 - ratio`` over (M, k) ratios, with where."""
+    sample, index = np.unravel_index(int(np.argmax(ratio)), ratio.shape)
+    return WorstMargin(
+        float(1.0 - ratio[sample, index]), float(times[sample]), int(index)
+    )
+
+
+__all__ = [
+    "DEFAULT_TOLERANCE",
+    "Excess",
+    "Margin",
+    "TrajectoryCheck",
+    "WorstMargin",
+    "check_trajectory",
+]

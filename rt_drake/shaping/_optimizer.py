@@ -1,0 +1,406 @@
+"""MoveOptimizer: a faster MOVE path than the planner's spline, within a budget.
+
+Stages (wall time of each in :attr:`OptimizedMove.timings`, s):
+
+1. ``setup``: the scene with the load (the planner's ``prepare``), the
+   clearance model; after the baseline, the coarse retimer (its grid placed
+   at equal steps of the baseline's time, :meth:`MoveOptimizer.search_grid`)
+   and its first grasp rows, the path family (:mod:`._family`), the warm
+   starts (:mod:`._starts`).
+2. ``baseline``: the spline path retimed by :func:`~._finish.retime_adaptive`,
+   the duration to beat (the same scheme as the returned path's).
+3. ``search``: CMA-ES (:mod:`._search`) from the best of x = 0 and the warm
+   starts, until the budget less the time the finish needs (estimated from
+   the baseline's retime and the planner's dense check of the spline path).
+4. ``finish``: the best candidates, best first: dense tilt and vertical-end
+   checks, the planner's continuous collision check with the load
+   (:func:`rt_drake.planning.dense_check.check_path`) and the final retime
+   (:func:`~._finish.retime_adaptive`); the first that passes and beats the
+   baseline is returned, else the spline path (``improved`` False), not an
+   error.
+
+The planner's spline MOVE is an input: the cycle plans it anyway, and it is
+not counted in the budget (``spline_plan`` in the timings when
+:func:`optimize_move` plans it).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+
+import numpy as np
+from pydrake.math import RigidTransform
+from pydrake.multibody.plant import MultibodyPlant
+
+from rt_drake import arguments
+from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.planning.dense_check import check_path
+from rt_drake.planning.result import PlannedPath
+from rt_drake.retiming import GraspConstraint, JointLimits, RetimeError, RetimeResult
+from rt_drake.shaping._clearance import ClearanceModel
+from rt_drake.shaping._family import (
+    FamilyError,
+    PathFamily,
+    corners,
+)
+from rt_drake.shaping._finish import (
+    adaptive_grid,
+    retime_adaptive,
+    vertical_drift,
+)
+from rt_drake.shaping._objective import Objective
+from rt_drake.shaping._options import (
+    VERTICAL_DRIFT,
+    VERTICAL_TOLERANCE_DEG,
+    Clock,
+    MoveOptimizerOptions,
+    MovePlanner,
+    OptimizedMove,
+)
+from rt_drake.shaping._search import (
+    Candidate,
+    cma_search,
+)
+from rt_drake.shaping._starts import start_parameters
+from rt_drake.shaping._surrogate import CoarseRetimer
+from rt_drake.shaping.cup_chain import CupChain
+from rt_drake.types.path import GeometricPath
+from rt_drake.types.phase import Phase
+
+#: Samples of the final path's tilt check.
+TILT_SAMPLES = 1000
+#: Via points added, one at a time, to rescue a search that found nothing.
+EXTRA_VIA_POINTS = 2
+#: Candidates the finish may try, best first.
+KEEP = 6
+#: The finish's estimated cost: this times the spline path's retime and check.
+FINISH_MARGIN = 1.2
+
+
+class MoveOptimizer:
+    """Shapes MOVE paths of one arm for speed under the grasp constraint.
+
+    Build it once per arm (it holds the batched kinematics) and call
+    :meth:`optimize` per MOVE.
+
+    Args:
+        plant: The retimer's arm plant (positions = the path's joints).
+        limits: Joint velocity and acceleration limits.
+        options: Settings (defaults if None).
+        cup: The cup frame C of ``plant`` (default ``CupFrame.of(plant)``).
+        context: Scratch context of ``plant``.
+    """
+
+    def __init__(
+        self,
+        plant: MultibodyPlant,
+        limits: JointLimits,
+        options: MoveOptimizerOptions | None = None,
+        cup: CupFrame | None = None,
+        context=None,
+    ) -> None:
+        arguments.instance(plant, "plant", MultibodyPlant, where="MoveOptimizer")
+        arguments.instance(limits, "limits", JointLimits, where="MoveOptimizer")
+        if options is not None:
+            arguments.instance(
+                options, "options", MoveOptimizerOptions, where="MoveOptimizer"
+            )
+        if cup is not None:
+            arguments.instance(cup, "cup", CupFrame, where="MoveOptimizer")
+        self.plant = plant
+        self.limits = limits
+        self.options = options or MoveOptimizerOptions()
+        self.cup = cup or CupFrame.of(plant)
+        self.context = context or plant.CreateDefaultContext()
+        self.chain = CupChain(plant, self.cup)
+
+    def retime(self, path: GeometricPath, grasp: GraspConstraint) -> RetimeResult:
+        """``path`` retimed as the optimiser does (:func:`.retime_adaptive`)."""
+        return retime_adaptive(
+            self.plant, path, self.limits, grasp, self.options.final_gridpoints,
+            context=self.context, cup=self.cup, chain=self.chain,
+        )  # fmt: skip
+
+    def optimize(
+        self,
+        planner: MovePlanner,
+        spline: PlannedPath,
+        grasp: GraspConstraint,
+        timings: dict[str, float] | None = None,
+    ) -> OptimizedMove:
+        """A MOVE as fast as found from the spline MOVE ``spline`` (same ends).
+
+        Args:
+            planner: The cycle planner (:class:`MovePlanner`), whose scene
+                holds the other objects where they are.
+            spline: The planner's MOVE (start: the grasp configuration).
+            grasp: The carried object's grasp constraint ``F w <= g``.
+            timings: Stage times (s) already spent (e.g. ``spline_plan``).
+
+        Raises:
+            RetimeError: the spline path cannot be retimed.
+        """
+        options = self.options
+        clock = time.perf_counter if options.clock is Clock.WALL else time.process_time
+        start, wall, cpu = clock(), time.perf_counter(), time.process_time()
+        watch = _Stopwatch(timings)
+        chain = self.chain
+        with watch("setup"):
+            scene = planner.prepare(
+                Phase.MOVE, spline.object, spline.q_start, spline.X_OC
+            )
+            clearance = ClearanceModel(scene, chain)
+        with watch("baseline"):
+            before = clock()
+            baseline = self.retime(spline.path, grasp)
+            retime_cost = clock() - before
+        with watch("setup"):
+            surrogate = CoarseRetimer(
+                chain, self.limits, grasp, self.search_grid(baseline)
+            )
+            surrogate.select_rows(spline.path.waypoints[None])
+
+            def objective_for(via: int) -> Objective:
+                return Objective(
+                    self._family(spline, via), surrogate, clearance, scene.lower,
+                    scene.upper, options.tilt_bound, options.clearance_margin,
+                    spline.path,
+                )  # fmt: skip
+
+            try:
+                objective: Objective | None = objective_for(options.via_points)
+            except FamilyError as error:
+                objective, family_error = None, str(error)
+        baseline_wall = watch.timings["baseline"]
+
+        def result(path, retimed, improved, evaluations, rejected, retime_wall):
+            tilt = float(np.degrees(chain.tilt(path.value(_s())).max()))
+            return OptimizedMove(
+                path, retimed, spline, baseline, improved, tilt, evaluations,
+                time.perf_counter() - wall, time.process_time() - cpu, retime_wall,
+                dict(watch.timings), tuple(rejected),
+            )  # fmt: skip
+
+        if objective is None:
+            return result(
+                spline.path, baseline, False, 0, [family_error], baseline_wall
+            )
+        # The finish retimes a candidate and checks it densely: the baseline's
+        # retime, and the planner's dense check (wall time, scaled to the
+        # clock), with a margin: a candidate's check and retime cost up to
+        # 20 % more than the spline path's (BENCHMARKS.md).
+        to_clock = retime_cost / max(baseline_wall, 1e-9)
+        finish_cost = FINISH_MARGIN * (retime_cost + to_clock * spline.timing.check_s)
+        with watch("search"):
+            candidates, evaluations = self._search(
+                objective, objective_for, spline,
+                _Deadline(clock, start + options.budget_s - finish_cost),
+            )  # fmt: skip
+        rejected: list[str] = []
+        # The spline path on the search's grid: what a candidate must beat
+        # there to be worth the finish (the grids' errors differ by percents).
+        to_beat = surrogate.durations(spline.path.waypoints[None])[0]
+        found = None
+        with watch("finish"):
+            for index, (family, candidate) in enumerate(candidates):
+                late = clock() + 0.5 * finish_cost > start + options.budget_s
+                if candidate.duration >= to_beat or (index and late):
+                    break
+                path = GeometricPath.from_waypoints(family.waypoints(candidate.x)[0])
+                reason = _certify(chain, family, scene, path, options)
+                if reason is None:
+                    before_wall = time.perf_counter()
+                    try:
+                        retimed = self.retime(path, grasp)
+                    except RetimeError as error:
+                        reason = f"retime: {error}"
+                    else:
+                        if retimed.duration < baseline.duration:
+                            found = (path, retimed, time.perf_counter() - before_wall)
+                            break
+                        reason = f"retimed {retimed.duration:.3f} s, not shorter"
+                rejected.append(reason)
+        if found is not None:
+            return result(found[0], found[1], True, evaluations, rejected, found[2])
+        return result(
+            spline.path, baseline, False, evaluations, rejected, baseline_wall
+        )
+
+    def search_grid(self, baseline: RetimeResult) -> int | np.ndarray:
+        """The search's grid: its points at equal steps of the spline's time.
+
+        ``search_gridpoints`` points placed by the spline path's retimed
+        profile (:func:`~._finish.adaptive_grid` with weight
+        ``search_grid_weight``), or uniform if that weight is None.
+        """
+        options = self.options
+        if options.search_grid_weight is None:
+            return options.search_gridpoints
+        return adaptive_grid(
+            baseline.gridpoints, baseline.sd, options.search_gridpoints,
+            options.search_grid_weight,
+        )  # fmt: skip
+
+    def _family(self, spline: PlannedPath, via: int) -> PathFamily:
+        options = self.options
+        return PathFamily(
+            self.chain,
+            spline.path.waypoints[0],
+            spline.path.waypoints[-1],
+            corners(spline.path, via),
+            options.vertical_height,
+            options.vertical_points,
+            np.broadcast_to(
+                np.asarray(options.joint_scale, float), self.chain.num_joints
+            ),
+            vertical=options.max_tilt_deg < VERTICAL_TOLERANCE_DEG,
+        )
+
+    def _search(
+        self,
+        objective: Objective,
+        objective_for: Callable[[int], Objective],
+        spline: PlannedPath,
+        expired: Callable[[], bool],
+    ) -> tuple[list[tuple[PathFamily, Candidate]], int]:
+        """CMA-ES from x = 0 and the warm starts; rescue paths if nothing is found."""
+        options = self.options
+        x0 = start_parameters(objective.family, spline.path, options.starts)
+        found = cma_search(
+            objective, objective.family.dim, expired, options.sigma, options.seed,
+            options.population, keep=KEEP, max_evaluations=options.max_evaluations,
+            x0=x0,
+        )  # fmt: skip
+        candidates = [(objective.family, c) for c in found.candidates]
+        evaluations = found.evaluations
+        # Nothing feasible (e.g. a lift close to a wall, whose corners the
+        # spline through few via points cuts): the starting paths through
+        # more of the spline path's corners follow it more closely.
+        for extra in range(1, EXTRA_VIA_POINTS + 1):
+            if candidates:
+                break
+            try:
+                rescue = objective_for(options.via_points + extra)
+            except FamilyError:
+                break
+            x = np.zeros((1, rescue.family.dim))
+            values, feasible = rescue(x)
+            evaluations += 1
+            if feasible[0]:
+                candidates = [(rescue.family, Candidate(x[0], float(values[0])))]
+        return candidates, evaluations
+
+
+def optimize_move(
+    planner: MovePlanner,
+    plant: MultibodyPlant,
+    q_grasp: np.ndarray,
+    name: str,
+    grasp: GraspConstraint,
+    limits: JointLimits,
+    options: MoveOptimizerOptions | None = None,
+    X_WO_goal: RigidTransform | None = None,
+    spline: PlannedPath | None = None,
+    context=None,
+    cup: CupFrame | None = None,
+) -> OptimizedMove:
+    """A MOVE of object ``name`` from ``q_grasp`` to its place, as fast as found.
+
+    :meth:`MoveOptimizer.optimize` for one MOVE, planning the spline MOVE
+    first if ``spline`` is None (its time is ``timings["spline_plan"]``, not
+    part of the budget).
+
+    Args:
+        planner: The cycle planner (:class:`MovePlanner`).
+        plant: The retimer's arm plant (positions = the path's joints).
+        q_grasp: Grasp configuration (rad), the MOVE's start.
+        name: The carried object.
+        grasp: Its grasp constraint ``F w <= g``.
+        limits: Joint velocity and acceleration limits.
+        options: Settings (defaults if None).
+        X_WO_goal: Place pose of the object (default: its scenario goal).
+        spline: The planner's MOVE from ``q_grasp`` if already planned.
+        context: Scratch context of ``plant``.
+        cup: The cup frame C of ``plant`` (default ``CupFrame.of(plant)``).
+
+    Raises:
+        PlanningError: the spline MOVE could not be planned.
+        RetimeError: the spline path cannot be retimed.
+    """
+    timings = {"spline_plan": 0.0}
+    if spline is None:
+        before = time.perf_counter()
+        spline = planner.plan_move(q_grasp, name, X_WO_goal)
+        timings["spline_plan"] = time.perf_counter() - before
+    optimizer = MoveOptimizer(plant, limits, options, cup, context)
+    return optimizer.optimize(planner, spline, grasp, timings)
+
+
+class _Stopwatch:
+    """``with watch("stage"):`` adds the block's wall time to timings[stage].
+
+    And this process's CPU time to ``timings["cpu_" + stage]``.
+    """
+
+    def __init__(self, timings: dict[str, float] | None) -> None:
+        self.timings = dict(timings or {})
+        for key in ("setup", "baseline", "search", "finish"):
+            self.timings.setdefault(key, 0.0)
+            self.timings.setdefault(f"cpu_{key}", 0.0)
+        self._stage = ""
+        self._start = self._cpu = 0.0
+
+    def __call__(self, stage: str) -> _Stopwatch:
+        self._stage = stage
+        return self
+
+    def __enter__(self) -> _Stopwatch:
+        self._start, self._cpu = time.perf_counter(), time.process_time()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.timings[self._stage] += time.perf_counter() - self._start
+        self.timings[f"cpu_{self._stage}"] += time.process_time() - self._cpu
+
+
+class _Deadline:
+    """Callable: True once another step as long as the last would end past ``at``.
+
+    Called once per CMA-ES generation, it stops the search before the
+    generation that would overrun the deadline (clock seconds).
+    """
+
+    def __init__(self, clock: Callable[[], float], at: float) -> None:
+        self._clock = clock
+        self._at = at
+        self._last = clock()
+
+    def __call__(self) -> bool:
+        now = self._clock()
+        step, self._last = now - self._last, now
+        return now + step > self._at
+
+
+def _s() -> np.ndarray:
+    return np.linspace(0.0, 1.0, TILT_SAMPLES)
+
+
+def _certify(chain, family, scene, path: GeometricPath, options) -> str | None:
+    """None if the path passes the tilt, vertical-end and collision checks."""
+    tilt = chain.tilt(path.value(_s())).max()
+    if tilt > options.tilt_bound + 1e-9:
+        return f"tilt {np.degrees(tilt):.2f} deg above the bound"
+    s_up, s_down = family.segment_ends(path.knots)
+    drift = max(
+        vertical_drift(chain, path, 0.0, s_up), vertical_drift(chain, path, s_down, 1.0)
+    )
+    if drift > VERTICAL_DRIFT:
+        return f"a vertical end segment drifts {1e3 * drift:.2f} mm"
+    check = check_path(scene, path)
+    if not check.ok:
+        return f"{check.reason} at s = {check.s:.3f}"
+    return None
+
+
+__all__ = ["KEEP", "MoveOptimizer", "optimize_move"]

@@ -1,0 +1,91 @@
+"""CMA-ES over the path family's parameters, until a deadline.
+
+CMA-ES (the ``cmaes`` package, Hansen's algorithm) samples each generation
+around its mean, ranks the candidates by the objective
+(:mod:`._objective`) and adapts mean, step size and covariance. It needs no
+gradients, which suits TOPP-RA's piecewise-smooth duration: finite-difference
+descent on the same objective stalled at 0.79-0.82 of the spline path's
+duration where CMA-ES reached 0.73-0.80 with as many evaluations.
+
+The search evaluates x = 0 (the via points at the spline path's corners)
+and the warm starts (:mod:`._starts`), starts at the best of them, stops at
+the deadline (or after ``max_evaluations``) and returns the feasible
+candidates with the lowest durations, best first.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+
+import numpy as np
+from cmaes import CMA
+
+
+@dataclasses.dataclass(frozen=True)
+class Candidate:
+    """A feasible candidate: parameters x and its coarse duration (s)."""
+
+    x: np.ndarray
+    duration: float
+
+
+@dataclasses.dataclass(frozen=True)
+class SearchResult:
+    """The best feasible candidates (best first), evaluations and generations."""
+
+    candidates: list[Candidate]
+    evaluations: int
+    generations: int
+
+
+def cma_search(
+    objective: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
+    dim: int,
+    expired: Callable[[], bool],
+    sigma: float,
+    seed: int,
+    population: int | None = None,
+    keep: int = 4,
+    max_evaluations: int | None = None,
+    x0: np.ndarray | None = None,
+) -> SearchResult:
+    """Minimise ``objective`` from the best of x = 0 and ``x0`` until ``expired()``.
+
+    Args:
+        objective: Maps a batch x (P, dim) to (values (P,), feasible (P,)).
+        dim: Number of parameters.
+        expired: True once the search must stop (checked per generation).
+        sigma: Initial step size, in units of x.
+        seed: Seed of CMA-ES's sampler.
+        population: Candidates per generation (default: 4 + 3 ln dim).
+        keep: How many feasible candidates to return.
+        max_evaluations: Stop after this many evaluations as well.
+        x0: (S, dim) warm starts evaluated with x = 0 in the first batch;
+            CMA-ES starts at the best of them.
+    """
+    start = (
+        np.zeros((1, dim))
+        if x0 is None
+        else np.vstack([np.zeros(dim), np.reshape(x0, (-1, dim))])
+    )
+    values, feasible = objective(start)
+    mean = start[int(np.argmin(values))]
+    optimizer = CMA(mean=mean, sigma=sigma, seed=seed, population_size=population)
+    best = [Candidate(start[i], float(values[i])) for i in np.flatnonzero(feasible)]
+    best = sorted(best, key=lambda c: c.duration)[:keep]
+    evaluations, generations = len(start), 0
+    while not expired():
+        if max_evaluations is not None and evaluations >= max_evaluations:
+            break
+        x = np.array([optimizer.ask() for _ in range(optimizer.population_size)])
+        values, feasible = objective(x)
+        evaluations += len(x)
+        generations += 1
+        optimizer.tell(list(zip(x, values, strict=True)))
+        best += [Candidate(x[i], float(values[i])) for i in np.flatnonzero(feasible)]
+        best = sorted(best, key=lambda c: c.duration)[:keep]
+    return SearchResult(best, evaluations, generations)
+
+
+__all__ = ["Candidate", "SearchResult", "cma_search"]

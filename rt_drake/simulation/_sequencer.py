@@ -1,0 +1,357 @@
+"""The pick-and-place sequencer: APPROACH, REACH, ATTACH, MOVE, DETACH per object.
+
+The sequencer commands the arm and the suction valve. Per object it plays
+two motions from its :class:`~.motion.MotionSource`: the pick (APPROACH then
+REACH, one motion without a stop at the approach pose) and the MOVE.
+
+Planning ahead (``pipelined``, the default): the MOVE is requested when the
+pick starts moving (its grasp configuration is known), so it is planned
+during the pick and the ATTACH wait; the next object's pick is requested
+when the MOVE starts, so it is planned during the MOVE and the DETACH wait.
+The first object's pick has nothing before it to hide behind: it is
+requested at t = 0 and the arm waits for all of its planning and retiming
+(only the planner's construction, which loads the cell and the objects at
+their start poses into its collision scene, comes before the clock).
+Sequential (``pipelined=False``): each motion is requested when its phase
+starts. Either way a phase waits only for the part of its planning that did
+not fit in the time before it (:class:`~.motion.PendingMotion` defines how
+wall time is charged against simulated time), and the calls to the motion
+source, with their arguments, are the same.
+
+ATTACH and DETACH follow the scenario's vacuum (:mod:`rt_drake.model.vacuum`): fixed
+waits, or "part present" and "released" (force below the object's weight,
+object at rest) with the waits as time-outs.
+
+It measures, from the plant's body poses, how far the held object slips on
+the cup and where it lands. All that changes lives in the Context's abstract
+state.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+from pydrake.common.value import AbstractValue
+from pydrake.math import RigidTransform
+from pydrake.multibody.math import SpatialVelocity
+from pydrake.multibody.tree import BodyIndex
+from pydrake.systems.framework import BasicVector, Context, LeafSystem, State
+
+from rt_drake.model.scenario import ObjectConfig
+from rt_drake.model.vacuum import (
+    Vacuum,
+    VacuumModel,
+    is_released,
+    wait_over,
+)
+from rt_drake.simulation.motion import Motion, MotionSource, PendingMotion
+from rt_drake.simulation.records import (
+    ObjectRecord,
+    pose_difference,
+    with_placement,
+    with_slip,
+)
+from rt_drake.types.phase import Phase
+
+#: s, period of the sequencer's update (the paper's robot runs at 125 Hz).
+UPDATE_PERIOD = 1.0 / 125.0
+
+
+@dataclasses.dataclass
+class SequencerState:
+    """The sequencer's abstract state (replaced, never mutated, by updates).
+
+    ``motion`` is played with its t = 0 at simulated ``t_motion_start``;
+    ``pending`` is the next motion, planned ahead; ``pick`` the current
+    object's pick (its MOVE lifts along it).
+    """
+
+    phase: Phase
+    object_index: int
+    t_phase_start: float
+    q_hold: np.ndarray
+    motion: Motion | None = None
+    t_motion_start: float = 0.0
+    pending: PendingMotion | None = None
+    pick: Motion | None = None
+    X_CO_attached: RigidTransform | None = None
+    records: tuple[ObjectRecord, ...] = ()
+
+
+class Sequencer(LeafSystem):
+    """Runs the pick-and-place cycle of every object in turn.
+
+    .. pydrake_system::
+
+        name: Sequencer
+        input_ports:
+        - body_poses
+        - body_spatial_velocities
+        - suction_force
+        - part_present
+        output_ports:
+        - desired_state
+        - desired_acceleration
+        - valve
+
+    The inputs are the station's outputs of those names; ``desired_state``
+    ([q; v], rad and rad/s), ``desired_acceleration`` (rad/s^2) and ``valve``
+    (1: on) go to the station and depend on the state and time only. Phase
+    switches happen in a periodic unrestricted update every
+    :data:`UPDATE_PERIOD`.
+    """
+
+    def __init__(
+        self,
+        motions: MotionSource,
+        objects: list[ObjectConfig],
+        object_bodies: list[BodyIndex],
+        object_weights: list[float],
+        tool_body: BodyIndex,
+        X_TC: RigidTransform,
+        q_home: np.ndarray,
+        vacuum: Vacuum,
+        pipelined: bool = True,
+    ) -> None:
+        """Make the sequencer.
+
+        Args:
+            motions: plans and retimes the pick and the MOVE of each object.
+            objects: the objects, in picking order.
+            object_bodies: each object's body in the plant.
+            object_weights: N, each object's weight.
+            tool_body: body T carrying the cup.
+            X_TC: pose of the cup frame C in T.
+            q_home: rad, the arm's configuration at t = 0.
+            vacuum: the waits (fixed) or the signals and time-outs.
+            pipelined: plan each motion ahead (else when its phase starts).
+        """
+        super().__init__()
+        self._motions = motions
+        self._objects = list(objects)
+        self._bodies = list(object_bodies)
+        self._weights = list(object_weights)
+        self._tool = tool_body
+        self._X_TC = X_TC
+        self._vacuum = vacuum
+        self._pipelined = pipelined
+        self._n = len(q_home)
+        initial = SequencerState(Phase.APPROACH, 0, 0.0, np.array(q_home))
+        self._state_index = self.DeclareAbstractState(AbstractValue.Make(initial))
+        self._poses_port = self.DeclareAbstractInputPort(
+            "body_poses", AbstractValue.Make([RigidTransform()])
+        )
+        self._velocities_port = self.DeclareAbstractInputPort(
+            "body_spatial_velocities", AbstractValue.Make([SpatialVelocity()])
+        )
+        self._force_port = self.DeclareVectorInputPort("suction_force", 1)
+        self._present_port = self.DeclareVectorInputPort("part_present", 1)
+        state_only = {self.time_ticket(), self.abstract_state_ticket(self._state_index)}
+        self.DeclareVectorOutputPort(
+            "desired_state", 2 * self._n, self._CalcDesiredState, state_only
+        )
+        self.DeclareVectorOutputPort(
+            "desired_acceleration", self._n, self._CalcDesiredAcceleration, state_only
+        )
+        self.DeclareVectorOutputPort("valve", 1, self._CalcValve, state_only)
+        self.DeclareInitializationUnrestrictedUpdateEvent(self._Initialize)
+        self.DeclarePeriodicUnrestrictedUpdateEvent(UPDATE_PERIOD, 0.0, self._Update)
+
+    # -- reading the state ------------------------------------------------
+    def sequencer_state(self, context: Context) -> SequencerState:
+        """The current state (phase, records, ...)."""
+        return context.get_abstract_state(self._state_index).get_value()
+
+    def is_done(self, context: Context) -> bool:
+        """True once every object has been placed."""
+        return self.sequencer_state(context).phase is Phase.DONE
+
+    def _reference(self, context: Context, order: int) -> np.ndarray:
+        state = self.sequencer_state(context)
+        if state.motion is None:
+            return state.q_hold if order == 0 else np.zeros(self._n)
+        traj = state.motion.trajectory
+        t = context.get_time() - state.t_motion_start
+        if order > 0 and not 0.0 <= t <= traj.end_time():
+            return np.zeros(self._n)
+        t = min(max(t, 0.0), traj.end_time())
+        return (traj.value(t) if order == 0 else traj.EvalDerivative(t, order)).ravel()
+
+    def _CalcDesiredState(self, context: Context, output: BasicVector) -> None:
+        output.SetFromVector(
+            np.concatenate([self._reference(context, 0), self._reference(context, 1)])
+        )
+
+    def _CalcDesiredAcceleration(self, context: Context, output: BasicVector) -> None:
+        output.SetFromVector(self._reference(context, 2))
+
+    def _CalcValve(self, context: Context, output: BasicVector) -> None:
+        phase = self.sequencer_state(context).phase
+        output.SetFromVector([1.0 if phase in (Phase.ATTACH, Phase.MOVE) else 0.0])
+
+    # -- updates ------------------------------------------------------------
+    def _Initialize(self, context: Context, state: State) -> None:
+        now = context.get_time()
+        current = dataclasses.replace(
+            self.sequencer_state(context),
+            records=tuple(ObjectRecord(name=o.name) for o in self._objects),
+            t_phase_start=now,
+        )
+        if not self._objects:
+            current = dataclasses.replace(current, phase=Phase.DONE)
+        else:
+            current = self._enter(current, Phase.APPROACH, context)
+        state.get_mutable_abstract_state(self._state_index).set_value(current)
+
+    def _Update(self, context: Context, state: State) -> None:
+        current = self.sequencer_state(context)
+        if current.phase is Phase.DONE:
+            return
+        current = self._measure(context, current)
+        if self._phase_over(context, current):
+            now = context.get_time()
+            start = current.t_phase_start
+            if current.phase in (Phase.APPROACH, Phase.MOVE):
+                start = current.t_motion_start  # its plan wait is apart
+            current = self._record(current, exec_s={current.phase: now - start})
+            order = list(Phase)
+            phase = order[order.index(current.phase) + 1]
+            if phase is Phase.DONE:  # after DETACH: the next object, if any
+                nxt = current.object_index + 1
+                current = dataclasses.replace(current, object_index=nxt, pick=None)
+                phase = Phase.APPROACH if nxt < len(self._objects) else Phase.DONE
+            current = self._enter(current, phase, context)
+        state.get_mutable_abstract_state(self._state_index).set_value(current)
+
+    def _phase_over(self, context: Context, state: SequencerState) -> bool:
+        now = context.get_time()
+        waited = now - state.t_phase_start
+        if state.phase in (Phase.ATTACH, Phase.DETACH):
+            signal = self._vacuum.kind is VacuumModel.FIRST_ORDER and (
+                self._part_present(context)
+                if state.phase is Phase.ATTACH
+                else self._released(context, state.object_index)
+            )
+            name = self._objects[state.object_index].name
+            return wait_over(self._vacuum, state.phase, waited, signal, name)
+        assert state.motion is not None
+        end = state.motion.phase_end(state.phase)
+        return now - state.t_motion_start >= end - 1e-9
+
+    def _part_present(self, context: Context) -> bool:
+        return bool(self._present_port.Eval(context)[0] > 0.5)
+
+    def _released(self, context: Context, index: int) -> bool:
+        velocity = self._velocities_port.Eval(context)[int(self._bodies[index])]
+        return is_released(
+            float(self._force_port.Eval(context)[0]),
+            self._weights[index],
+            float(np.linalg.norm(velocity.translational())),
+            float(np.linalg.norm(velocity.rotational())),
+        )
+
+    def _enter(
+        self, state: SequencerState, phase: Phase, context: Context
+    ) -> SequencerState:
+        """Enter ``phase`` now, starting its motion once it is planned."""
+        now = context.get_time()
+        q_hold = state.q_hold
+        if state.motion is not None:
+            q_hold = state.motion.q_end
+        state = dataclasses.replace(state, phase=phase, t_phase_start=now)
+        if phase is Phase.REACH:  # the pick goes on
+            return state
+        if phase not in (Phase.APPROACH, Phase.MOVE):
+            return dataclasses.replace(state, q_hold=q_hold, motion=None)
+        index = state.object_index
+        pending = state.pending
+        if pending is None:  # sequential, or the first object: plan it now
+            pending = self._request(state, phase, q_hold, now)
+        motion = pending.motion
+        wait = pending.wait_s(now)
+        parts = (Phase.APPROACH, Phase.REACH) if phase is Phase.APPROACH else (phase,)
+        state = self._record(
+            state,
+            plan_times={p: motion.plan_times(p) for p in parts},
+            plan_wait_s={phase: wait},
+        )
+        state = dataclasses.replace(
+            state,
+            q_hold=q_hold,
+            motion=motion,
+            t_motion_start=now + wait,
+            pending=None,
+            pick=motion if phase is Phase.APPROACH else state.pick,
+        )
+        if phase is Phase.MOVE:
+            record = state.records[index]
+            force = float(self._force_port.Eval(context)[0])
+            state = _with_record(
+                dataclasses.replace(state, X_CO_attached=self._X_CO(context, index)),
+                dataclasses.replace(
+                    record, move_suction_force=force, guarantee=motion.guarantee
+                ),
+            )
+        if self._pipelined:  # plan the next motion while this one runs
+            nxt = Phase.MOVE if phase is Phase.APPROACH else Phase.APPROACH
+            if nxt is Phase.MOVE or index + 1 < len(self._objects):
+                request = self._request(state, nxt, motion.q_end, now + wait)
+                state = dataclasses.replace(state, pending=request)
+        return state
+
+    def _request(
+        self, state: SequencerState, phase: Phase, q_start: np.ndarray, now: float
+    ) -> PendingMotion:
+        """Plan ``phase`` (APPROACH: the pick of the object it is for) from q_start.
+
+        A pick requested during a MOVE is for the next object.
+        """
+        index = state.object_index
+        if phase is Phase.MOVE:
+            obj = self._objects[index]
+            return PendingMotion(self._motions.move(q_start, obj, state.pick), now)
+        if state.phase is Phase.MOVE:  # planning ahead, during this MOVE
+            index += 1
+        motion = self._motions.pick(q_start, self._objects[index], retreat=index > 0)
+        return PendingMotion(motion, now)
+
+    def _record(self, state: SequencerState, **fields: dict) -> SequencerState:
+        """Merge ``fields`` (dicts keyed by phase) into the current record."""
+        record = state.records[state.object_index]
+        merged: dict = {k: {**getattr(record, k), **v} for k, v in fields.items()}
+        return _with_record(state, dataclasses.replace(record, **merged))
+
+    # -- measurements -------------------------------------------------------
+    def _X_CO(self, context: Context, index: int) -> RigidTransform:
+        poses = self._poses_port.Eval(context)
+        X_WC = poses[int(self._tool)] @ self._X_TC
+        return X_WC.inverse() @ poses[int(self._bodies[index])]
+
+    def _measure(self, context: Context, state: SequencerState) -> SequencerState:
+        """Track slip during MOVE and the placement error during DETACH."""
+        index = state.object_index
+        record = state.records[index]
+        if state.phase is Phase.MOVE and state.X_CO_attached is not None:
+            record = with_slip(record, state.X_CO_attached, self._X_CO(context, index))
+        elif state.phase is Phase.DETACH:
+            X_WO = self._poses_port.Eval(context)[int(self._bodies[index])]
+            goal = self._objects[index].goal.GetDeterministicValue()
+            record = with_placement(record, goal, X_WO)
+        return _with_record(state, record)
+
+
+def _with_record(state: SequencerState, record: ObjectRecord) -> SequencerState:
+    """Return ``state`` with the current object's record replaced."""
+    records = list(state.records)
+    records[state.object_index] = record
+    return dataclasses.replace(state, records=tuple(records))
+
+
+__all__ = [
+    "ObjectRecord",
+    "Sequencer",
+    "SequencerState",
+    "UPDATE_PERIOD",
+    "pose_difference",
+]
