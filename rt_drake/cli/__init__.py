@@ -56,7 +56,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     subparsers = parser.add_subparsers(dest="command", required=True)
     for name in _COMMANDS:
-        importlib.import_module(f"rt_drake.cli.{name}").register(subparsers)
+        importlib.import_module(f"rt_drake.cli._{name}").register(subparsers)
     _name_every_command(parser)
     return parser
 
