@@ -41,9 +41,9 @@ import numpy as np
 from rt_drake import (
     CyclePlanner,
     GraspConstraint,
-    HeldObject,
     JointLimits,
     check_trajectory,
+    held_object_of,
     load_scenario,
     load_trajectory,
     make_arm_plant,
@@ -74,7 +74,7 @@ def main(out: str = "move.npz") -> None:
     # the object's inertia is expressed in the cup frame C.
     plant = make_arm_plant(scenario)
     limits = JointLimits.from_plant(plant, scenario.robot)
-    held = HeldObject.from_scenario_object(obj)
+    held = held_object_of(obj)
     grasp = GraspConstraint.for_cup(held, scenario.cup)
     result = retime(plant, move.path, limits, grasp)
     free = retime(plant, move.path, limits)

@@ -37,10 +37,10 @@ import sys
 from rt_drake import (
     CyclePlanner,
     GraspConstraint,
-    HeldObject,
     JointLimits,
     RetimeError,
     check_trajectory,
+    held_object_of,
     load_scenario,
     make_arm_plant,
     retime,
@@ -59,7 +59,7 @@ def main(out: str = "two_cups.npz") -> None:
     scenario = load_scenario(scenarios_dir() / "carton_two_cups.yaml")
     (obj,) = scenario.objects
     tool = scenario.tool_parameters()  # two CupMounts: cup, R_TC, p_TC
-    held = HeldObject.from_scenario_object(obj)  # its inertia in T
+    held = held_object_of(obj)  # its inertia in T
     print(f"object: {obj.name}")
     print(f"weight: {held.mass * GRAVITY:.2f} N")
     print(
