@@ -266,20 +266,6 @@ class GraspConstraint:
         arguments.instance(
             self.held, "held", HeldObject, where=where, error=RetimeInputError
         )
-        fields = {field.name for field in dataclasses.fields(self)}
-        sources = (
-            ("cup", CupParameters),
-            ("tool", ToolParameters),
-            ("objects", ObjectSet),
-        )
-        for name, kind in sources:
-            if name in fields:  # a family member built from a cup, tool or set
-                value = getattr(self, name)
-                arguments.instance(
-                    value, name, kind, where=where, error=RetimeInputError
-                )
-                if name != "objects":
-                    _check_grip(value, where)
         try:  # shapes, no rows, NaN or inf, an all-zero row (constrains nothing)
             F, g = check_h_representation(self.F, self.g, where)
         except InputError as error:
@@ -503,6 +489,14 @@ class GraspConstraint:
         return ToolGrasp(held=held, F=inner.F, g=inner.g, tool=tool)
 
 
+def _check_source(grasp: GraspConstraint, name: str, kind: type) -> None:
+    """The family member's cup or tool: of its type, with friction > 0."""
+    where = type(grasp).__name__
+    value = getattr(grasp, name)
+    arguments.instance(value, name, kind, where=where, error=RetimeInputError)
+    _check_grip(value, where)
+
+
 @dataclasses.dataclass(frozen=True, eq=False)
 class CupGrasp(GraspConstraint):
     """One object on one cup, under rows of that cup (the nominal cup).
@@ -512,6 +506,10 @@ class CupGrasp(GraspConstraint):
     """
 
     cup: CupParameters
+
+    def __post_init__(self) -> None:
+        _check_source(self, "cup", CupParameters)
+        super().__post_init__()
 
     def describe(self) -> str:
         """E.g. ``object 0.551 kg, suction 20 N (at least 18 N)``."""
@@ -527,6 +525,10 @@ class ToolGrasp(GraspConstraint):
     """
 
     tool: ToolParameters
+
+    def __post_init__(self) -> None:
+        _check_source(self, "tool", ToolParameters)
+        super().__post_init__()
 
     def describe(self) -> str:
         """E.g. ``object 0.551 kg, 2 cups, suction 20 + 20 N``."""
@@ -551,6 +553,17 @@ class ObjectSetGrasp(GraspConstraint):
 
     cup: CupParameters
     objects: ObjectSet
+
+    def __post_init__(self) -> None:
+        _check_source(self, "cup", CupParameters)
+        arguments.instance(
+            self.objects,
+            "objects",
+            ObjectSet,
+            where=type(self).__name__,
+            error=RetimeInputError,
+        )
+        super().__post_init__()
 
     @property
     def is_robust(self) -> bool:
