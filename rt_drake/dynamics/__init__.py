@@ -1,10 +1,11 @@
 """The held object's wrench along a path: kinematics and Newton-Euler in the cup frame.
 
-- :mod:`.chain` (kernels in :mod:`.chain_kernels`, numba): the serial chain
-  from the world to the cup, batched forward kinematics of the cup with the
-  Jacobian's axes (the retimer's and the optimiser's).
-- :mod:`.body_kinematics` (numpy): the poses of every body of a tree-shaped
-  arm at thousands of samples at once (the planner's dense collision check).
+- :mod:`.chain` (kernels in :mod:`.chain_kernels`, numba): the one forward
+  kinematics of rt_drake, a serial chain from the world to a body, batched;
+  for the cup with the Jacobian's axes (the retimer's and the optimiser's).
+- :mod:`.body_kinematics`: every robot body's pose at thousands of samples at
+  once, each body's chain through the same kernel (the planner's dense
+  collision check).
 - :mod:`.cup_frame`: the cup frame C of a plant, looked up once.
 - :mod:`.wrench`: the object wrench and joint torques along a path, Drake's
   route; :mod:`.newton_euler` the equations; :mod:`.regressor` the wrench as

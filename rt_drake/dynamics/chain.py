@@ -45,7 +45,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
-from pydrake.multibody.tree import Frame, RevoluteJoint, WeldJoint
+from pydrake.multibody.tree import BodyIndex, Frame, RevoluteJoint, WeldJoint
 
 from rt_drake.dynamics.chain_kernels import (
     accelerations,
@@ -62,6 +62,69 @@ class ChainError(InputError):
     """The plant's chain to the cup is not a serial chain of revolute joints."""
 
 
+def chain_tables(
+    plant: MultibodyPlant, body: BodyIndex
+) -> tuple[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray], int]:
+    """The joint steps from the world to ``body``, as :func:`frames` takes them.
+
+    Step j is ``X_PF_j RotAxis(q[index_j]) X_MB_j`` (``pre``, the rotation,
+    ``post``) for a revolute joint, and one fixed ``pre`` (``index_j = -1``)
+    for a weld; ``axis_j`` is the revolute axis in F (unit).
+
+    Returns:
+        ``((pre (S, 4, 4), post (S, 4, 4), index (S,), axis (S, 3)), revolute
+        joints on the way)``.
+
+    Raises:
+        ChainError: a body on the way has no inboard joint, or a joint is
+            neither revolute nor weld.
+    """
+    inboard = {
+        plant.get_joint(j).child_body().index(): plant.get_joint(j)
+        for j in plant.GetJointIndices()
+    }
+    joints = []
+    current = plant.get_body(body)
+    while current.index() != plant.world_body().index():
+        joint = inboard.get(current.index())
+        if joint is None:
+            raise ChainError(f"body {current.name()} has no inboard joint")
+        joints.append(joint)
+        current = joint.parent_body()
+    joints.reverse()
+    steps: list[tuple[np.ndarray, np.ndarray | None, int, Any]] = []
+    for joint in joints:
+        X_PF = joint.frame_on_parent().GetFixedPoseInBodyFrame().GetAsMatrix4()
+        X_MB = joint.frame_on_child().GetFixedPoseInBodyFrame().inverse()
+        X_MB = X_MB.GetAsMatrix4()
+        if isinstance(joint, RevoluteJoint):
+            k = np.asarray(joint.revolute_axis(), float)
+            k /= np.linalg.norm(k)
+            steps.append((X_PF, X_MB, joint.position_start(), k))
+        elif isinstance(joint, WeldJoint):
+            X = X_PF @ joint.X_FM().GetAsMatrix4() @ X_MB
+            steps.append((X, None, -1, None))
+        else:
+            raise ChainError(
+                f"joint {joint.name()}: only revolute and weld joints supported"
+            )
+    tables = (
+        kernel_array(np.array([X for X, _, _, _ in steps]).reshape(-1, 4, 4)),
+        kernel_array(
+            np.array([np.eye(4) if Y is None else Y for _, Y, _, _ in steps]).reshape(
+                -1, 4, 4
+            )
+        ),
+        np.array([i for _, _, i, _ in steps], dtype=np.int64),
+        kernel_array(
+            np.array([np.zeros(3) if k is None else k for _, _, _, k in steps]).reshape(
+                -1, 3
+            )
+        ),
+    )
+    return tables, sum(1 for _, _, i, _ in steps if i >= 0)
+
+
 class SerialChain:
     """Batched forward kinematics of a frame C and its path derivatives.
 
@@ -76,37 +139,7 @@ class SerialChain:
     """
 
     def __init__(self, plant: MultibodyPlant, frame: Frame) -> None:
-        body = frame.body()
-        inboard = {
-            plant.get_joint(j).child_body().index(): plant.get_joint(j)
-            for j in plant.GetJointIndices()
-        }
-        steps = []
-        while body.index() != plant.world_body().index():
-            joint = inboard.get(body.index())
-            if joint is None:
-                raise ChainError(f"body {body.name()} has no inboard joint")
-            steps.append(joint)
-            body = joint.parent_body()
-        steps.reverse()
-        self._steps: list[tuple[np.ndarray, np.ndarray | None, int, Any]] = []
-        revolute = 0
-        for joint in steps:
-            X_PF = joint.frame_on_parent().GetFixedPoseInBodyFrame().GetAsMatrix4()
-            X_MB = joint.frame_on_child().GetFixedPoseInBodyFrame().inverse()
-            X_MB = X_MB.GetAsMatrix4()
-            if isinstance(joint, RevoluteJoint):
-                k = np.asarray(joint.revolute_axis(), float)
-                k /= np.linalg.norm(k)
-                self._steps.append((X_PF, X_MB, joint.position_start(), k))
-                revolute += 1
-            elif isinstance(joint, WeldJoint):
-                X = X_PF @ joint.X_FM().GetAsMatrix4() @ X_MB
-                self._steps.append((X, None, -1, None))
-            else:
-                raise ChainError(
-                    f"joint {joint.name()}: only revolute and weld joints supported"
-                )
+        steps, revolute = chain_tables(plant, frame.body().index())
         if revolute != plant.num_positions() or revolute != plant.num_velocities():
             raise ChainError(
                 f"{plant.num_positions()=} but the cup's chain has {revolute} "
@@ -114,15 +147,10 @@ class SerialChain:
             )
         self.num_joints = revolute
         #: Position index of the chain's k-th revolute joint.
-        self.order = np.array([i for _, _, i, _ in self._steps if i >= 0])
+        index = steps[2]
+        self.order = index[index >= 0]
         X_BC = frame.GetFixedPoseInBodyFrame().GetAsMatrix4()
-        self._tables = (
-            np.array([X for X, _, _, _ in self._steps]),
-            np.array([np.eye(4) if Y is None else Y for _, Y, _, _ in self._steps]),
-            np.array([i for _, _, i, _ in self._steps], dtype=np.int64),
-            np.array([np.zeros(3) if k is None else k for _, _, _, k in self._steps]),
-            kernel_array(X_BC),
-        )
+        self._tables = (*steps, kernel_array(X_BC))
         #: Gravity of the plant when the chain was built (m/s^2, in W).
         self.gravity_W = np.asarray(plant.gravity_field().gravity_vector(), float)
 
