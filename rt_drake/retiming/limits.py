@@ -199,7 +199,10 @@ class JointLimits:
                     f"plant has {n} joints"
                 )
         return cls(
-            chosen["velocity"], chosen["acceleration"], chosen.get("torque"), jerk_limits
+            chosen["velocity"],
+            chosen["acceleration"],
+            chosen.get("torque"),
+            jerk_limits,
         )
 
 

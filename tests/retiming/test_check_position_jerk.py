@@ -72,7 +72,9 @@ def test_the_jerk_of_a_sine_is_checked_against_its_amplitude(
     assert Margin.JERK in check.margins
     assert check.passed() is passes
     assert check.margins[Margin.JERK].index == 2
-    assert check.margins[Margin.JERK].value == pytest.approx(1.0 - 1.0 / factor, abs=2e-3)
+    assert check.margins[Margin.JERK].value == pytest.approx(
+        1.0 - 1.0 / factor, abs=2e-3
+    )
     assert "rad/s^3" in check.summary()
 
 
@@ -91,7 +93,10 @@ def test_topp_ra_acceleration_jumps_break_a_jerk_limit(plant, limits):
 def dataclass_jerk(limits: JointLimits, per_second: float) -> JointLimits:
     """``limits`` with jerk limits of ``per_second`` times the accelerations."""
     return JointLimits(
-        limits.velocity, limits.acceleration, limits.torque, per_second * limits.acceleration
+        limits.velocity,
+        limits.acceleration,
+        limits.torque,
+        per_second * limits.acceleration,
     )
 
 
