@@ -167,6 +167,30 @@ class JerkTimedPath(Trajectory):
         """``end_time() - start_time()``, s."""
         return float(self._t[-1] - self._t[0])
 
+    def time_at(self, s: float) -> float:
+        """Time (s) at which the motion reaches path parameter ``s`` (in [0, 1]).
+
+        Start and stop pieces in closed form (``s = j tau^3 / 6``); interior
+        ones by bisection on ``s(tau)``, which increases on the segment.
+        """
+        s = float(np.clip(s, self._s[0], self._s[-1]))
+        i = int(
+            np.clip(np.searchsorted(self._s, s, side="right") - 1, 0, len(self._ds) - 1)
+        )
+        t0, t1 = self._t[i], self._t[i + 1]
+        if self._kind[i] == Piece.START:
+            return float(t0 + np.cbrt(6.0 * (s - self._s[i]) / self._jerk[i]))
+        if self._kind[i] == Piece.STOP:
+            return float(t1 - np.cbrt(6.0 * (self._s[i + 1] - s) / self._jerk[i]))
+        low, high = t0, t1
+        for _ in range(60):
+            middle = 0.5 * (low + high)
+            if self.path_state(middle)[0][0] < s:
+                low = middle
+            else:
+                high = middle
+        return float(0.5 * (low + high))
+
     def path_state(self, times: float | np.ndarray) -> list[np.ndarray]:
         """``s, s', s'', s'''`` at each time, each (M,) (rest outside the span)."""
         times = np.atleast_1d(np.asarray(times, dtype=float))
