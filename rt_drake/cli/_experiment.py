@@ -23,7 +23,12 @@ import argparse
 from pathlib import Path
 
 from rt_drake.cli import _campaign_command as campaign
-from rt_drake.cli._args import add_optimize_flag, int_in, nonnegative_int
+from rt_drake.cli._args import (
+    add_jerk_flag,
+    add_optimize_flag,
+    int_in,
+    nonnegative_int,
+)
 
 #: Most random paths (each is planned, retimed twice and simulated ~12 times).
 MAX_TRIALS = 1000
@@ -76,6 +81,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "uncertainty set",
     )
     add_optimize_flag(transport, "also optimise each MOVE and play it")
+    add_jerk_flag(transport)
     transport.add_argument("--out", type=Path, required=True, help="output directory")
     transport.set_defaults(run=run_transport)
 
@@ -124,6 +130,7 @@ def run_transport(args: argparse.Namespace) -> int:
             optimize=args.optimize,
             out_dir=args.out,
             progress=lambda done, n: progress.step(done, "trials done"),
+            jerk_limits=not args.no_jerk_limits,
         )
     finally:
         progress.close()

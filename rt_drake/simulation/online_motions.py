@@ -270,6 +270,8 @@ class OnlineMotions:
             self._cup,
         )
         u = np.append(result.sdd, result.sdd[-1])[:, None]
+        if result.path_acceleration is not None:  # jerk-limited: s'' at s_i
+            u = result.path_acceleration[:, None]
         x = (result.sd**2)[:, None]
         w = a * u + b * x + c
         return np.min((grasp.g - w @ grasp.F.T) / grasp.g, axis=1)
