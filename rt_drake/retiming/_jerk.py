@@ -55,10 +55,14 @@ from rt_drake.retiming.limits import JointLimits
 
 #: Fractions of each segment evaluated exactly after each LP sequence.
 DENSE = np.linspace(0.0, 1.0, 9)
-#: Of :data:`DENSE`, the ones in the first LPs (indices).
-FIRST = (0, 4, 8)
+#: Of :data:`DENSE`, the ones in the first LPs (indices): both sides of
+#: every grid point (the jerk differs; the other rows are taken once).
+FIRST = (0, 8)
 #: Grasp rows with at least this ratio on TOPP-RA's profile enter the LPs.
 SCREEN = 0.9
+#: Joint rows (acceleration, torque: on TOPP-RA's profile; jerk: on the
+#: previous LP's) with at least this ratio enter the LPs.
+JOINT_SCREEN = 0.5
 #: Relative change of the duration that ends a sequence of LPs.
 CONVERGED = 1e-4
 #: LPs per sequence, at most.
@@ -148,10 +152,13 @@ def jerk_limited(
     u_ref = _topp_u(s_topp, x_topp, dense.s)
     active = np.zeros(len(dense.s), dtype=bool)
     active[np.isin(dense.k, FIRST)] = True
+    x_topp_dense = np.interp(dense.s, s_topp, x_topp)
     rows = None
     if grasp is not None:
-        ratio = dense.grasp_ratio(np.interp(dense.s, s_topp, x_topp), u_ref)
+        ratio = dense.grasp_ratio(x_topp_dense, u_ref)
         rows = (ratio >= SCREEN) & active[:, None]
+    keep = dense.joint_ratios(x_topp_dense, u_ref, limits).at_least(JOINT_SCREEN)
+    jerk_keep = None
     bounds = _rest_bounds(spline, s, kinds, limits.jerk)
     x_bar = np.maximum(x_ref, 0.0)
     x_dense = np.interp(dense.s, s, x_bar)
@@ -161,8 +168,8 @@ def jerk_limited(
         rounds += 1
         previous = np.inf
         for _ in range(MAX_LPS):
-            z = _solve(s, kinds, dense, active, rows, x_dense, x_bar, limits, bounds,
-                       sd_start, sd_end)  # fmt: skip
+            z = _solve(s, kinds, dense, active, rows, keep, jerk_keep, x_dense,
+                       x_bar, limits, bounds, sd_start, sd_end)  # fmt: skip
             lps += 1
             x, u = _split(z, len(s))
             duration = JerkTimedPath(spline, s, x, u).duration
@@ -170,6 +177,8 @@ def jerk_limited(
                 best = (duration, z)
             x_bar = np.maximum(x, 0.0)
             x_dense = np.maximum(dense.maps.X @ z, 0.0)
+            jerk_keep = dense.jerk_ratio(z, limits) >= JOINT_SCREEN
+            jerk_keep |= keep.full[:, None]
             if abs(previous - duration) <= CONVERGED * duration:
                 break
             previous = duration
@@ -180,6 +189,7 @@ def jerk_limited(
         if not over.any() or rounds == MAX_ROUNDS:
             break
         active |= over
+        keep = keep.with_full(over)
         if rows is not None:
             rows |= dense.grasp_excess(z) > tolerance
         best = None  # the rows changed: the old optimum may break them
@@ -259,6 +269,35 @@ def _rest_bounds(
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
+class _Keep:
+    """Which joint rows enter the LPs: ratios, or booleans after ``>=``.
+
+    ``full``: points where a limit was exceeded, which get every row.
+    """
+
+    acceleration: np.ndarray
+    torque: np.ndarray | None
+    full: np.ndarray
+
+    def at_least(self, threshold: float) -> _Keep:
+        full = self.full[:, None]
+        return _Keep(
+            (self.acceleration >= threshold) | full,
+            None if self.torque is None else (self.torque >= threshold) | full,
+            self.full,
+        )
+
+    def with_full(self, over: np.ndarray) -> _Keep:
+        """Every row at the points ``over`` too."""
+        full = (self.full | over)[:, None]
+        return _Keep(
+            self.acceleration | full,
+            None if self.torque is None else self.torque | full,
+            self.full | over,
+        )
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
 class _Dense:
     """The path at :data:`DENSE` of every segment, and the maps of x, u, k there."""
 
@@ -296,6 +335,24 @@ class _Dense:
             maps=maps,
             grasp=grasp,
         )
+
+    def joint_ratios(self, x: np.ndarray, u: np.ndarray, limits: JointLimits) -> _Keep:
+        """Acceleration and torque ratios per joint at (x, u), (P, n) each."""
+        smp = self.samples
+        acc = np.abs(smp.dq * u[:, None] + smp.ddq * x[:, None]) / limits.acceleration
+        torque = None
+        if smp.torque is not None and limits.torque is not None:
+            a, b, c = smp.torque
+            torque = np.abs(a * u[:, None] + b * x[:, None] + c) / limits.torque
+        return _Keep(acc, torque, np.zeros(len(x), dtype=bool))
+
+    def jerk_ratio(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
+        """Jerk ratio per joint at the interior points, (P, n) (0 elsewhere)."""
+        assert limits.jerk is not None
+        x, u, k = self.maps.X @ z, self.maps.U @ z, self.maps.K @ z
+        smp = self.samples
+        jerk = jerk_values(x, u, k, smp.dq, smp.ddq, self.dddq) / limits.jerk
+        return np.where(self.inner[:, None], np.abs(jerk), 0.0)
 
     def grasp_ratio(self, x: np.ndarray, u: np.ndarray) -> np.ndarray:
         """``F_r w / g_r`` at every point and row, (P, R)."""
@@ -361,6 +418,8 @@ def _solve(
     dense: _Dense,
     active: np.ndarray,
     rows: np.ndarray | None,
+    keep: _Keep,
+    jerk_keep: np.ndarray | None,
     x_dense: np.ndarray,
     x_bar: np.ndarray,
     limits: JointLimits,
@@ -368,13 +427,20 @@ def _solve(
     sd_start: float,
     sd_end: float,
 ) -> np.ndarray:
-    """One LP (module docstring, step 2): z = [x, u]."""
+    """One LP (module docstring, step 2): z = [x, u].
+
+    The rows other than the jerk's are taken once per point: at the end of
+    a segment only where it is not the next one's start (or a full point).
+    """
     assert limits.jerk is not None
     size = len(s)
     index = np.flatnonzero(active)
-    maps = PointMaps(*(m[index] for m in dense.maps))
+    last = len(DENSE) - 1
+    repeated = (dense.k == last) & (np.arange(len(dense.s)) < len(dense.s) - 1)
+    once = np.flatnonzero(active & (~repeated | keep.full))
+    maps = PointMaps(*(m[once] for m in dense.maps))
     smp = dense.samples
-    dq, ddq = smp.dq[index], smp.ddq[index]
+    dq, ddq = smp.dq[once], smp.ddq[once]
     blocks, rhs = [], []
 
     def add(alpha: np.ndarray, beta: np.ndarray, bound: np.ndarray) -> None:
@@ -382,24 +448,32 @@ def _solve(
         blocks.append(A)
         rhs.append(b)
 
-    zeros = np.zeros((len(index), 1))
-    add(zeros, np.ones_like(zeros), smp.x_cap[index][:, None])  # velocity
-    add(zeros, -np.ones_like(zeros), zeros)  # x >= 0
+    zeros = np.zeros((len(once), 1))
+    add(zeros, np.ones_like(zeros), smp.x_cap[once][:, None])  # velocity
+    inside = ((dense.k[once] > 0) & (dense.k[once] < last))[:, None]
+    add(zeros, -np.ones_like(zeros), np.where(inside, 0.0, np.inf))  # x >= 0
+    acceleration = np.where(keep.acceleration[once], limits.acceleration, np.inf)
     for sign in (1.0, -1.0):
-        add(sign * dq, sign * ddq, np.broadcast_to(limits.acceleration, dq.shape))
+        add(sign * dq, sign * ddq, acceleration)
         if smp.torque is not None and limits.torque is not None:
-            a, b, c = (v[index] for v in smp.torque)
-            add(sign * a, sign * b, limits.torque - sign * c)
+            assert keep.torque is not None
+            a, b, c = (v[once] for v in smp.torque)
+            bound = np.where(keep.torque[once], limits.torque - sign * c, np.inf)
+            add(sign * a, sign * b, bound)
     if rows is not None and dense.grasp is not None and smp.wrench is not None:
-        a, b, c = (v[index] for v in smp.wrench)
-        F, g = dense.grasp.F, dense.grasp.g
-        mask = rows[index]
-        bound = np.where(mask, g - c @ F.T, np.inf)
+        mask = rows[once]
+        chosen = np.flatnonzero(mask.any(axis=0))
+        a, b, c = (v[once] for v in smp.wrench)
+        F, g = dense.grasp.F[chosen], dense.grasp.g[chosen]
+        bound = np.where(mask[:, chosen], g - c @ F.T, np.inf)
         add(a @ F.T, b @ F.T, bound)
     floor = 1e-6 * max(float(np.max(x_dense)), 1e-12)
+    jerk_maps = PointMaps(*(m[index] for m in dense.maps))
     A, b = jerk_rows(
-        maps, dense.inner[index], dq, ddq, dense.dddq[index],
+        jerk_maps, dense.inner[index], dense.samples.dq[index],
+        dense.samples.ddq[index], dense.dddq[index],
         np.maximum(x_dense, floor)[index], limits.jerk,
+        None if jerk_keep is None else jerk_keep[index],
     )  # fmt: skip
     blocks.append(A)
     rhs.append(b)

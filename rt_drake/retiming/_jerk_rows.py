@@ -115,30 +115,32 @@ def jerk_rows(
     dddq: np.ndarray,
     x_bar: np.ndarray,
     jerk: np.ndarray,
+    keep: np.ndarray | None = None,
 ) -> tuple[sparse.csr_matrix, np.ndarray]:
     """``+-B_j + J_j x / (2 xbar^1.5) <= 1.5 J_j / sqrt(xbar)`` at interior points.
 
     ``inner``: (P,) which points lie on interior pieces; ``dq``, ``ddq``,
-    ``dddq``: (P, n) the path's derivatives there (q''' on the piece's own
-    side of a knot); ``x_bar``: (P,) > 0 the previous iterate.
+    ``dddq``: (P, n) the path's derivatives there (the third on the piece's
+    own side of a knot); ``x_bar``: (P,) > 0 the previous iterate; ``keep``:
+    (P, n) which joints' rows to make (None: all).
     """
     index = np.flatnonzero(inner)
     X, U, K = (m[index] for m in maps)
     slope = 0.5 * jerk[None, :] / x_bar[index, None] ** 1.5
     bound = 1.5 * jerk[None, :] / np.sqrt(x_bar[index, None])
+    chosen = np.ones(bound.shape, dtype=bool) if keep is None else keep[index]
     blocks, rhs = [], []
-    n = dq.shape[1]
-    p = np.repeat(np.arange(len(index)), n)
+    p, _ = np.nonzero(chosen)
     for sign in (1.0, -1.0):
-        a_k = sign * dq[index].ravel()
-        a_u = sign * 3.0 * ddq[index].ravel()
-        a_x = (sign * dddq[index] + slope).ravel()
+        a_k = sign * dq[index][chosen]
+        a_u = sign * 3.0 * ddq[index][chosen]
+        a_x = (sign * dddq[index] + slope)[chosen]
         blocks.append(
             sparse.diags(a_k) @ K[p]
             + sparse.diags(a_u) @ U[p]
             + sparse.diags(a_x) @ X[p]
         )
-        rhs.append(bound.ravel())
+        rhs.append(bound[chosen])
     return sparse.csr_matrix(sparse.vstack(blocks)), np.concatenate(rhs)
 
 
