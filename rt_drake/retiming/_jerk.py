@@ -270,7 +270,7 @@ def _rest_bounds(
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class _Keep:
-    """Which joint rows enter the LPs: ratios, or booleans after ``>=``.
+    """Which joint rows enter the LPs: ratios, or booleans after :meth:`at_least`.
 
     ``full``: points where a limit was exceeded, which get every row.
     """
@@ -280,6 +280,7 @@ class _Keep:
     full: np.ndarray
 
     def at_least(self, threshold: float) -> _Keep:
+        """Rows whose ratio is at least ``threshold`` (every row of a full point)."""
         full = self.full[:, None]
         return _Keep(
             (self.acceleration >= threshold) | full,
