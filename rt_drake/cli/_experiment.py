@@ -93,6 +93,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         default="stack_four_objects",
         help="scenario (default stack_four_objects)",
     )
+    add_jerk_flag(cycle)
     cycle.add_argument("--out", type=Path, required=True, help="output directory")
     cycle.set_defaults(run=run_cycle_experiment)
 
@@ -208,5 +209,6 @@ def run_cycle_experiment(args: argparse.Namespace) -> int:
         seed=0,
         time_step=1e-3,
         optimize=None,
+        no_jerk_limits=args.no_jerk_limits,
     )
     return run_command.run(namespace)

@@ -49,6 +49,7 @@ from rt_drake.retiming._joint_path import JointPath
 from rt_drake.retiming._retime_errors import (
     LimitsBetweenGridPointsError,
     PathNotControllableError,
+    RetimeInputError,
 )
 from rt_drake.retiming._samples import PathSamples
 from rt_drake.retiming.limits import JointLimits
@@ -172,8 +173,12 @@ def jerk_limited(
                        x_bar, limits, bounds, sd_start, sd_end)  # fmt: skip
             lps += 1
             x, u = _split(z, len(s))
-            duration = JerkTimedPath(spline, s, x, u).duration
-            if best is None or duration < best[0]:
+            try:
+                duration = JerkTimedPath(spline, s, x, u).duration
+            except RetimeInputError:  # s' = 0 between the LP's points
+                duration = np.inf
+                active |= dense.maps.X @ z <= 0.0
+            if np.isfinite(duration) and (best is None or duration < best[0]):
                 best = (duration, z)
             x_bar = np.maximum(x, 0.0)
             x_dense = np.maximum(dense.maps.X @ z, 0.0)
@@ -480,10 +485,16 @@ def _solve(
     rhs.append(b)
     A_eq, b_eq = _continuity(s, kinds)
     ds = np.diff(s)
-    weight = np.zeros(2 * size)
-    width = 0.5 * (np.append(ds, 0.0) + np.insert(ds, 0, 0.0))
+    # Simpson's rule on each segment: T = sum ds / sqrt(x) at its ends and
+    # middle, linearised at the previous profile (d/dx x^-1/2 = -x^-1.5 / 2).
+    middle = np.flatnonzero(dense.k == len(DENSE) // 2)
     scale = max(float(np.max(x_bar)), 1e-12)
-    weight[:size] = -width / np.maximum(x_bar, 1e-3 * scale) ** 1.5
+    x_middle = np.maximum(x_dense[middle], 1e-3 * scale)
+    width = (np.append(ds, 0.0) + np.insert(ds, 0, 0.0)) / 6.0
+    weight = -dense.maps.X[middle].T @ (4.0 / 6.0 * ds / (2.0 * x_middle**1.5))
+    weight[:size] -= width / (2.0 * np.maximum(x_bar, 1e-3 * scale) ** 1.5)
+    blocks.append(-dense.maps.X[middle])  # x >= 0 in the middle of each segment
+    rhs.append(np.zeros(len(middle)))
     lower = np.full(2 * size, -np.inf)
     upper = np.full(2 * size, np.inf)
     lower[:size] = 0.0
