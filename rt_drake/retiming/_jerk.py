@@ -36,14 +36,16 @@ from scipy import sparse
 from scipy.optimize import linprog
 
 from rt_drake.retiming._check import DEFAULT_TOLERANCE, Margin
-from rt_drake.retiming._jerk_rows import (
-    PointMaps,
-    affine_rows,
-    jerk_rows,
-    jerk_values,
-    point_maps,
-    rest_bound,
+from rt_drake.retiming._jerk_points import (
+    DENSE,
+    JERK_DENSE,
+    DensePoints,
+    GraspRows,
+    JerkPoints,
+    Keep,
+    rest_bounds,
 )
+from rt_drake.retiming._jerk_rows import PointMaps, affine_rows, jerk_rows
 from rt_drake.retiming._jerk_timed_path import JerkTimedPath, Piece
 from rt_drake.retiming._joint_path import JointPath
 from rt_drake.retiming._retime_errors import (
@@ -54,11 +56,6 @@ from rt_drake.retiming._retime_errors import (
 from rt_drake.retiming._samples import PathSamples
 from rt_drake.retiming.limits import JointLimits
 
-#: Fractions of each segment evaluated exactly after each LP sequence.
-DENSE = np.linspace(0.0, 1.0, 9)
-#: Of :data:`DENSE`, the ones in the first LPs (indices): both sides of
-#: every grid point (the jerk differs; the other rows are taken once).
-FIRST = (0, 8)
 #: Grasp rows with at least this ratio on TOPP-RA's profile enter the LPs.
 SCREEN = 0.9
 #: Joint rows (acceleration, torque: on TOPP-RA's profile; jerk: on the
@@ -72,8 +69,6 @@ MAX_LPS = 12
 MAX_ROUNDS = 6
 #: Points halving towards each end at rest.
 END_POINTS = 6
-#: Fractions of a start or stop piece where its jerk bound is evaluated.
-_REST = np.linspace(0.0, 1.0, 65)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -82,10 +77,13 @@ class JerkProfile:
 
     Attributes:
         trajectory: The motion (:class:`._jerk_timed_path.JerkTimedPath`).
-        s, x, u: (N+1,) the grid, ``s'^2`` and ``s''`` there.
-        margins: Per constraint, (N+1,) smallest relative slack at the grid
+        s: (N+1,) the grid.
+        x: (N+1,) ``s'^2`` there.
+        u: (N+1,) ``s''`` there.
+        margins: Per limit, (N+1,) smallest relative slack at the grid
             points (the segment starting there; the last point, the end).
-        lps: LPs solved; rounds: sequences of LPs.
+        lps: LPs solved.
+        rounds: Sequences of LPs.
         grasp_rows: (point, row) pairs of the grasp in the last LP.
     """
 
@@ -100,11 +98,28 @@ class JerkProfile:
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class _Grasp:
-    """The grasp's rows ``F w <= g`` (or None)."""
+class _Problem:
+    """What the LPs are built from (fixed for one retime)."""
 
-    F: np.ndarray
-    g: np.ndarray
+    s: np.ndarray
+    kinds: np.ndarray
+    dense: DensePoints
+    jerk: JerkPoints
+    limits: JointLimits
+    bounds: dict[int, tuple[int, float]]
+    sd_start: float
+    sd_end: float
+
+
+@dataclasses.dataclass
+class _Selection:
+    """Which points and rows the next LP takes (grows between rounds)."""
+
+    active: np.ndarray
+    rows: np.ndarray | None
+    keep: Keep
+    jerk_active: np.ndarray
+    jerk_keep: np.ndarray | None = None
 
 
 def jerk_limited(
@@ -142,83 +157,102 @@ def jerk_limited(
     """
     assert limits.jerk is not None
     s = _grid(s_topp, sd_start, sd_end)
-    x_ref = np.interp(s, s_topp, x_topp)
     kinds = np.full(len(s) - 1, Piece.INTERIOR, dtype=int)
     if sd_start == 0.0:
         kinds[0] = Piece.START
     if sd_end == 0.0:
         kinds[-1] = Piece.STOP
-    grasp = None if F is None or g is None else _Grasp(F, g)
-    dense = _Dense.of(spline, sample, s, kinds, limits, grasp)
+    grasp = None if F is None or g is None else GraspRows(F, g)
+    dense = DensePoints.of(sample, s, kinds, grasp)
+    points = JerkPoints.of(spline, s, kinds)
+    problem = _Problem(
+        s, kinds, dense, points, limits, rest_bounds(spline, s, kinds, limits.jerk),
+        sd_start, sd_end,
+    )  # fmt: skip
+    x_ref = np.interp(dense.s, s_topp, x_topp)
     u_ref = _topp_u(s_topp, x_topp, dense.s)
-    active = np.zeros(len(dense.s), dtype=bool)
-    active[np.isin(dense.k, FIRST)] = True
-    x_topp_dense = np.interp(dense.s, s_topp, x_topp)
+    active = np.isin(dense.k, (0, len(DENSE) - 1))
     rows = None
     if grasp is not None:
-        ratio = dense.grasp_ratio(x_topp_dense, u_ref)
-        rows = (ratio >= SCREEN) & active[:, None]
-    keep = dense.joint_ratios(x_topp_dense, u_ref, limits).at_least(JOINT_SCREEN)
-    jerk_keep = None
-    bounds = _rest_bounds(spline, s, kinds, limits.jerk)
-    x_bar = np.maximum(x_ref, 0.0)
+        rows = (dense.grasp_ratio(x_ref, u_ref) >= SCREEN) & active[:, None]
+    chosen = _Selection(
+        active=active,
+        rows=rows,
+        keep=dense.joint_ratios(x_ref, u_ref, limits).at_least(JOINT_SCREEN),
+        jerk_active=np.isin(points.k, (0, len(JERK_DENSE) - 1)),
+    )
+    x_bar = np.maximum(np.interp(s, s_topp, x_topp), 0.0)
     x_dense = np.interp(dense.s, s, x_bar)
+    x_jerk = np.interp(points.s, s, x_bar)
     lps = rounds = 0
     best: tuple[float, np.ndarray] | None = None
     while True:
         rounds += 1
         previous = np.inf
         for _ in range(MAX_LPS):
-            z = _solve(s, kinds, dense, active, rows, keep, jerk_keep, x_dense,
-                       x_bar, limits, bounds, sd_start, sd_end)  # fmt: skip
+            z = _solve(problem, chosen, x_bar, x_dense, x_jerk)
             lps += 1
             x, u = _split(z, len(s))
             try:
                 duration = JerkTimedPath(spline, s, x, u).duration
             except RetimeInputError:  # s' = 0 between the LP's points
                 duration = np.inf
-                active |= dense.maps.X @ z <= 0.0
+                chosen.active |= dense.maps.X @ z <= 0.0
             if np.isfinite(duration) and (best is None or duration < best[0]):
                 best = (duration, z)
-            x_bar = np.maximum(x, 0.0)
+            x_bar = x
             x_dense = np.maximum(dense.maps.X @ z, 0.0)
-            jerk_keep = dense.jerk_ratio(z, limits) >= JOINT_SCREEN
-            jerk_keep |= keep.full[:, None]
+            x_jerk = np.maximum(points.maps.X @ z, 0.0)
+            near = points.per_joint(z, limits) >= JOINT_SCREEN
+            # Once in, a row stays in (dropping it again made LPs alternate).
+            keep = chosen.jerk_keep
+            chosen.jerk_keep = near if keep is None else keep | near
             if abs(previous - duration) <= CONVERGED * duration:
                 break
             previous = duration
         assert best is not None
         z = best[1]
-        excess = dense.excess(z, limits, bounds)
-        over = excess.max(axis=1) > tolerance
-        if not over.any() or rounds == MAX_ROUNDS:
+        over = dense.excess(z, limits) > tolerance
+        jerk_over = points.ratio(z, limits, problem.bounds) - 1.0 > tolerance
+        if not (over.any() or jerk_over.any()) or rounds == MAX_ROUNDS:
             break
-        active |= over
-        keep = keep.with_full(over)
-        if rows is not None:
-            rows |= dense.grasp_excess(z) > tolerance
+        chosen.active |= over
+        chosen.keep = chosen.keep.with_full(over)
+        chosen.jerk_active |= jerk_over
+        if chosen.rows is not None:
+            chosen.rows |= dense.grasp_excess(z) > tolerance
         best = None  # the rows changed: the old optimum may break them
-    worst = float(excess.max())
-    if worst > DEFAULT_TOLERANCE:
-        point = int(np.argmax(excess.max(axis=1)))
-        raise LimitsBetweenGridPointsError(
-            f"with jerk limits, a limit is exceeded by {100.0 * worst:.2f} % "
-            f"between grid points near s = {dense.s[point]:.4f} after "
-            f"{MAX_ROUNDS} rounds of LPs",
-            float(dense.s[point]),
-        )
+    _refuse(problem, z)
     x, u = _split(z, len(s))
-    trajectory = JerkTimedPath(spline, s, x, u, start_time)
+    margins = dense.margins(z, limits)
+    margins[Margin.JERK] = points.margins(z, limits, problem.bounds)
     return JerkProfile(
-        trajectory=trajectory,
+        trajectory=JerkTimedPath(spline, s, x, u, start_time),
         s=s,
         x=x,
         u=u,
-        margins=dense.margins(z, limits, bounds),
+        margins=margins,
         lps=lps,
         rounds=rounds,
-        grasp_rows=0 if rows is None else int(rows[active].sum()),
+        grasp_rows=0 if chosen.rows is None else int(chosen.rows[chosen.active].sum()),
     )
+
+
+def _refuse(problem: _Problem, z: np.ndarray) -> None:
+    """Raise if a limit is exceeded beyond the contract at any point."""
+    dense, points = problem.dense, problem.jerk
+    excess = dense.excess(z, problem.limits)
+    jerk = points.ratio(z, problem.limits, problem.bounds) - 1.0
+    worst, at = float(excess.max()), float(dense.s[int(np.argmax(excess))])
+    if float(jerk.max()) > worst:
+        worst, at = float(jerk.max()), float(points.s[int(np.argmax(jerk))])
+    if worst > DEFAULT_TOLERANCE:
+        raise LimitsBetweenGridPointsError(
+            f"with jerk limits, a limit is exceeded by {100.0 * worst:.2f} % "
+            f"between grid points near s = {at:.4f} after {MAX_ROUNDS} rounds "
+            "of LPs",
+            at,
+        )
 
 
 def _grid(s: np.ndarray, sd_start: float, sd_end: float) -> np.ndarray:
@@ -247,203 +281,26 @@ def _split(z: np.ndarray, size: int) -> tuple[np.ndarray, np.ndarray]:
     return np.maximum(z[:size], 0.0), z[size:].copy()
 
 
-def _rest_bounds(
-    spline: JointPath, s: np.ndarray, kinds: np.ndarray, jerk: np.ndarray
-) -> dict[int, tuple[int, float]]:
-    """By start or stop piece: its far end's u (variable index) and largest |u|."""
-    bounds = {}
-    for i in np.flatnonzero(kinds != Piece.INTERIOR):
-        ds = s[i + 1] - s[i]
-        start = kinds[i] == Piece.START
-        at = s[i] + ds * (_REST if start else 1.0 - _REST)
-        at = np.clip(at, s[i] + 1e-9 * ds, s[i + 1] - 1e-9 * ds)
-        sign = 1.0 if start else -1.0  # derivatives pointing away from rest
-        variable = len(s) + int(i) + (1 if start else 0)
-        bounds[int(i)] = (
-            variable,
-            rest_bound(
-                ds,
-                sign * spline(at, 1),
-                spline(at, 2),
-                sign * spline(at, 3),
-                _REST,
-                jerk,
-            ),
-        )
-    return bounds
-
-
-@dataclasses.dataclass(frozen=True, eq=False)
-class _Keep:
-    """Which joint rows enter the LPs: ratios, or booleans after :meth:`at_least`.
-
-    ``full``: points where a limit was exceeded, which get every row.
-    """
-
-    acceleration: np.ndarray
-    torque: np.ndarray | None
-    full: np.ndarray
-
-    def at_least(self, threshold: float) -> _Keep:
-        """Rows whose ratio is at least ``threshold`` (every row of a full point)."""
-        full = self.full[:, None]
-        return _Keep(
-            (self.acceleration >= threshold) | full,
-            None if self.torque is None else (self.torque >= threshold) | full,
-            self.full,
-        )
-
-    def with_full(self, over: np.ndarray) -> _Keep:
-        """Every row at the points ``over`` too."""
-        full = (self.full | over)[:, None]
-        return _Keep(
-            self.acceleration | full,
-            None if self.torque is None else self.torque | full,
-            self.full | over,
-        )
-
-
-@dataclasses.dataclass(frozen=True, eq=False)
-class _Dense:
-    """The path at :data:`DENSE` of every segment, and the maps of x, u, k there."""
-
-    s: np.ndarray
-    k: np.ndarray
-    inner: np.ndarray
-    samples: PathSamples
-    dddq: np.ndarray
-    maps: PointMaps
-    grasp: _Grasp | None
-
-    @staticmethod
-    def of(
-        spline: JointPath,
-        sample: Callable[[np.ndarray], PathSamples],
-        s: np.ndarray,
-        kinds: np.ndarray,
-        limits: JointLimits,
-        grasp: _Grasp | None,
-    ) -> _Dense:
-        segments = np.repeat(np.arange(len(s) - 1), len(DENSE))
-        k = np.tile(np.arange(len(DENSE)), len(s) - 1)
-        sigma = DENSE[k]
-        ds = np.diff(s)[segments]
-        at = s[segments] + sigma * ds
-        at[k == len(DENSE) - 1] = s[segments + 1][k == len(DENSE) - 1]
-        own = np.clip(at, s[segments] + 1e-9 * ds, s[segments + 1] - 1e-9 * ds)
-        maps = point_maps(s, kinds, segments, sigma)
-        return _Dense(
-            s=at,
-            k=k,
-            inner=kinds[segments] == Piece.INTERIOR,
-            samples=sample(at),
-            dddq=spline(own, 3),
-            maps=maps,
-            grasp=grasp,
-        )
-
-    def joint_ratios(self, x: np.ndarray, u: np.ndarray, limits: JointLimits) -> _Keep:
-        """Acceleration and torque ratios per joint at (x, u), (P, n) each."""
-        smp = self.samples
-        acc = np.abs(smp.dq * u[:, None] + smp.ddq * x[:, None]) / limits.acceleration
-        torque = None
-        if smp.torque is not None and limits.torque is not None:
-            a, b, c = smp.torque
-            torque = np.abs(a * u[:, None] + b * x[:, None] + c) / limits.torque
-        return _Keep(acc, torque, np.zeros(len(x), dtype=bool))
-
-    def jerk_ratio(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
-        """Jerk ratio per joint at the interior points, (P, n) (0 elsewhere)."""
-        assert limits.jerk is not None
-        x, u, k = self.maps.X @ z, self.maps.U @ z, self.maps.K @ z
-        smp = self.samples
-        jerk = jerk_values(x, u, k, smp.dq, smp.ddq, self.dddq) / limits.jerk
-        return np.where(self.inner[:, None], np.abs(jerk), 0.0)
-
-    def grasp_ratio(self, x: np.ndarray, u: np.ndarray) -> np.ndarray:
-        """``F_r w / g_r`` at every point and row, (P, R)."""
-        assert self.grasp is not None and self.samples.wrench is not None
-        a, b, c = self.samples.wrench
-        w = a * u[:, None] + b * x[:, None] + c
-        return (w @ self.grasp.F.T) / self.grasp.g
-
-    def grasp_excess(self, z: np.ndarray) -> np.ndarray:
-        """Relative excess of every grasp row at every point, (P, R)."""
-        return self.grasp_ratio(self.maps.X @ z, self.maps.U @ z) - 1.0
-
-    def ratios(
-        self, z: np.ndarray, limits: JointLimits, bounds: dict[int, tuple[int, float]]
-    ) -> dict[Margin, np.ndarray]:
-        """Each constraint's largest ratio ``value / limit`` at every point, (P,)."""
-        x, u, k = self.maps.X @ z, self.maps.U @ z, self.maps.K @ z
-        smp = self.samples
-        x_cap = np.where(np.isfinite(smp.x_cap), smp.x_cap, np.inf)
-        out = {
-            Margin.VELOCITY: np.where(
-                np.isfinite(x_cap), np.sqrt(np.maximum(x, 0.0) / x_cap), 0.0
-            ),
-            Margin.ACCELERATION: np.max(
-                np.abs(smp.dq * u[:, None] + smp.ddq * x[:, None])
-                / limits.acceleration,
-                axis=1,
-            ),
-        }
-        assert limits.jerk is not None
-        jerk = np.abs(jerk_values(x, u, k, smp.dq, smp.ddq, self.dddq)) / limits.jerk
-        jerk_ratio = np.where(self.inner, np.max(jerk, axis=1), 0.0)
-        n_points = len(DENSE)
-        for segment, (variable, bound) in bounds.items():
-            part = slice(segment * n_points, (segment + 1) * n_points)
-            jerk_ratio[part] = (abs(z[variable]) / bound) ** 1.5
-        out[Margin.JERK] = jerk_ratio
-        if smp.torque is not None and limits.torque is not None:
-            a, b, c = smp.torque
-            tau = a * u[:, None] + b * x[:, None] + c
-            out[Margin.TORQUE] = np.max(np.abs(tau) / limits.torque, axis=1)
-        if self.grasp is not None:
-            out[Margin.GRASP] = np.max(self.grasp_excess(z), axis=1) + 1.0
-        return out
-
-    def excess(
-        self, z: np.ndarray, limits: JointLimits, bounds: dict[int, tuple[int, float]]
-    ) -> np.ndarray:
-        """Relative excess over each limit at every point, (P, kinds)."""
-        return np.column_stack(list(self.ratios(z, limits, bounds).values())) - 1.0
-
-    def margins(
-        self, z: np.ndarray, limits: JointLimits, bounds: dict[int, tuple[int, float]]
-    ) -> dict[Margin, np.ndarray]:
-        """``1 - ratio`` at the grid points (segment starts, and the end)."""
-        grid = np.append(np.flatnonzero(self.k == 0), len(self.s) - 1)
-        return {m: 1.0 - r[grid] for m, r in self.ratios(z, limits, bounds).items()}
-
-
 def _solve(
-    s: np.ndarray,
-    kinds: np.ndarray,
-    dense: _Dense,
-    active: np.ndarray,
-    rows: np.ndarray | None,
-    keep: _Keep,
-    jerk_keep: np.ndarray | None,
-    x_dense: np.ndarray,
+    problem: _Problem,
+    chosen: _Selection,
     x_bar: np.ndarray,
-    limits: JointLimits,
-    bounds: dict[int, tuple[int, float]],
-    sd_start: float,
-    sd_end: float,
+    x_dense: np.ndarray,
+    x_jerk: np.ndarray,
 ) -> np.ndarray:
     """One LP (module docstring, step 2): z = [x, u].
 
-    The rows other than the jerk's are taken once per point: at the end of
-    a segment only where it is not the next one's start (or a full point).
+    ``x_bar``, ``x_dense``, ``x_jerk``: the previous profile at the grid,
+    dense and jerk points. The rows other than the jerk's are taken once
+    per point: at the end of a segment only where it is not the next one's
+    start (or where a limit was exceeded).
     """
+    limits, dense, points = problem.limits, problem.dense, problem.jerk
     assert limits.jerk is not None
-    size = len(s)
-    index = np.flatnonzero(active)
+    s, size = problem.s, len(problem.s)
     last = len(DENSE) - 1
     repeated = (dense.k == last) & (np.arange(len(dense.s)) < len(dense.s) - 1)
-    once = np.flatnonzero(active & (~repeated | keep.full))
+    once = np.flatnonzero(chosen.active & (~repeated | chosen.keep.full))
     maps = PointMaps(*(m[once] for m in dense.maps))
     smp = dense.samples
     dq, ddq = smp.dq[once], smp.ddq[once]
@@ -458,6 +315,7 @@ def _solve(
     add(zeros, np.ones_like(zeros), smp.x_cap[once][:, None])  # velocity
     inside = ((dense.k[once] > 0) & (dense.k[once] < last))[:, None]
     add(zeros, -np.ones_like(zeros), np.where(inside, 0.0, np.inf))  # x >= 0
+    keep = chosen.keep
     acceleration = np.where(keep.acceleration[once], limits.acceleration, np.inf)
     for sign in (1.0, -1.0):
         add(sign * dq, sign * ddq, acceleration)
@@ -466,24 +324,26 @@ def _solve(
             a, b, c = (v[once] for v in smp.torque)
             bound = np.where(keep.torque[once], limits.torque - sign * c, np.inf)
             add(sign * a, sign * b, bound)
-    if rows is not None and dense.grasp is not None and smp.wrench is not None:
-        mask = rows[once]
-        chosen = np.flatnonzero(mask.any(axis=0))
+    if chosen.rows is not None and dense.grasp is not None and smp.wrench is not None:
+        mask = chosen.rows[once]
+        rows = np.flatnonzero(mask.any(axis=0))
         a, b, c = (v[once] for v in smp.wrench)
-        F, g = dense.grasp.F[chosen], dense.grasp.g[chosen]
-        bound = np.where(mask[:, chosen], g - c @ F.T, np.inf)
+        F, g = dense.grasp.F[rows], dense.grasp.g[rows]
+        bound = np.where(mask[:, rows], g - c @ F.T, np.inf)
         add(a @ F.T, b @ F.T, bound)
-    floor = 1e-6 * max(float(np.max(x_dense)), 1e-12)
-    jerk_maps = PointMaps(*(m[index] for m in dense.maps))
+    index = np.flatnonzero(chosen.jerk_active)
+    floor = 1e-6 * max(float(np.max(x_jerk)), 1e-12)
+    jerk_keep = chosen.jerk_keep
+    if jerk_keep is not None:  # rows near the limit, and wherever it was exceeded
+        jerk_keep = jerk_keep | ~np.isin(points.k, (0, len(JERK_DENSE) - 1))[:, None]
     A, b = jerk_rows(
-        jerk_maps, dense.inner[index], dense.samples.dq[index],
-        dense.samples.ddq[index], dense.dddq[index],
-        np.maximum(x_dense, floor)[index], limits.jerk,
+        PointMaps(*(m[index] for m in points.maps)), points.inner[index],
+        points.dq[index], points.ddq[index], points.dddq[index],
+        np.maximum(x_jerk, floor)[index], limits.jerk,
         None if jerk_keep is None else jerk_keep[index],
     )  # fmt: skip
     blocks.append(A)
     rhs.append(b)
-    A_eq, b_eq = _continuity(s, kinds)
     ds = np.diff(s)
     # Simpson's rule on each segment: T = sum ds / sqrt(x) at its ends and
     # middle, linearised at the previous profile (d/dx x^-1/2 = -x^-1.5 / 2).
@@ -495,25 +355,14 @@ def _solve(
     weight[:size] -= width / (2.0 * np.maximum(x_bar, 1e-3 * scale) ** 1.5)
     blocks.append(-dense.maps.X[middle])  # x >= 0 in the middle of each segment
     rhs.append(np.zeros(len(middle)))
-    lower = np.full(2 * size, -np.inf)
-    upper = np.full(2 * size, np.inf)
-    lower[:size] = 0.0
-    lower[0] = upper[0] = float(sd_start) ** 2
-    lower[size - 1] = upper[size - 1] = float(sd_end) ** 2
-    for segment, (variable, most) in bounds.items():
-        if kinds[segment] == Piece.START:  # u_0 = 0, 0 <= u_1 <= most
-            lower[size] = upper[size] = 0.0
-            lower[variable], upper[variable] = 0.0, most
-        else:  # u_N = 0, -most <= u_{N-1} <= 0
-            lower[2 * size - 1] = upper[2 * size - 1] = 0.0
-            lower[variable], upper[variable] = -most, 0.0
+    A_eq, b_eq = _continuity(s, problem.kinds)
     result = linprog(
         weight / np.max(np.abs(weight)),
         A_ub=sparse.vstack(blocks).tocsr(),
         b_ub=np.concatenate(rhs),
         A_eq=A_eq,
         b_eq=b_eq,
-        bounds=np.column_stack([lower, upper]),
+        bounds=_bounds(problem),
         method="highs",
     )
     if result.status != 0 or result.x is None:
@@ -521,6 +370,24 @@ def _solve(
             f"jerk-limited retiming: no admissible profile ({result.message})", s=0.0
         )
     return np.asarray(result.x)
+
+
+def _bounds(problem: _Problem) -> np.ndarray:
+    """Bounds of z: x >= 0, the ends' x, and the start and stop pieces' u."""
+    size = len(problem.s)
+    lower = np.full(2 * size, -np.inf)
+    upper = np.full(2 * size, np.inf)
+    lower[:size] = 0.0
+    lower[0] = upper[0] = float(problem.sd_start) ** 2
+    lower[size - 1] = upper[size - 1] = float(problem.sd_end) ** 2
+    for segment, (variable, most) in problem.bounds.items():
+        if problem.kinds[segment] == Piece.START:  # u_0 = 0, 0 <= u_1 <= most
+            lower[size] = upper[size] = 0.0
+            lower[variable], upper[variable] = 0.0, most
+        else:  # u_N = 0, -most <= u_{N-1} <= 0
+            lower[2 * size - 1] = upper[2 * size - 1] = 0.0
+            lower[variable], upper[variable] = -most, 0.0
+    return np.column_stack([lower, upper])
 
 
 def _continuity(
@@ -547,4 +414,4 @@ def _continuity(
     return A, np.zeros(len(kinds))
 
 
-__all__ = ["CONVERGED", "DENSE", "MAX_LPS", "MAX_ROUNDS", "JerkProfile", "jerk_limited"]
+__all__ = ["CONVERGED", "MAX_LPS", "MAX_ROUNDS", "JerkProfile", "jerk_limited"]

@@ -23,10 +23,9 @@ TRACKING_TOLERANCE = 5e-3
 def constrained_run(tmp_path_factory):
     out = tmp_path_factory.mktemp("run")
     # 0.5 ms: the held object's numerical friction creep is ~0.8 mm per MOVE.
-    assert (
-        main(["run", "random_transport", "--out", str(out), "--time-step", "0.0005"])
-        == 0
-    )
+    # TOPP-RA's profiles (no jerk limits), as the assertions below expect.
+    argv = ["run", "random_transport", "--out", str(out), "--time-step", "0.0005"]
+    assert main([*argv, "--no-jerk-limits"]) == 0
     return out, json.loads((out / "report.json").read_text())
 
 
@@ -78,7 +77,14 @@ def test_replay_holds_the_recording(constrained_run):
 def test_without_the_grasp_constraint_the_object_slips(tmp_path):
     assert (
         main(
-            ["run", "random_transport", "--out", str(tmp_path), "--no-grasp-constraint"]
+            [
+                "run",
+                "random_transport",
+                "--out",
+                str(tmp_path),
+                "--no-grasp-constraint",
+                "--no-jerk-limits",
+            ]
         )
         == 0
     )
