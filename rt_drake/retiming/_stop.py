@@ -75,6 +75,8 @@ class StopResult:
             ``start_time``, then the stop; it ends at rest at ``s_stop``
             (a ``TimedPath``; at t = the start, where the robot is at
             rest, it holds the start for :data:`STANDSTILL_S`).
+        stop: The stop alone, from t to rest (at rest at t: holding q(t)
+            for :data:`STANDSTILL_S`).
         start_time: t, s: when the stop begins.
         duration: s from t to rest (0 if at rest at t).
         s_start: Path parameter at t.
@@ -84,6 +86,7 @@ class StopResult:
     """
 
     trajectory: Trajectory
+    stop: Trajectory
     start_time: float
     duration: float
     s_start: float
@@ -324,6 +327,7 @@ def _joined(
     stop_alone = TimedPath(spline, stop_s, np.append(sd_t * sd_t, stop_x[1:]), t)
     return StopResult(
         trajectory=whole,
+        stop=stop_alone,
         start_time=t,
         duration=stop_alone.duration,
         s_start=s_t,
@@ -344,18 +348,14 @@ def _at_rest(
     """A stop of no duration: the robot is at rest at t (the path's ends)."""
     s = result.gridpoints
     before = s < s_t - MIN_STEP
+    q = spline(s_t).reshape(-1, 1)
+    hold = PiecewisePolynomial.FirstOrderHold([t, t + STANDSTILL_S], np.hstack([q, q]))
+    trajectory: Trajectory = hold
     if before.any():
         grid = np.append(s[before], s_t)
         x = np.append(result.sd[before] ** 2, 0.0)
-        trajectory: Trajectory = TimedPath(
-            spline, grid, x, result.trajectory.start_time()
-        )
-    else:  # at the start: the robot stays where it is
-        q = spline(s_t).reshape(-1, 1)
-        trajectory = PiecewisePolynomial.FirstOrderHold(
-            [t, t + STANDSTILL_S], np.hstack([q, q])
-        )
-    return StopResult(trajectory, t, 0.0, s_t, sd_t, s_t, grasp_aware)
+        trajectory = TimedPath(spline, grid, x, result.trajectory.start_time())
+    return StopResult(trajectory, hold, t, 0.0, s_t, sd_t, s_t, grasp_aware)
 
 
 def _check_objects(

@@ -94,6 +94,12 @@ def test_a_grasp_aware_stop_rests_on_the_path_inside_every_limit(
     assert nearest.max() < 2e-3  # the path, sampled every 5e-5 in s
     check = check_trajectory(plant, whole, limits, grasp)
     assert check.passed(), check.summary()
+    # The stop alone is the whole motion from t on.
+    alone = stop.stop
+    assert alone.start_time() == pytest.approx(t, abs=1e-9)
+    assert alone.end_time() == pytest.approx(end, abs=1e-9)
+    for tk in np.linspace(t, end, 7):
+        assert np.allclose(alone.value(tk), whole.value(tk), atol=1e-9)
 
 
 def test_the_joint_brake_stop_is_shorter_and_leaves_the_grasp_set(
@@ -107,9 +113,8 @@ def test_the_joint_brake_stop_is_shorter_and_leaves_the_grasp_set(
     assert joints.passed(), joints.summary()
     # Some joint brakes at its acceleration limit.
     assert joints.margins[Margin.ACCELERATION].value < 0.01
-    with_grasp = check_trajectory(plant, brake.trajectory, limits, grasp)
+    with_grasp = check_trajectory(plant, brake.stop, limits, grasp)
     assert with_grasp.margins[Margin.GRASP].value < -0.05
-    assert with_grasp.margins[Margin.GRASP].time > t
 
 
 def _lp_reaches_rest(s, dq, ddq, wrench, limits, F, g, x_start, index):
