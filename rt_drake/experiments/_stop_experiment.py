@@ -64,6 +64,7 @@ def stop_trial(
     X_WO_goal: RigidTransform,
     seed: int,
     fraction: float,
+    planning_budget_s: float | None = None,
 ) -> dict[str, Any]:
     """Plan and retime one transport's MOVE, stop it at ``fraction`` of it, both ways.
 
@@ -75,11 +76,14 @@ def stop_trial(
         X_WO_goal: Its goal pose.
         seed: The experiment's seed.
         fraction: When the stop begins, as a fraction of the MOVE's duration.
+        planning_budget_s: The planner's time per call, s (None: its default).
     """
     planner_scenario = transport_scenario(scenario, object_name, X_WO_start, X_WO_goal)
     motions = OnlineMotions(
         planner_scenario, grasp_constraint=True, seed=seed + index, optimize=False
     )
+    if planning_budget_s is not None:
+        motions.planner.budget_s = planning_budget_s
     obj = planner_scenario.objects[0]
     transport = scenario.random_transport
     if transport is not None and transport.start_on_cup:
