@@ -183,10 +183,11 @@ def _stop(
     cup = cup or CupFrame.of(plant)
     if sd_t * sd_t <= REST_X:  # at rest already: the trajectory up to t
         return _at_rest(result, spline, float(t), s_t, sd_t, grasp_aware)
-    s_grid = result.gridpoints
+    if s_t >= 1.0 - MIN_STEP:  # at the end already: the MOVE rests there
+        stop_s, stop_x = _remainder(result, s_t, sd_t)
+        return _joined(result, spline, float(t), s_t, sd_t, stop_s, stop_x, grasp_aware)
+    s_grid = result.gridpoints  # it ends at 1
     s = np.concatenate([[s_t], s_grid[s_grid > s_t + MIN_STEP]])
-    if s[-1] < 1.0 - MIN_STEP or s.size < 2:  # the end at rest, always
-        s = np.append(s, 1.0)
     held = None if grasp is None else grasp.held
     samples = sample_path(
         plant, spline, s, limits.velocity, limits.torque is not None, held,
@@ -284,6 +285,7 @@ def _remainder(
     """The retimed trajectory itself from ``s_t`` to its end at rest: (s, x)."""
     s = result.gridpoints
     later = s > s_t + MIN_STEP
+    later[-1] = True  # s = 1, where it rests
     return (
         np.concatenate([[s_t], s[later]]),
         np.concatenate([[sd_t * sd_t], result.sd[later] ** 2]),
@@ -318,9 +320,8 @@ def _joined(
     grasp_aware: bool,
 ) -> StopResult:
     """The retimed trajectory up to ``s_t``, then the stop profile, as one."""
-    s = result.gridpoints
-    before = s < s_t - MIN_STEP
-    grid = np.concatenate([s[before], stop_s])
+    before = _before(result.gridpoints, s_t)
+    grid = np.concatenate([result.gridpoints[before], stop_s])
     x = np.concatenate([result.sd[before] ** 2, [sd_t * sd_t], stop_x[1:]])
     start = result.trajectory.start_time()
     whole = TimedPath(spline, grid, x, start)
@@ -337,6 +338,18 @@ def _joined(
     )
 
 
+def _before(s: np.ndarray, s_t: float) -> np.ndarray:
+    """Grid points kept before ``s_t``: the start, and those MIN_STEP before it.
+
+    A point closer to ``s_t`` would make a segment too short for its path
+    acceleration to be computed from x (rounding over a step of 1e-12); the
+    profile changes by at most ``2 MIN_STEP |u|`` in x without it.
+    """
+    before = s < s_t - MIN_STEP
+    before[0] = s[0] < s_t
+    return before
+
+
 def _at_rest(
     result: RetimeResult,
     spline: JointPath,
@@ -347,7 +360,7 @@ def _at_rest(
 ) -> StopResult:
     """A stop of no duration: the robot is at rest at t (the path's ends)."""
     s = result.gridpoints
-    before = s < s_t - MIN_STEP
+    before = _before(s, s_t)
     q = spline(s_t).reshape(-1, 1)
     hold = PiecewisePolynomial.FirstOrderHold([t, t + STANDSTILL_S], np.hstack([q, q]))
     trajectory: Trajectory = hold

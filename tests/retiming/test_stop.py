@@ -228,3 +228,20 @@ def test_at_the_ends_the_robot_is_already_at_rest(plant, limits, grasp, move):
         assert stop.duration == 0.0 and stop.s_stop == stop.s_start
         end = stop.trajectory.end_time()
         assert np.abs(stop.trajectory.EvalDerivative(end, 1)).max() == 0.0
+
+
+@pytest.mark.parametrize("offset", [1e-6, -1e-6])
+def test_a_stop_a_microsecond_from_either_end_rests_within_the_limits(
+    plant, limits, grasp, move, offset
+):
+    times = move.trajectory.times
+    t = (times[0] if offset > 0 else times[-1]) + offset
+    stop = protective_stop(plant, BACK, limits, move, t, grasp)
+    whole = stop.trajectory
+    assert 0.0 < stop.duration < 0.05 and stop.sd_start > 0.0
+    assert whole.start_time() == pytest.approx(times[0], abs=1e-12)
+    assert np.allclose(whole.value(t), move.trajectory.value(t), atol=1e-12)
+    end = whole.end_time()
+    assert np.abs(whole.EvalDerivative(end, 1)).max() < 1e-9
+    check = check_trajectory(plant, stop.stop, limits, grasp, rate_hz=1e5)
+    assert check.passed(), check.summary()
