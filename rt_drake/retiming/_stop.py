@@ -7,8 +7,10 @@ along the same path ``q(s)``, never leaving it.
 :func:`protective_stop` keeps every limit of the retime and the grasp:
 
 1. the shortest stop: the first grid point at rest under maximal braking,
-   from the controllable sets of rest (:mod:`._stop_pass`, on the retime's
-   own grid from ``s_t`` on);
+   from the controllable sets of rest (:mod:`._stop_pass`), on the retime's
+   own grid from ``s_t`` on, then again with the segments up to that point
+   split into :data:`STOP_SUBDIVISION` (so the stop ends at most a quarter
+   of a grid step beyond the shortest on the retime's grid);
 2. the fastest profile to that point: :func:`~._solve.retime` of the
    sub-path ``[s_t, s_stop]`` (reparametrised to [0, 1], ``sigma = (s -
    s_t) / L``, ``L = s_stop - s_t``, so ``x_sigma = x_s / L^2``) from
@@ -49,7 +51,7 @@ from rt_drake.retiming._retime_errors import (
 )
 from rt_drake.retiming._samples import sample_path
 from rt_drake.retiming._solve import RetimeResult, retime
-from rt_drake.retiming._stop_pass import REST_X, grid_constraints, stop_pass
+from rt_drake.retiming._stop_pass import REST_X, StopPass, grid_constraints, stop_pass
 from rt_drake.retiming._timed_path import TimedPath
 from rt_drake.retiming.grid import MIN_STEP
 from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint, JointLimits
@@ -57,6 +59,9 @@ from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint, JointLim
 #: Uniform points, at least, of the grid of the sub-path a stop is retimed on
 #: (with the retime's own grid points in it).
 STOP_GRIDPOINTS = 30
+#: Parts each grid segment up to the first stop point is split into, for a
+#: second braking pass (a stop at most a fine step longer than the shortest).
+STOP_SUBDIVISION = 4
 #: s: how long the trajectory of a stop at the very start (the robot at rest
 #: there) holds the start configuration.
 STANDSTILL_S = 1e-3
@@ -187,14 +192,23 @@ def _stop(
         stop_s, stop_x = _remainder(result, s_t, sd_t)
         return _joined(result, spline, float(t), s_t, sd_t, stop_s, stop_x, grasp_aware)
     s_grid = result.gridpoints  # it ends at 1
-    s = np.concatenate([[s_t], s_grid[s_grid > s_t + MIN_STEP]])
     held = None if grasp is None else grasp.held
-    samples = sample_path(
-        plant, spline, s, limits.velocity, limits.torque is not None, held,
-        context, cup,
-    )  # fmt: skip
     F, g = (None, None) if grasp is None else (grasp.F, grasp.g)
-    braking = stop_pass(grid_constraints(samples, limits, F, g), s, sd_t * sd_t)
+
+    def brake(s: np.ndarray) -> StopPass:
+        samples = sample_path(
+            plant, spline, s, limits.velocity, limits.torque is not None, held,
+            context, cup,
+        )  # fmt: skip
+        return stop_pass(grid_constraints(samples, limits, F, g), s, sd_t * sd_t)
+
+    s = np.concatenate([[s_t], s_grid[s_grid > s_t + MIN_STEP]])
+    braking = brake(s)
+    if braking.stop_index is not None:  # again, on a finer grid up to there
+        finer = subdivided(s, braking.stop_index, STOP_SUBDIVISION)
+        fine = brake(finer)
+        if fine.stop_index is not None:
+            s, braking = finer, fine
     if braking.stop_index is None:
         raise StopNotFoundError(
             f"no stop to rest within the path from t = {t:.4f} s (s = {s_t:.4f}, "
@@ -243,6 +257,14 @@ def state_at(result: RetimeResult, t: float) -> tuple[float, float]:
     sd = max(result.sd[k] + u * tau, 0.0)
     s = min(result.gridpoints[k] + result.sd[k] * tau + 0.5 * u * tau**2, 1.0)
     return float(s), float(sd)
+
+
+def subdivided(s: np.ndarray, index: int, parts: int) -> np.ndarray:
+    """``s`` with each segment up to ``s[index]`` split into ``parts`` equal ones."""
+    head = s[: index + 1]
+    steps = np.arange(parts) / parts
+    fine = (head[:-1, None] + np.diff(head)[:, None] * steps).ravel()
+    return np.concatenate([fine, s[index:]])
 
 
 def _candidates(first: int, last: int) -> list[int]:
@@ -403,10 +425,12 @@ def _check_objects(
 __all__ = [
     "STANDSTILL_S",
     "STOP_GRIDPOINTS",
+    "STOP_SUBDIVISION",
     "StopNotFoundError",
     "StopResult",
     "joint_brake_stop",
     "protective_stop",
     "state_at",
     "sub_path",
+    "subdivided",
 ]
