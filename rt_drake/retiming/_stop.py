@@ -205,10 +205,11 @@ def _stop(
     s = np.concatenate([[s_t], s_grid[s_grid > s_t + MIN_STEP]])
     braking = brake(s)
     if braking.stop_index is not None:  # again, on a finer grid up to there
-        finer = subdivided(s, braking.stop_index, STOP_SUBDIVISION)
-        fine = brake(finer)
+        index = braking.stop_index
+        head = subdivided(s[: index + 1], STOP_SUBDIVISION)
+        fine = brake(head)  # rest at s[index] reachable: its controllable sets
         if fine.stop_index is not None:
-            s, braking = finer, fine
+            s, braking = np.concatenate([head, s[index + 1 :]]), fine
     if braking.stop_index is None:
         raise StopNotFoundError(
             f"no stop to rest within the path from t = {t:.4f} s (s = {s_t:.4f}, "
@@ -259,12 +260,11 @@ def state_at(result: RetimeResult, t: float) -> tuple[float, float]:
     return float(s), float(sd)
 
 
-def subdivided(s: np.ndarray, index: int, parts: int) -> np.ndarray:
-    """``s`` with each segment up to ``s[index]`` split into ``parts`` equal ones."""
-    head = s[: index + 1]
+def subdivided(s: np.ndarray, parts: int) -> np.ndarray:
+    """The grid ``s`` with each segment split into ``parts`` equal ones."""
     steps = np.arange(parts) / parts
-    fine = (head[:-1, None] + np.diff(head)[:, None] * steps).ravel()
-    return np.concatenate([fine, s[index:]])
+    fine = (s[:-1, None] + np.diff(s)[:, None] * steps).ravel()
+    return np.append(fine, s[-1])
 
 
 def _candidates(first: int, last: int) -> list[int]:
