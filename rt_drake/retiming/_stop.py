@@ -287,7 +287,13 @@ def _retimed_stop(
     index: int,
     sd_t: float,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """The retimed sub-path from ``s[0]`` to rest at ``s[index]``: (s, x) grid."""
+    """The retimed sub-path from ``s[0]`` to rest at ``s[index]``: (s, x) grid.
+
+    Raises:
+        PathNotControllableError: the state at ``s[0]`` cannot reach rest
+            there under the retimer's constraints (or only from a lower
+            speed, after TOPP-RA's safeguard lowered it).
+    """
     start, length = s[0], s[index] - s[0]
     sub = sub_path(spline, start, s[index])
     own = (s[1:index] - start) / length
@@ -298,6 +304,10 @@ def _retimed_stop(
         plant, sub, limits, grasp, grid, sd_start=sd_t / length, context=context,
         cup=cup,
     )  # fmt: skip
+    if abs(length * stop.sd[0] - sd_t) > 1e-9 * max(sd_t, 1.0):
+        # TOPP-RA's forward pass lowered the start (its safeguard when the
+        # start is on the edge of K_0): not the trajectory's state at t.
+        raise PathNotControllableError("the stop does not start at s'(t)", s=start)
     return start + length * stop.gridpoints, (length * stop.sd) ** 2
 
 
