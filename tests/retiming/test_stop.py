@@ -22,6 +22,7 @@ from rt_drake.retiming import (
     JointLimits,
     Margin,
     RetimeInputError,
+    StopNotFoundError,
     check_trajectory,
     chord_knots,
     joint_brake_stop,
@@ -247,3 +248,23 @@ def test_a_stop_a_microsecond_from_either_end_rests_within_the_limits(
     assert np.abs(whole.EvalDerivative(end, 1)).max() < 1e-9
     check = check_trajectory(plant, stop.stop, limits, grasp, rate_hz=1e5)
     assert check.passed(), check.summary()
+
+
+def test_a_state_beyond_the_limits_has_no_stop_and_says_so(plant, limits, grasp):
+    """A MOVE retimed under twice the joint limits, stopped under the real
+    ones where it runs 20 % and more above a velocity limit: no admissible profile
+    starts there, so no stop exists."""
+    fast = JointLimits(2.0 * limits.velocity, 2.0 * limits.acceleration)
+    move = retime(plant, BACK, fast)
+    samples = np.linspace(0.3, 0.7, 9) * move.duration
+    speeds = [
+        np.max(np.abs(move.trajectory.EvalDerivative(t, 1).ravel()) / limits.velocity)
+        for t in samples
+    ]
+    t = float(samples[int(np.argmax(speeds))])
+    assert max(speeds) > 1.2  # above what the real limits allow at all
+    with pytest.raises(StopNotFoundError) as info:
+        protective_stop(plant, BACK, limits, move, t, grasp)
+    message = str(info.value)
+    assert "\n" not in message and f"t = {t:.4f} s" in message
+    assert "no stop to rest within the path" in message
