@@ -21,6 +21,7 @@ from rt_drake.retiming import (
     GraspConstraint,
     JointLimits,
     Margin,
+    PathNotControllableError,
     RetimeInputError,
     StopNotFoundError,
     check_trajectory,
@@ -268,3 +269,32 @@ def test_a_state_beyond_the_limits_has_no_stop_and_says_so(plant, limits, grasp)
     message = str(info.value)
     assert "\n" not in message and f"t = {t:.4f} s" in message
     assert "no stop to rest within the path" in message
+
+
+def test_no_later_stop_point_is_reached_sooner(plant, limits, grasp, move):
+    """The retimer itself, on sub-paths built apart (Drake cubic Hermite
+    pieces of the scipy spline, exact), from the state at t to rest at
+    points beyond the stop's: none is faster than the stop."""
+    spline = CubicSpline(chord_knots(BACK), BACK, bc_type="clamped")
+    t = FRACTIONS[1] * move.duration
+    stop = protective_stop(plant, BACK, limits, move, t, grasp)
+    reached = 0
+    for extra in (0.01, 0.03, 0.06, 0.1):
+        end = stop.s_stop + extra
+        breaks = np.unique(
+            np.concatenate([[stop.s_start, end], spline.x[spline.x > stop.s_start]])
+        )
+        breaks = breaks[breaks <= end]
+        sub = PiecewisePolynomial.CubicHermite(
+            breaks, spline(breaks).T, spline(breaks, 1).T
+        )
+        length = end - stop.s_start
+        try:
+            later = retime(
+                plant, sub, limits, grasp, 60, sd_start=stop.sd_start / length
+            )
+        except PathNotControllableError:
+            continue
+        reached += 1
+        assert later.duration >= stop.duration * (1.0 - 1e-3), (extra, later.duration)
+    assert reached >= 2
