@@ -33,6 +33,7 @@ from pydrake.multibody.plant import AddMultibodyPlantSceneGraph, MultibodyPlant
 from pydrake.multibody.tree import Body, SpatialInertia
 from pydrake.systems.framework import DiagramBuilder
 
+from rt_drake.errors import RtDrakeError
 from rt_drake.model.object_model import OBJECT_BODY
 from rt_drake.model.plant import ObjectMode, add_scenario_models, scenario_cup_frame
 from rt_drake.model.scenario import Scenario
@@ -45,8 +46,11 @@ MAX_HEIGHT = 0.5
 _PARKED_Z = -50.0
 
 
-class LineHeightError(ValueError):
-    """No height up to ``MAX_HEIGHT`` clears the cell (raised as a planning error)."""
+class LineHeightError(RtDrakeError):
+    """No height up to ``MAX_HEIGHT`` clears the cell.
+
+    The planner raises it again as a PlanningError naming phase and object.
+    """
 
 
 class LineProbe:
