@@ -68,11 +68,16 @@ class RobotConfig:
     ``limit_torques``: retime under the torque limits too (inverse dynamics,
     held object included), for an arm whose maker publishes torque limits
     rather than acceleration limits (e.g. the UR5e).
+    ``joint_names``: the controller's name of each plant joint it renames
+    (plant name -> controller name), for exports; the others keep the
+    plant's name. Every key must be a joint of the plant (checked when a
+    plant is at hand, by :mod:`rt_drake.export`); the names are distinct.
     """
 
     model_instance: str = "vs060"
     home: list[float] = dataclasses.field(default_factory=list)
     cup_frame: str = DEFAULT_CUP_FRAME
+    joint_names: dict[str, str] = dataclasses.field(default_factory=dict)
     velocity_limits: list[float] = dataclasses.field(default_factory=list)
     acceleration_limits: list[float] = dataclasses.field(default_factory=list)
     torque_limits: list[float] = dataclasses.field(default_factory=list)
@@ -479,6 +484,14 @@ def _check_robot(path: Path, robot: RobotConfig) -> None:
             )
         if any(v <= 0 for v in values):
             raise ScenarioError(f"{key}: limits must be > 0, got {values}")
+    key = f"{path}: key 'robot.joint_names'"
+    for plant_name, name in robot.joint_names.items():
+        if not plant_name.strip() or not name.strip():
+            raise ScenarioError(f"{key}: empty joint name in {plant_name!r}: {name!r}")
+    names = list(robot.joint_names.values())
+    repeated = sorted({name for name in names if names.count(name) > 1})
+    if repeated:
+        raise ScenarioError(f"{key}: controller name '{repeated[0]}' is given twice")
 
 
 __all__ = [
