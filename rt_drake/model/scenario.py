@@ -151,11 +151,16 @@ class PlanningConfig:
             vertical (open containers).
         budget_s: Wall time (s) the optimisation may take per MOVE, the
             spline MOVE's planning excluded.
+        grasp_margin: Share m of the grasp set kept free, in [0, 0.9]: MOVEs
+            are retimed under ``F w <= (1 - m) g``, so that a controller's
+            interpolation between samples stays in the set (docs: the export
+            guide gives the m that covers each interpolation and period).
     """
 
     optimize_move: bool = False
     max_tilt_deg: float = 45.0
     budget_s: float = 0.15
+    grasp_margin: float = 0.0
 
 
 @dataclasses.dataclass
@@ -416,7 +421,10 @@ def _check_grip(
 
 
 def _check_planning(path: Path, planning: PlanningConfig) -> None:
-    """``max_tilt_deg`` in [0, 90), ``budget_s`` > 0 (NaN and inf never load)."""
+    """``max_tilt_deg`` in [0, 90), ``budget_s`` > 0, ``grasp_margin`` in [0, 0.9].
+
+    NaN and inf never load.
+    """
     if not 0 <= planning.max_tilt_deg < 90:
         raise ScenarioError(
             f"{path}: key 'planning.max_tilt_deg': must be in [0, 90) deg, got "
@@ -425,6 +433,11 @@ def _check_planning(path: Path, planning: PlanningConfig) -> None:
     if not planning.budget_s > 0:
         raise ScenarioError(
             f"{path}: key 'planning.budget_s': must be > 0 s, got {planning.budget_s}"
+        )
+    if not 0.0 <= planning.grasp_margin <= 0.9:
+        raise ScenarioError(
+            f"{path}: key 'planning.grasp_margin': must be in [0, 0.9] (a share "
+            f"of g), got {planning.grasp_margin}"
         )
 
 
