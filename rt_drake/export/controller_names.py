@@ -66,7 +66,7 @@ def controller_joint_names(
 
 
 def check_joint_names(names: Sequence[str], count: int, what: str) -> list[str]:
-    """``names`` as a list if they are ``count`` distinct non-empty strings.
+    """``names`` as a list: ``count`` distinct non-empty strings, CSV-safe.
 
     Raises:
         InputError: naming ``what`` (an argument, flag or key) and the fault.
@@ -83,6 +83,12 @@ def check_joint_names(names: Sequence[str], count: int, what: str) -> list[str]:
     blank = [i for i, name in enumerate(names) if not name.strip()]
     if blank:
         raise InputError(f"{what}: joint name {blank[0] + 1} is empty")
+    broken = [name for name in names if any(c in name for c in ',"\n\r')]
+    if broken:
+        raise InputError(
+            f"{what}: joint name {broken[0]!r} holds a comma, quote or line break "
+            "(it would break a CSV header)"
+        )
     repeated = sorted({name for name in names if names.count(name) > 1})
     if repeated:
         raise InputError(f"{what}: joint name '{repeated[0]}' is given twice")

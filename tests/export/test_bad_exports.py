@@ -76,6 +76,7 @@ def test_an_unknown_format_or_suffix_is_refused(tmp_path, retimed):
         (NAMES[:5], ["5 joint names for a trajectory of 6 joints"]),
         ([*NAMES[:5], "a"], ["joint name 'a' is given twice"]),
         ([*NAMES[:5], " "], ["joint name 6 is empty"]),
+        ([*NAMES[:5], "f,g"], ["joint name 'f,g' holds a comma"]),
         ("abcdef", ["must be a list of strings"]),
     ],
 )

@@ -23,6 +23,7 @@ from rt_drake.export import (
     SCHEMA_NAME,
     plant_joint_names,
 )
+from rt_drake.retiming import TimeScaled
 
 with warnings.catch_warnings():  # its docstring, warned as deprecated on import
     warnings.simplefilter("ignore", DeprecationWarning)
@@ -125,9 +126,58 @@ def test_the_grid_is_padded_at_rest_to_a_multiple_of_the_period_never_cut(
     assert np.abs(trapezoid - q[1:]).max() < 50 * period**2
 
 
+def test_the_bag_is_what_ros2_bag_and_foxglove_read(tmp_path, retimed, plant):
+    """The ros2 profile, CDR messages, a ros2msg schema (the MCAP spec's names)."""
+    from mcap.reader import make_reader
+
+    out = export_trajectory(
+        retimed.trajectory, tmp_path / "m.mcap", period=0.008, plant=plant
+    )
+    with out.open("rb") as stream:
+        reader = make_reader(stream)
+        assert reader.get_header().profile == "ros2"
+        summary = reader.get_summary()
+    assert summary is not None and summary.statistics.message_count == 1
+    (channel,) = summary.channels.values()
+    (schema,) = summary.schemas.values()
+    assert channel.message_encoding == "cdr" and schema.encoding == "ros2msg"
+    assert channel.topic == DEFAULT_TOPIC and schema.name == SCHEMA_NAME
+    # every type the definition uses is defined in it, after a separator
+    text = schema.data.decode()
+    for name in (
+        "std_msgs/Header",
+        "builtin_interfaces/Time",
+        "trajectory_msgs/JointTrajectoryPoint",
+        "builtin_interfaces/Duration",
+    ):
+        assert f"{'=' * 80}\nMSG: {name}\n" in text, name
+
+
 def test_the_names_are_the_plants_by_default(tmp_path, retimed, plant):
     assert plant_joint_names(plant) == [f"joint{i}" for i in range(1, 7)]
     out = export_trajectory(
         retimed.trajectory, tmp_path / "m.mcap", period=0.004, plant=plant
     )
     assert list(read_bag(out).ros_msg.joint_names) == plant_joint_names(plant)
+
+
+def test_a_motion_played_faster_is_exported_as_played(tmp_path, retimed):
+    """``run --speed f`` plays ``q(f t)``: velocities scale by f, accelerations f^2."""
+    factor = 1.5
+    faster = TimeScaled(retimed.trajectory, factor)
+    out = export_trajectory(
+        faster,
+        tmp_path / "m.csv",
+        format="csv",
+        period=0.004,
+        joint_names=list("abcdef"),
+    )
+    table = np.loadtxt(out, delimiter=",", skiprows=1)
+    moving = table[:, 0] < faster.end_time()
+    q, qd, qdd = retimed.trajectory.sample(factor * table[moving, 0], order=2)
+    np.testing.assert_allclose(table[moving, 1:7], q, rtol=0, atol=TOLERANCE)
+    np.testing.assert_allclose(table[moving, 7:13], factor * qd, rtol=0, atol=TOLERANCE)
+    np.testing.assert_allclose(
+        table[moving, 13:], factor**2 * qdd, rtol=0, atol=TOLERANCE
+    )
+    assert table[-1, 0] >= faster.end_time() and not table[-1, 7:].any()
