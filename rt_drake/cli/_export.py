@@ -98,7 +98,7 @@ def run(args: argparse.Namespace) -> int:
     if names is None and scenario_path is not None:
         names = scenario_joint_names(scenario_path)
     written = export_trajectory(
-        saved,
+        args.trajectory,
         args.out,
         format=kind,
         period=args.period,

@@ -102,13 +102,15 @@ def export_trajectory(
                 "write over it"
             )
         trajectory = load_trajectory(source)
+        where = f"{where}: {source}"
     problem = output_problem(out)
     if problem is not None:
         raise InputError(f"{where}: cannot write out '{out}': {problem}")
     arguments.instance(topic, "topic", str, where=where)
     if not topic.startswith("/"):
         raise InputError(f"{where}: topic must start with '/', got {topic!r}")
-    rows = as_trajectory(trajectory, where).rows()
+    motion = as_trajectory(trajectory, where)
+    rows = motion.rows()
     if joint_names is not None:
         names = check_joint_names(joint_names, rows, f"{where}: joint_names")
     elif plant is not None:
@@ -120,7 +122,7 @@ def export_trajectory(
         raise InputError(
             f"{where}: give joint_names, or the plant whose joint names to use"
         )
-    samples = sample_on_grid(trajectory, period, where)
+    samples = sample_on_grid(motion, period, where)
     if kind is ExportFormat.MCAP:
         return write_ros2_bag(out, samples, names, topic)
     return write_csv_table(out, samples, names)

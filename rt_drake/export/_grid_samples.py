@@ -69,10 +69,14 @@ class GridSamples:
 
 
 def as_trajectory(trajectory: Sampleable, where: str) -> Trajectory:
-    """``trajectory`` as a Drake Trajectory (a saved one's motion rebuilt)."""
+    """``trajectory`` as a Drake Trajectory (a saved one's motion rebuilt).
+
+    Raises:
+        InputError: not a trajectory, or a saved one whose path or profile
+            is malformed (each message names ``where`` and the key).
+    """
     if isinstance(trajectory, SavedTrajectory):
-        spline = CubicSpline(trajectory.knots, trajectory.waypoints, bc_type="clamped")
-        return TimedPath(spline, trajectory.gridpoints, trajectory.sd**2)
+        return _saved_motion(trajectory, where)
     arguments.instance(
         trajectory, "trajectory", (Trajectory, SavedTrajectory), where=where
     )
@@ -83,6 +87,45 @@ def as_trajectory(trajectory: Sampleable, where: str) -> Trajectory:
             f"{'' if trajectory.has_derivative() else ' without derivatives'}"
         )
     return trajectory
+
+
+def _saved_motion(saved: SavedTrajectory, where: str) -> TimedPath:
+    """The motion of a file's path and profile, every key checked first.
+
+    ``waypoints`` (K, n) finite; ``knots`` (K,) and ``gridpoints`` (N+1,)
+    strictly increasing from 0 to 1; ``sd`` (N+1,) finite, >= 0, never zero
+    at both ends of a segment (the motion would never end).
+    """
+    waypoints = arguments.array(
+        saved.waypoints, "key 'waypoints'", ("K", "n"), where=where
+    )
+    for key, size in (("knots", len(waypoints)), ("gridpoints", None)):
+        values = arguments.array(
+            getattr(saved, key), f"key '{key}'", ("N",), where=where
+        )
+        if size is not None and len(values) != size:
+            raise InputError(
+                f"{where}: key '{key}' has {len(values)} values for {size} waypoints"
+            )
+        if (
+            len(values) < 2
+            or np.any(np.diff(values) <= 0.0)
+            or abs(values[0]) > 1e-9
+            or abs(values[-1] - 1.0) > 1e-9
+        ):
+            raise InputError(
+                f"{where}: key '{key}' must increase strictly from 0 to 1, got "
+                f"{arguments.describe(values)} from {values[0]!r} to {values[-1]!r}"
+            )
+    gridpoints = np.asarray(saved.gridpoints, dtype=float)
+    sd = arguments.array(saved.sd, "key 'sd'", (len(gridpoints),), where=where)
+    if np.any(sd < 0.0) or np.any(sd[:-1] + sd[1:] <= 0.0):
+        raise InputError(
+            f"{where}: key 'sd' must be >= 0 and not zero at both ends of a "
+            f"segment, got min {sd.min()!r}"
+        )
+    spline = CubicSpline(saved.knots, waypoints, bc_type="clamped")
+    return TimedPath(spline, gridpoints, sd**2)
 
 
 def sample_on_grid(trajectory: Sampleable, period: float, where: str) -> GridSamples:

@@ -184,3 +184,35 @@ def test_a_malformed_scenario_map_is_refused(tmp_path, entry, words):
     path = tmp_path / "bad.yaml"
     path.write_text(text[:start] + entry + text[end:])
     refused(lambda: load_scenario(path), "bad.yaml", *words, error=ScenarioError)
+
+
+@pytest.mark.parametrize(
+    "key,change,words",
+    [
+        ("sd", lambda sd: np.where(np.arange(len(sd)) == 3, np.nan, sd),
+         ["key 'sd' must be", "finite", "nan"]),
+        ("sd", lambda sd: np.zeros_like(sd), ["key 'sd'", "zero at both ends"]),
+        ("sd", lambda sd: sd[:-1], ["key 'sd' must be a"]),
+        ("knots", lambda k: k[:-1], ["key 'knots' has 2 values for 3 waypoints"]),
+        ("knots", lambda k: k[::-1], ["key 'knots' must increase strictly"]),
+        ("gridpoints", lambda s: 2 * s, ["key 'gridpoints' must increase strictly"]),
+        ("waypoints", lambda w: w[:, :1].ravel(), ["key 'waypoints' must be a (K, n)"]),
+    ],
+)  # fmt: skip
+def test_a_corrupt_trajectory_file_is_refused_naming_file_and_key(
+    tmp_path, npz, key, change, words
+):
+    """A file whose arrays do not describe a motion: never NaN samples."""
+    with np.load(npz) as data:
+        arrays = dict(data)
+    arrays[key] = change(arrays[key])
+    bad = tmp_path / "bad.npz"
+    np.savez(bad, **arrays)
+    out = tmp_path / "m.csv"
+    refused(
+        lambda: export_trajectory(
+            bad, out, format="csv", period=0.008, joint_names=NAMES
+        ),
+        "bad.npz", *words,
+    )  # fmt: skip
+    assert not out.exists()
