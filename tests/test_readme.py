@@ -24,6 +24,7 @@ PRINTS = {
     "docs/guides/multi-cup-tools.md": ["one cup:", "W_T: 436 rows", "two cups:"],
     "docs/guides/robust-retiming.md": ["holds every object", "worst excess over"],
     "docs/reference/cli.md": ["True", ", 6) scene"],
+    "docs/guides/export.md": ["points to", "joints shoulder_pan_joint", "end: True"],
 }
 
 

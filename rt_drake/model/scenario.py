@@ -68,11 +68,16 @@ class RobotConfig:
     ``limit_torques``: retime under the torque limits too (inverse dynamics,
     held object included), for an arm whose maker publishes torque limits
     rather than acceleration limits (e.g. the UR5e).
+    ``joint_names``: the controller's name of each plant joint it renames
+    (plant name -> controller name), for exports; the others keep the
+    plant's name. Every key must be a joint of the plant (checked when a
+    plant is at hand, by :mod:`rt_drake.export`); the names are distinct.
     """
 
     model_instance: str = "vs060"
     home: list[float] = dataclasses.field(default_factory=list)
     cup_frame: str = DEFAULT_CUP_FRAME
+    joint_names: dict[str, str] = dataclasses.field(default_factory=dict)
     velocity_limits: list[float] = dataclasses.field(default_factory=list)
     acceleration_limits: list[float] = dataclasses.field(default_factory=list)
     torque_limits: list[float] = dataclasses.field(default_factory=list)
@@ -155,6 +160,10 @@ class PlanningConfig:
             none: metres, or ``"auto"``.
         approach_clearance: m, how far the cup and the held object stay from
             the rest of the cell at the top of an ``auto`` line, in (0, 0.2].
+        grasp_margin: Share m of the grasp set kept free, in [0, 0.9]: MOVEs
+            are retimed under ``F w <= (1 - m) g``, so that a controller's
+            interpolation between samples stays in the set (docs: the export
+            guide gives the m that covers each interpolation and period).
     """
 
     optimize_move: bool = False
@@ -162,6 +171,7 @@ class PlanningConfig:
     budget_s: float = 0.15
     approach_offset: float | str = 0.2
     approach_clearance: float = 0.02
+    grasp_margin: float = 0.0
 
 
 @dataclasses.dataclass
@@ -444,7 +454,9 @@ def _check_grip(
 
 
 def _check_planning(path: Path, planning: PlanningConfig) -> None:
-    """``max_tilt_deg`` in [0, 90), ``budget_s`` > 0, the approach keys.
+    """``max_tilt_deg`` in [0, 90), ``budget_s`` > 0, ``grasp_margin`` in [0, 0.9].
+
+    And the approach keys.
 
     NaN and inf never load.
     """
@@ -462,6 +474,11 @@ def _check_planning(path: Path, planning: PlanningConfig) -> None:
         raise ScenarioError(
             f"{path}: key 'planning.approach_clearance': must be in "
             f"(0, {MAX_APPROACH_CLEARANCE}] m, got {planning.approach_clearance}"
+        )
+    if not 0.0 <= planning.grasp_margin <= 0.9:
+        raise ScenarioError(
+            f"{path}: key 'planning.grasp_margin': must be in [0, 0.9] (a share "
+            f"of g), got {planning.grasp_margin}"
         )
 
 
@@ -521,6 +538,14 @@ def _check_robot(path: Path, robot: RobotConfig) -> None:
             )
         if any(v <= 0 for v in values):
             raise ScenarioError(f"{key}: limits must be > 0, got {values}")
+    key = f"{path}: key 'robot.joint_names'"
+    for plant_name, name in robot.joint_names.items():
+        if not plant_name.strip() or not name.strip():
+            raise ScenarioError(f"{key}: empty joint name in {plant_name!r}: {name!r}")
+    names = list(robot.joint_names.values())
+    repeated = sorted({name for name in names if names.count(name) > 1})
+    if repeated:
+        raise ScenarioError(f"{key}: controller name '{repeated[0]}' is given twice")
 
 
 __all__ = [

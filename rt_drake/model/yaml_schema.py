@@ -204,6 +204,14 @@ def _check_value(path: Path, value: Any, kind: Any, key_path: str) -> None:
         (item,) = typing.get_args(kind)
         for index, entry in enumerate(value):
             _check_value(path, entry, item, f"{key_path}[{index}]")
+    elif typing.get_origin(kind) is dict:
+        if not isinstance(value, dict):
+            raise ScenarioError(f"{where}: expected a mapping, got {_shown(value)}")
+        key_kind, item = typing.get_args(kind)
+        for key, entry in value.items():
+            if key_kind is str and not isinstance(key, str):
+                raise ScenarioError(f"{where}: expected string keys, got {_shown(key)}")
+            _check_value(path, entry, item, f"{key_path}.{key}")
     elif kind is float:
         _check_number(where, value)
     elif kind is int:
