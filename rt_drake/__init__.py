@@ -35,6 +35,8 @@ contact > types > errors.
   path optimisation: ``MoveOptimizer``, ``MoveOptimizerOptions``,
   ``OptimizedMove``;
 - simulation: ``MakeStation``, ``run_cycle``, ``OnlineMotions``;
+- export for controllers: ``export_trajectory`` (a ROS 2 bag or a CSV at the
+  controller's period, ``ExportFormat``);
 - scenarios: ``load_scenario``, ``Scenario``, the shipped files'
   ``scenarios_dir`` and ``models_dir``; phases: ``Phase``;
 - errors: ``RtDrakeError`` (the base of every error rt_drake raises on
@@ -68,6 +70,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
     from rt_drake.dynamics.cup_frame import CupFrame
     from rt_drake.dynamics.wrench import object_wrench
     from rt_drake.errors import InputError, RtDrakeError, ScenarioError, TooLargeError
+    from rt_drake.export import ExportFormat, export_trajectory
     from rt_drake.model.held import held_object_of
     from rt_drake.model.plant import make_arm_plant
     from rt_drake.model.resources import models_dir, scenarios_dir
@@ -135,6 +138,8 @@ _LAZY: dict[str, str] = {
     "RtDrakeError": "rt_drake.errors",
     "ScenarioError": "rt_drake.errors",
     "TooLargeError": "rt_drake.errors",
+    "ExportFormat": "rt_drake.export",
+    "export_trajectory": "rt_drake.export",
     "Phase": "rt_drake.types.phase",
     "CyclePlanner": "rt_drake.planning",
     "GeometricPath": "rt_drake.types.path",
@@ -175,6 +180,7 @@ __all__ = [
     "CupMount",
     "CupParameters",
     "CyclePlanner",
+    "ExportFormat",
     "GeometricPath",
     "GraspConstraint",
     "HeldObject",
@@ -208,6 +214,7 @@ __all__ = [
     "cached_wrench_polytope",
     "check_trajectory",
     "contact_wrench_polytope",
+    "export_trajectory",
     "is_realizable",
     "is_realizable_lp",
     "joint_brake_stop",
