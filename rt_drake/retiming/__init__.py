@@ -20,7 +20,8 @@ objects), ``_between`` (limits held between grid points), ``_samples``,
 ``_joint_path`` (any path as ``q(s)``; the path type itself is
 :class:`rt_drake.types.path.GeometricPath`), ``_precompile`` (compiles the
 kernels before anything is timed), ``_timed_path``, ``_time_scaled``,
-``_check`` (dense 1 kHz verification), ``_trajectory_file`` (the ``.npz``
+``_check`` (dense 1 kHz verification), ``_stop`` and ``_stop_pass``
+(protective stops along the path), ``_trajectory_file`` (the ``.npz``
 format) and ``_retime_errors`` (typed errors and statuses).
 """
 
@@ -49,6 +50,12 @@ from rt_drake.retiming._retime_errors import (
 from rt_drake.retiming._solve import (
     RetimeResult,
     retime,
+)
+from rt_drake.retiming._stop import (
+    StopNotFoundError,
+    StopResult,
+    joint_brake_stop,
+    protective_stop,
 )
 from rt_drake.retiming._time_scaled import TimeScaled
 from rt_drake.retiming._timed_path import TimedPath
@@ -89,6 +96,8 @@ __all__ = [
     "RetimeResult",
     "RetimeStatus",
     "SavedTrajectory",
+    "StopNotFoundError",
+    "StopResult",
     "TimeScaled",
     "TimedPath",
     "ToolGrasp",
@@ -98,8 +107,10 @@ __all__ = [
     "WorstMargin",
     "check_trajectory",
     "chord_knots",
+    "joint_brake_stop",
     "load_trajectory",
     "path_waypoints_and_knots",
+    "protective_stop",
     "retime",
     "sample_trajectory",
     "save_trajectory",
