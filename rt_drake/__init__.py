@@ -29,10 +29,14 @@ contact > types > errors.
 - retiming: ``retime``, ``RetimeResult``, ``JointLimits``,
   ``GraspConstraint``, ``check_trajectory``, ``TrajectoryCheck``,
   ``save_trajectory``, ``load_trajectory``, ``sample_trajectory``;
+  protective stops along the path: ``protective_stop`` (keeps the grasp),
+  ``joint_brake_stop`` (joints brake at their limits), ``StopResult``;
 - planning: ``CyclePlanner``, ``PlannedPath``, ``GeometricPath``; MOVE
   path optimisation: ``MoveOptimizer``, ``MoveOptimizerOptions``,
   ``OptimizedMove``;
 - simulation: ``MakeStation``, ``run_cycle``, ``OnlineMotions``;
+- export for controllers: ``export_trajectory`` (a ROS 2 bag or a CSV at the
+  controller's period, ``ExportFormat``);
 - scenarios: ``load_scenario``, ``Scenario``, the shipped files'
   ``scenarios_dir`` and ``models_dir``; phases: ``Phase``;
 - errors: ``RtDrakeError`` (the base of every error rt_drake raises on
@@ -66,6 +70,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
     from rt_drake.dynamics.cup_frame import CupFrame
     from rt_drake.dynamics.wrench import object_wrench
     from rt_drake.errors import InputError, RtDrakeError, ScenarioError, TooLargeError
+    from rt_drake.export import ExportFormat, export_trajectory
     from rt_drake.model.held import held_object_of
     from rt_drake.model.plant import make_arm_plant
     from rt_drake.model.resources import models_dir, scenarios_dir
@@ -85,10 +90,14 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
         RetimeError,
         RetimeResult,
         SavedTrajectory,
+        StopNotFoundError,
+        StopResult,
         TrajectoryCheck,
         check_trajectory,
+        joint_brake_stop,
         load_trajectory,
         path_waypoints_and_knots,
+        protective_stop,
         retime,
         sample_trajectory,
         save_trajectory,
@@ -129,6 +138,8 @@ _LAZY: dict[str, str] = {
     "RtDrakeError": "rt_drake.errors",
     "ScenarioError": "rt_drake.errors",
     "TooLargeError": "rt_drake.errors",
+    "ExportFormat": "rt_drake.export",
+    "export_trajectory": "rt_drake.export",
     "Phase": "rt_drake.types.phase",
     "CyclePlanner": "rt_drake.planning",
     "GeometricPath": "rt_drake.types.path",
@@ -142,6 +153,10 @@ _LAZY: dict[str, str] = {
     "JointLimits": "rt_drake.retiming",
     "RetimeError": "rt_drake.retiming",
     "RetimeResult": "rt_drake.retiming",
+    "StopNotFoundError": "rt_drake.retiming",
+    "StopResult": "rt_drake.retiming",
+    "joint_brake_stop": "rt_drake.retiming",
+    "protective_stop": "rt_drake.retiming",
     "SavedTrajectory": "rt_drake.retiming",
     "TrajectoryCheck": "rt_drake.retiming",
     "check_trajectory": "rt_drake.retiming",
@@ -165,6 +180,7 @@ __all__ = [
     "CupMount",
     "CupParameters",
     "CyclePlanner",
+    "ExportFormat",
     "GeometricPath",
     "GraspConstraint",
     "HeldObject",
@@ -188,6 +204,8 @@ __all__ = [
     "Scenario",
     "ScenarioError",
     "SharedLoadSet",
+    "StopNotFoundError",
+    "StopResult",
     "TooLargeError",
     "ToolParameters",
     "ToolWrenchSet",
@@ -196,8 +214,10 @@ __all__ = [
     "cached_wrench_polytope",
     "check_trajectory",
     "contact_wrench_polytope",
+    "export_trajectory",
     "is_realizable",
     "is_realizable_lp",
+    "joint_brake_stop",
     "load_scenario",
     "held_object_of",
     "load_trajectory",
@@ -205,6 +225,7 @@ __all__ = [
     "models_dir",
     "object_wrench",
     "path_waypoints_and_knots",
+    "protective_stop",
     "retime",
     "run_cycle",
     "sample_trajectory",

@@ -32,6 +32,7 @@ settings.load_profile("deterministic")
 
 SCENARIO_NAMES = (
     "stack_four_objects",
+    "stack_four_objects_paper",
     "stack_four_objects_vacuum_sensor",
     "random_transport",
 )
@@ -45,8 +46,11 @@ def scenario_paths() -> dict[str, Path]:
 
 @pytest.fixture(scope="session")
 def scenario() -> Scenario:
-    """The four-object stacking scenario (Table II); tests do not change it."""
-    return load_scenario(scenarios_dir() / "stack_four_objects.yaml")
+    """Table II's four-object stack, the paper's fixed approach heights.
+
+    Tests do not change it.
+    """
+    return load_scenario(scenarios_dir() / "stack_four_objects_paper.yaml")
 
 
 @pytest.fixture(scope="session")

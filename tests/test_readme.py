@@ -23,7 +23,12 @@ PRINTS = {
     "docs/guides/own-robot.md": ["min margin"],
     "docs/guides/multi-cup-tools.md": ["one cup:", "W_T: 436 rows", "two cups:"],
     "docs/guides/robust-retiming.md": ["holds every object", "worst excess over"],
+    "docs/guides/protective-stops.md": [
+        "grasp-aware stop within every limit: True",
+        "joint brake grasp margin: -",
+    ],
     "docs/reference/cli.md": ["True", ", 6) scene"],
+    "docs/guides/export.md": ["points to", "joints shoulder_pan_joint", "end: True"],
 }
 
 

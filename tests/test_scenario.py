@@ -28,8 +28,19 @@ def test_shipped_scenarios_load(scenario_paths):
     assert transport.random_transport.object == "notebook"
 
 
+def test_approach_offsets_resolve_per_object_then_the_scenario_default(
+    scenario_paths,
+):
+    auto = load_scenario(scenario_paths["stack_four_objects"])
+    paper = load_scenario(scenario_paths["stack_four_objects_paper"])
+    names = [o.name for o in paper.objects]
+    assert [auto.approach_offset(n) for n in names] == [None] * 4  # "auto"
+    assert [paper.approach_offset(n) for n in names] == [0.15, 0.21, 0.24, 0.26]
+    assert auto.planning.approach_clearance == pytest.approx(0.02)
+
+
 def _write(tmp_path, scenario_paths, old: str, new: str):
-    text = scenario_paths["stack_four_objects"].read_text()
+    text = scenario_paths["stack_four_objects_paper"].read_text()
     assert old in text, old
     path = tmp_path / "bad.yaml"
     path.write_text(text.replace(old, new, 1))
@@ -86,6 +97,31 @@ BAD_EDITS = [
         "  attach_s: 1.0",
         "  attach_s: 1.0\n  part_present_fraction: 1.5",
         ["bad.yaml", "vacuum.part_present_fraction", "1.5"],
+    ),
+    (
+        "  approach_offset: 0.21",
+        "  approach_offset: high",
+        ["bad.yaml", "objects[1].approach_offset", "'high'", "'auto'"],
+    ),
+    (
+        "  approach_offset: 0.21",
+        "  approach_offset: [0.21]",
+        ["bad.yaml", "objects[1].approach_offset", "a number or a string"],
+    ),
+    (
+        "  approach_offset: 0.21",
+        "  approach_offset: .nan",
+        ["bad.yaml", "objects[1].approach_offset", "finite"],
+    ),
+    (
+        "vacuum:\n",
+        "planning:\n  approach_clearance: 0\nvacuum:\n",
+        ["bad.yaml", "planning.approach_clearance", "(0, 0.2]", "got 0"],
+    ),
+    (
+        "vacuum:\n",
+        "planning:\n  approach_offset: -1\nvacuum:\n",
+        ["bad.yaml", "planning.approach_offset", ">= 0 m", "-1"],
     ),
     (
         "vacuum:\n  model: fixed  # the paper's fixed 1 s waits (Table II)",

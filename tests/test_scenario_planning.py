@@ -14,7 +14,7 @@ from rt_drake.shaping import MoveOptimizerOptions
 
 
 def test_planning_defaults_when_the_key_is_absent(scenario_paths):
-    planning = load_scenario(scenario_paths["stack_four_objects"]).planning
+    planning = load_scenario(scenario_paths["stack_four_objects_paper"]).planning
     assert planning == PlanningConfig()
     assert planning.max_tilt_deg == 45.0 and planning.budget_s == 0.15
     options = MoveOptimizerOptions.from_config(planning)

@@ -760,8 +760,52 @@ def cli_cases() -> list[Case]:
             expect=("--waypoints|required",),
         ),
     ]
+    # -- export: a trajectory file for a controller
+    exp = ("export", "t.npz", "--joint-names", "a,b,c,d,e,f")
+    good = {"t.npz": _trajectory_npz()}
+    for name, flags, files, expect in [
+        ("period=0", ("--period", "0", "--out", "o.mcap"), good, ("--period", "0")),
+        ("period=nan", ("--period", "nan", "--out", "o.mcap"), good, ("--period", "nan")),
+        ("period_longer", ("--period", "9", "--out", "o.mcap"), good, ("9", "longer")),
+        ("period_0.1ns", ("--period", "1e-10", "--out", "o.csv"), good, ("nanosecond",)),
+        ("format_bag", ("--period", "0.008", "--out", "o.bag"), good, ("bag", "mcap")),
+        ("out_is_input", ("--period", "0.008", "--out", "t.npz", "--format", "csv"),
+         good, ("--out", "t.npz")),
+        ("sd_nan", ("--period", "0.008", "--out", "o.csv"),
+         {"t.npz": _trajectory_npz(sd=[0.0, float("nan"), 0.0])}, ("t.npz", "sd", "nan")),
+        ("not_npz", ("--period", "0.008", "--out", "o.csv"), {"t.npz": "q\n1\n"},
+         ("t.npz", "npz")),
+    ]:  # fmt: skip
+        cases.append(
+            Case(f"export.{name}", (*exp, *flags), files=files, expect=expect,
+                 inputs=("t.npz",), absent=("o.mcap", "o.csv", "o.bag"))
+        )  # fmt: skip
+    cases.append(
+        Case(
+            "export.names_count",
+            (
+                "export",
+                "t.npz",
+                "--period",
+                "0.008",
+                "--joint-names",
+                "a,b",
+                "--out",
+                "o.mcap",
+            ),
+            files=good,
+            expect=("2 joint names", "6 joints"),
+            absent=("o.mcap",),
+        )  # fmt: skip
+    )
     # -- controls: good inputs must still work
     cases += [
+        Case(
+            "control.export",
+            (*exp, "--period", "0.008", "--out", "o.mcap"),
+            files=good,
+            control=True,
+        ),
         Case("control.constraint", ("constraint", "--out", "o.npz"), control=True),
         Case(
             "control.retime",
@@ -781,6 +825,28 @@ def cli_cases() -> list[Case]:
         Case("control.plan", (*plan, "--out", "w.csv"), control=True),
     ]
     return cases
+
+
+def _trajectory_npz(sd: list[float] | None = None) -> bytes:
+    """A small trajectory file: 0.5 rad on every joint, s' = 0, 1, 0 on 3 points."""
+    import io
+
+    import numpy as np
+
+    home = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
+    arrays = {
+        "t": np.zeros(1), "q": np.zeros((1, 6)), "qd": np.zeros((1, 6)),
+        "qdd": np.zeros((1, 6)), "duration": 2.0, "X_WC": np.zeros((1, 4, 4)),
+        "object_name": "box", "object_mass": 1.0, "p_CoScm_C": np.zeros(3),
+        "I_Scm_C": np.eye(3), "F": np.zeros((0, 6)), "g": np.zeros(0),
+        "cup_names": np.array(["radius"]), "cup_values": np.array([0.0125]),
+        "waypoints": np.array([home, home + 0.5]), "knots": np.array([0.0, 1.0]),
+        "gridpoints": np.array([0.0, 0.5, 1.0]),
+        "sd": np.array([0.0, 1.0, 0.0] if sd is None else sd),
+    }  # fmt: skip
+    stream = io.BytesIO()
+    np.savez(stream, format_version=1, **arrays)
+    return stream.getvalue()
 
 
 _API_PRELUDE = """

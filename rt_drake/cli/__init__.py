@@ -29,6 +29,7 @@ _COMMANDS: tuple[str, ...] = (
     "constraint",
     "plan",
     "retime",
+    "export",
     "show",
 )
 

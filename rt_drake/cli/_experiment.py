@@ -1,4 +1,4 @@
-"""rt-drake experiment transport|cycle|campaign|report: experiments in simulation.
+"""rt-drake experiment transport|cycle|stop|campaign|report: experiments in simulation.
 
 transport: Table I. Random start and goal poses of one object, each MOVE
 retimed with and without the grasp constraint and played in the cycle's
@@ -12,6 +12,11 @@ object drawn from the set's hardest corners.
 
 cycle: Table II. The four-object cycle with its timing breakdown (as
 rt-drake run), into report.json, report.md and replay.html.
+
+stop: protective stops. Table I's MOVEs (random_transport_paper by
+default), each stopped at a random instant and played in physics two ways:
+the grasp-aware stop and the joints braking at their limits. Writes
+results.json.
 
 campaign and report: validation campaigns over many objects, cups and
 transports, into SQLite (see rt-drake experiment campaign --help).
@@ -97,7 +102,79 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     cycle.add_argument("--out", type=Path, required=True, help="output directory")
     cycle.set_defaults(run=run_cycle_experiment)
 
+    _register_stop(which)
     campaign.register(which)  # ``campaign`` and ``report``
+
+
+def _register_stop(which: argparse._SubParsersAction) -> None:
+    """Add ``experiment stop``: protective stops of Table I's MOVEs in physics."""
+    stop = which.add_parser(
+        "stop",
+        help="protective stops mid-MOVE in physics: grasp-aware vs joint brake",
+    )
+    stop.add_argument(
+        "--scenario",
+        default="random_transport_paper",
+        help="scenario with a random_transport section (default "
+        "random_transport_paper)",
+    )
+    stop.add_argument(
+        "--n",
+        type=int_in(1, MAX_TRIALS),
+        default=20,
+        help=f"number of stopped MOVEs (default 20, at most {MAX_TRIALS})",
+    )
+    stop.add_argument(
+        "--seed",
+        type=nonnegative_int,
+        default=0,
+        help="transports, planning and stop instants seed (default 0)",
+    )
+    stop.add_argument(
+        "--object", default=None, help="object to carry (default: the scenario's)"
+    )
+    stop.add_argument(
+        "--workers",
+        type=int_in(1, MAX_WORKERS),
+        default=1,
+        help=f"parallel processes (default 1, at most {MAX_WORKERS})",
+    )
+    stop.add_argument("--out", type=Path, required=True, help="output directory")
+    stop.set_defaults(run=run_stop)
+
+
+def run_stop(args: argparse.Namespace) -> int:
+    """Run the stop experiment, write DIR/results.json, print a table; return 0."""
+    import json
+    import time
+
+    from rt_drake.atomic_file import write_text_atomically
+    from rt_drake.cli._output import output_directory
+    from rt_drake.cli._progress import Progress
+    from rt_drake.experiments import STOP_FILES, run_stop_experiment, stop_table
+    from rt_drake.model.resources import resolve_scenario_path
+
+    path = resolve_scenario_path(args.scenario)
+    output_directory(args.out, "--out", STOP_FILES, {"scenario file": path})
+    progress = Progress("rt-drake experiment stop", args.n, "trial", eta=True)
+    start = time.perf_counter()
+    try:
+        results = run_stop_experiment(
+            path,
+            n=args.n,
+            seed=args.seed,
+            object_name=args.object,
+            workers=args.workers,
+            progress=lambda done, n: progress.step(done, "trials done"),
+        )
+    finally:
+        progress.close()
+    results["wall_s"] = time.perf_counter() - start
+    written = args.out / STOP_FILES[0]
+    write_text_atomically(written, json.dumps(results, indent=1) + "\n")
+    print(stop_table(results))
+    print(f"{results['wall_s']:.0f} s; wrote {written}")
+    return 0
 
 
 def run_transport(args: argparse.Namespace) -> int:

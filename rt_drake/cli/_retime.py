@@ -224,6 +224,8 @@ def run(args: argparse.Namespace) -> int:
             grasp = GraspConstraint.for_tool(
                 held, cup_model, load_sharing=scenario.tool.load_sharing
             )
+    if grasp is not None:
+        grasp = grasp.with_margin(scenario.planning.grasp_margin)
     limits = JointLimits.from_plant(plant, scenario.robot, jerk=not args.no_jerk_limits)
     cup = CupFrame.of(plant, scenario.robot.cup_frame)
     result = retime(plant, waypoints, limits, grasp, args.gridpoints, cup=cup)

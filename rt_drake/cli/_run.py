@@ -5,7 +5,9 @@ online, critically fast under the grasp constraint) and detached, in a Drake
 simulation with suction physics. Prints the paper's Table II for this run
 and writes report.json, report.md and replay.html (a Meshcat recording that
 plays offline) into --out, checked before the simulation starts (a
-directory, none of its files an input) and written atomically.
+directory, none of its files an input) and written atomically. --export DIR
+also writes every executed motion, <object>_pick and <object>_move, as a
+ROS 2 bag (.mcap) or a CSV at --export-period (see rt-drake export).
 """
 
 from __future__ import annotations
@@ -76,6 +78,25 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="simulation step, 0.0001 to 0.01 (default 0.001; smaller steps reduce "
         "the numerical creep of held objects, ~1.6 mm per MOVE at 1 ms)",
     )
+    parser.add_argument(
+        "--export",
+        type=Path,
+        metavar="DIR",
+        help="also write every executed motion for a controller into DIR",
+    )
+    parser.add_argument(
+        "--export-format",
+        choices=("mcap", "csv"),
+        default="mcap",
+        help="format of the --export files (default mcap)",
+    )
+    parser.add_argument(
+        "--export-period",
+        type=float_in(1e-6, 1.0),
+        default=0.002,
+        metavar="SECONDS",
+        help="sampling period of the --export files (default 0.002)",
+    )
     parser.set_defaults(run=run)
 
 
@@ -88,6 +109,7 @@ def run(args: argparse.Namespace) -> int:
     from rt_drake.atomic_file import write_text_atomically
     from rt_drake.cli._output import output_directory
     from rt_drake.cli._progress import Progress
+    from rt_drake.cli._run_export import RecordingMotions, export_motions
     from rt_drake.experiments import (
         REPORT_FILES,
         RunSettings,
@@ -106,6 +128,7 @@ def run(args: argparse.Namespace) -> int:
         args.out, "--out", (*REPORT_FILES, REPLAY_FILE), {"scenario file": path}
     )
     scenario = load_scenario(path)
+    export = _export_plan(args, scenario, path)
     meshcat = StartMeshcat()
     motions = OnlineMotions(
         scenario,
@@ -115,6 +138,7 @@ def run(args: argparse.Namespace) -> int:
         optimize=args.optimize,
         jerk_limits=not args.no_jerk_limits,
     )
+    recorder = None if export is None else RecordingMotions(motions)
     phases = [p for p in Phase if p is not Phase.DONE]
     names = [o.name for o in scenario.objects]
     progress = Progress("rt-drake run", len(names) * len(phases), "phase")
@@ -130,7 +154,7 @@ def run(args: argparse.Namespace) -> int:
     try:
         result = run_cycle(
             scenario,
-            motions,
+            motions if recorder is None else recorder,
             meshcat=meshcat,
             options=StationOptions(time_step=args.time_step),
             pipelined=not args.sequential_planning,
@@ -159,6 +183,9 @@ def run(args: argparse.Namespace) -> int:
         print(f"MOVE {entry.name} holds {entry.guarantee}")
     print(f"{summary_line(report)}; simulated in {wall_s:.1f} s wall")
     print(f"wrote {json_path}, {md_path}, {replay}")
+    if recorder is not None and export is not None:
+        written = export_motions(recorder.motions, args.export, *export)
+        print(f"exported {len(written)} motions to {args.export}")
     if args.meshcat:
         print(f"Meshcat: {meshcat.web_url()} (Ctrl-C to stop)")
         try:
@@ -167,3 +194,32 @@ def run(args: argparse.Namespace) -> int:
         except KeyboardInterrupt:
             pass
     return 0
+
+
+def _export_plan(args: argparse.Namespace, scenario, path: Path):  # noqa: ANN001, ANN202
+    """(format, period, joint names) of ``--export``, checked; None without it.
+
+    The directory and its files are checked before the simulation starts.
+    """
+    if args.export is None:
+        return None
+    from rt_drake.cli._output import output_directory
+    from rt_drake.cli._run_export import KINDS, export_file_name
+    from rt_drake.errors import InputError
+    from rt_drake.export import ExportFormat, controller_joint_names
+    from rt_drake.model.plant import make_arm_plant
+
+    kind = ExportFormat(args.export_format)
+    files = [
+        export_file_name(o.name, motion, kind)
+        for o in scenario.objects
+        for motion in KINDS
+    ]
+    output_directory(args.export, "--export", files, {"scenario file": path})
+    try:
+        names = controller_joint_names(
+            make_arm_plant(scenario), scenario.robot.joint_names
+        )
+    except InputError as error:
+        raise InputError(f"{path}: {error}") from None
+    return kind, args.export_period, names

@@ -7,6 +7,8 @@
 - :mod:`._robust_transport`: Table I with objects known only to an
   uncertainty set, nominal and robust plans played with a true object;
   :mod:`.robust_report` writes its report.
+- :mod:`._stop_experiment`: protective stops of Table I's MOVEs in physics,
+  grasp-aware and joint-brake.
 - :mod:`.cycle_report`: Table II, the cycle's timing breakdown
   (:class:`CycleReport`).
 """
@@ -22,6 +24,13 @@ from rt_drake.experiments._rollout import (
     Rollout,
     critical_speed,
     simulate_move,
+)
+from rt_drake.experiments._stop_experiment import (
+    STOP_FILES,
+    run_stop_experiment,
+    stop_table,
+    stop_trial,
+    summarize_stops,
 )
 from rt_drake.experiments._transport_experiment import (
     run_transport_experiment,
@@ -55,6 +64,7 @@ __all__ = [
     "SLIP_ROTATION",
     "SLIP_TRANSLATION",
     "SPEED_FACTORS",
+    "STOP_FILES",
     "TRANSPORT_FILES",
     "CycleReport",
     "Rollout",
@@ -65,9 +75,13 @@ __all__ = [
     "robust_table",
     "robust_trial",
     "run_robust_transport_experiment",
+    "run_stop_experiment",
     "run_transport_experiment",
     "simulate_move",
+    "stop_table",
+    "stop_trial",
     "summarize",
+    "summarize_stops",
     "summary_line",
     "table_markdown",
     "transport_table",

@@ -69,11 +69,16 @@ class RobotConfig:
     ``limit_torques``: retime under the torque limits too (inverse dynamics,
     held object included), for an arm whose maker publishes torque limits
     rather than acceleration limits (e.g. the UR5e).
+    ``joint_names``: the controller's name of each plant joint it renames
+    (plant name -> controller name), for exports; the others keep the
+    plant's name. Every key must be a joint of the plant (checked when a
+    plant is at hand, by :mod:`rt_drake.export`); the names are distinct.
     """
 
     model_instance: str = "vs060"
     home: list[float] = dataclasses.field(default_factory=list)
     cup_frame: str = DEFAULT_CUP_FRAME
+    joint_names: dict[str, str] = dataclasses.field(default_factory=dict)
     velocity_limits: list[float] = dataclasses.field(default_factory=list)
     acceleration_limits: list[float] = dataclasses.field(default_factory=list)
     torque_limits: list[float] = dataclasses.field(default_factory=list)
@@ -90,7 +95,12 @@ class ObjectConfig:
         model: ``package://rt_drake/...`` URL (or file path) of its SDF.
         start: X_WO, pose of the object's body frame in the world at the start.
         goal: X_WO at the place pose.
-        approach_offset: m; the approach pose is the grasp pose raised by it.
+        approach_offset: m, the length of the vertical lines above the pick
+            and the place (the approach pose is the grasp pose raised by
+            it); ``"auto"``: the shortest lines that keep the cup and the
+            object ``planning.approach_clearance`` clear of the cell
+            (:mod:`rt_drake.planning._line_heights`); absent: the scenario's
+            ``planning.approach_offset``.
         grasp: X_OC, pose of the cup frame C in the object frame O while held
             (cup +z pointing into the object).
         uncertainty: What is not known about its inertia (None: known
@@ -102,7 +112,7 @@ class ObjectConfig:
     model: str = ""
     start: Transform = dataclasses.field(default_factory=Transform)
     goal: Transform = dataclasses.field(default_factory=Transform)
-    approach_offset: float = 0.2
+    approach_offset: float | str | None = None
     grasp: Transform = dataclasses.field(default_factory=Transform)
     uncertainty: ObjectUncertainty | None = None
 
@@ -148,11 +158,22 @@ class PlanningConfig:
             vertical (open containers).
         budget_s: Wall time (s) the optimisation may take per MOVE, the
             spline MOVE's planning excluded.
+        approach_offset: The objects' ``approach_offset`` where they give
+            none: metres, or ``"auto"``.
+        approach_clearance: m, how far the cup and the held object stay from
+            the rest of the cell at the top of an ``auto`` line, in (0, 0.2].
+        grasp_margin: Share m of the grasp set kept free, in [0, 0.9]: MOVEs
+            are retimed under ``F w <= (1 - m) g``, so that a controller's
+            interpolation between samples stays in the set (docs: the export
+            guide gives the m that covers each interpolation and period).
     """
 
     optimize_move: bool = False
     max_tilt_deg: float = 45.0
     budget_s: float = 0.15
+    approach_offset: float | str = 0.2
+    approach_clearance: float = 0.02
+    grasp_margin: float = 0.0
 
 
 @dataclasses.dataclass
@@ -268,6 +289,13 @@ class Scenario:
             "rt-drake retime or GraspConstraint.for_tool"
         )
 
+    def approach_offset(self, name: str) -> float | None:
+        """Object ``name``'s line length (m), or None for ``"auto"``."""
+        value = self.object(name).approach_offset
+        if value is None:
+            value = self.planning.approach_offset
+        return None if value == AUTO else float(value)
+
     def object(self, name: str) -> ObjectConfig:
         """Return the object called ``name``; ScenarioError if there is none."""
         for obj in self.objects:
@@ -321,6 +349,24 @@ def load_scenario(path: str | Path) -> Scenario:
     return scenario
 
 
+#: The word of ``approach_offset`` for lines from the cell's geometry.
+AUTO = "auto"
+#: m, the largest ``planning.approach_clearance``.
+MAX_APPROACH_CLEARANCE = 0.2
+
+
+def _check_offset(where: str, value: float | str | None) -> None:
+    """An approach offset: None, ``"auto"`` or a number >= 0 (m)."""
+    if value is None or value == AUTO:
+        return
+    if isinstance(value, str):
+        raise ScenarioError(
+            f"{where}: must be a length in m or '{AUTO}', got {value!r}"
+        )
+    if value < 0:
+        raise ScenarioError(f"{where}: must be >= 0 m, got {value}")
+
+
 def _check_uncertainty(path: Path, key: str, obj: ObjectConfig) -> None:
     """The widths in range and the CoM box inside the object's box."""
     assert obj.uncertainty is not None
@@ -353,10 +399,7 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
             read_model_inertia(model_file(obj.model))
         except InputError as error:
             raise ScenarioError(f"{where}.model': {error}") from None
-        if obj.approach_offset < 0:
-            raise ScenarioError(
-                f"{where}.approach_offset': must be >= 0 m, got {obj.approach_offset}"
-            )
+        _check_offset(f"{where}.approach_offset'", obj.approach_offset)
         for pose in ("start", "goal", "grasp"):
             if not getattr(obj, pose).IsDeterministic():
                 raise ScenarioError(
@@ -413,7 +456,12 @@ def _check_grip(
 
 
 def _check_planning(path: Path, planning: PlanningConfig) -> None:
-    """``max_tilt_deg`` in [0, 90), ``budget_s`` > 0 (NaN and inf never load)."""
+    """``max_tilt_deg`` in [0, 90), ``budget_s`` > 0, ``grasp_margin`` in [0, 0.9].
+
+    And the approach keys.
+
+    NaN and inf never load.
+    """
     if not 0 <= planning.max_tilt_deg < 90:
         raise ScenarioError(
             f"{path}: key 'planning.max_tilt_deg': must be in [0, 90) deg, got "
@@ -422,6 +470,17 @@ def _check_planning(path: Path, planning: PlanningConfig) -> None:
     if not planning.budget_s > 0:
         raise ScenarioError(
             f"{path}: key 'planning.budget_s': must be > 0 s, got {planning.budget_s}"
+        )
+    _check_offset(f"{path}: key 'planning.approach_offset'", planning.approach_offset)
+    if not 0 < planning.approach_clearance <= MAX_APPROACH_CLEARANCE:
+        raise ScenarioError(
+            f"{path}: key 'planning.approach_clearance': must be in "
+            f"(0, {MAX_APPROACH_CLEARANCE}] m, got {planning.approach_clearance}"
+        )
+    if not 0.0 <= planning.grasp_margin <= 0.9:
+        raise ScenarioError(
+            f"{path}: key 'planning.grasp_margin': must be in [0, 0.9] (a share "
+            f"of g), got {planning.grasp_margin}"
         )
 
 
@@ -486,6 +545,14 @@ def _check_robot(path: Path, robot: RobotConfig) -> None:
             )
         if any(v <= 0 for v in values):
             raise ScenarioError(f"{key}: limits must be > 0, got {values}")
+    key = f"{path}: key 'robot.joint_names'"
+    for plant_name, name in robot.joint_names.items():
+        if not plant_name.strip() or not name.strip():
+            raise ScenarioError(f"{key}: empty joint name in {plant_name!r}: {name!r}")
+    names = list(robot.joint_names.values())
+    repeated = sorted({name for name in names if names.count(name) > 1})
+    if repeated:
+        raise ScenarioError(f"{key}: controller name '{repeated[0]}' is given twice")
 
 
 __all__ = [

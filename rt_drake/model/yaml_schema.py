@@ -178,7 +178,15 @@ def _check_value(path: Path, value: Any, kind: Any, key_path: str) -> None:
     if typing.get_origin(kind) in (typing.Union, types.UnionType):
         if value is None and type(None) in typing.get_args(kind):
             return
-        (kind,) = [a for a in typing.get_args(kind) if a is not type(None)]
+        kinds = [a for a in typing.get_args(kind) if a is not type(None)]
+        if len(kinds) > 1:  # e.g. float | str: a number, or a word checked later
+            if not any(_matches(value, k) for k in kinds):
+                names = " or ".join(_KIND_NAMES[k] for k in kinds)
+                raise ScenarioError(f"{where}: expected {names}, got {_shown(value)}")
+            if _is_number(value):
+                _check_number(where, value)
+            return
+        (kind,) = kinds
     if kind is Transform:
         _check_pose(path, value, key_path)
     elif kind is ModelDirective:  # Drake checks the directives themselves
@@ -196,6 +204,14 @@ def _check_value(path: Path, value: Any, kind: Any, key_path: str) -> None:
         (item,) = typing.get_args(kind)
         for index, entry in enumerate(value):
             _check_value(path, entry, item, f"{key_path}[{index}]")
+    elif typing.get_origin(kind) is dict:
+        if not isinstance(value, dict):
+            raise ScenarioError(f"{where}: expected a mapping, got {_shown(value)}")
+        key_kind, item = typing.get_args(kind)
+        for key, entry in value.items():
+            if key_kind is str and not isinstance(key, str):
+                raise ScenarioError(f"{where}: expected string keys, got {_shown(key)}")
+            _check_value(path, entry, item, f"{key_path}.{key}")
     elif kind is float:
         _check_number(where, value)
     elif kind is int:
@@ -204,6 +220,21 @@ def _check_value(path: Path, value: Any, kind: Any, key_path: str) -> None:
     elif kind is str:
         if not isinstance(value, str):
             raise ScenarioError(f"{where}: expected a string, got {_shown(value)}")
+
+
+#: How a scalar kind of a union is named in messages.
+_KIND_NAMES = {float: "a number", int: "an integer", str: "a string"}
+
+
+def _matches(value: Any, kind: Any) -> bool:
+    """``value`` has the scalar ``kind`` (float, int or str) of a union."""
+    if kind is float:
+        return _is_number(value)
+    if kind is int:
+        return isinstance(value, int) and not isinstance(value, bool)
+    if kind is str:
+        return isinstance(value, str) and not _is_number(value)
+    raise TypeError(f"scenario schema: unions of {kind} are not supported")
 
 
 def _check_number(where: str, value: Any) -> None:

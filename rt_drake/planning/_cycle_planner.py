@@ -1,7 +1,9 @@
 """Collision-free paths for the phases of a pick-and-place cycle (paper III-A).
 
 - APPROACH: current q -> cup above the object (grasp pose raised by the
-  object's ``approach_offset`` along world z).
+  object's ``approach_offset`` along world z; with ``"auto"``, by the
+  shortest line that keeps the cup and the object clear of the cell,
+  :meth:`CyclePlanner.line_height`).
 - REACH: straight down to the grasp pose X_WC = X_WO X_OC (cup face on the
   object's top face): IK every ``LINE_STEP`` of the descent, each seeded and
   costed by the previous solution; no RRT. The target's grasped face is
@@ -52,6 +54,7 @@ from rt_drake.planning._ik import (
     initial_guesses,
     nearest_valid_solution,
 )
+from rt_drake.planning._line_heights import LineHeightError, LineProbe
 from rt_drake.planning._pick import (
     PlannedPick,
     plan_pick,
@@ -127,6 +130,11 @@ class CyclePlanner:
         for obj in scenario.objects:
             X_WO = self.object_poses[obj.name]
             self.scene.set_object(obj.name, X_WO, obj.model, None, TOUCH_ALLOWANCE)
+        self._probe: LineProbe | None = None
+        self._heights: dict[tuple, float] = {}
+        if any(scenario.approach_offset(o.name) is None for o in scenario.objects):
+            self._probe = LineProbe(scenario)
+            self._nominal_heights()
 
     def set_object_pose(self, name: str, X_WO: RigidTransform | None) -> None:
         """Move object ``name`` to X_WO (None: the object left the cell)."""
@@ -134,6 +142,53 @@ class CyclePlanner:
         if X_WO is not None:
             _check_pose(X_WO, f"pose of object '{name}'")
         self.object_poses[name] = X_WO
+
+    def line_height(self, name: str, X_WO: RigidTransform, at: Phase) -> float:
+        """Length (m) of the vertical line above object ``name`` at X_WO.
+
+        The scenario's ``approach_offset``, or with ``"auto"`` the shortest
+        line keeping the cup and the object ``planning.approach_clearance``
+        clear of the cell as it is now (:mod:`._line_heights`). ``at``:
+        the phase the line belongs to (APPROACH/REACH above the pick, MOVE
+        above the place), for messages.
+        """
+        offset = self.scenario.approach_offset(name)
+        if offset is not None:
+            return offset
+        assert self._probe is not None  # built when any object is "auto"
+        X_OC = self.grasps(name)[0]
+        others = {k: v for k, v in self.object_poses.items() if k != name}
+        key = (name, _pose_key(X_WO), *((k, _pose_key(v)) for k, v in others.items()))
+        if key not in self._heights:
+            try:
+                self._heights[key] = self._probe.line_height(
+                    X_WO @ X_OC,
+                    name,
+                    X_OC.inverse(),
+                    others,
+                    self.scenario.planning.approach_clearance,
+                )
+            except LineHeightError as error:
+                raise PlanningError(
+                    at, name, f"approach_offset auto: {error}"
+                ) from None
+        return self._heights[key]
+
+    def _nominal_heights(self) -> None:
+        """Compute the lines of the scenario's own cycle before any plan.
+
+        Objects in order, each placed at its goal: no plan of that cycle
+        waits for a line height.
+        """
+        saved = dict(self.object_poses)
+        for obj in self.scenario.objects:
+            X_start = self.object_poses[obj.name]
+            if X_start is not None:
+                self.line_height(obj.name, X_start, Phase.APPROACH)
+            X_goal = obj.goal.GetDeterministicValue()
+            self.line_height(obj.name, X_goal, Phase.MOVE)
+            self.object_poses[obj.name] = X_goal
+        self.object_poses = saved
 
     def grasps(self, name: str) -> list[RigidTransform]:
         """The scenario's X_OC and its 180 deg yaw flip about z_C."""
@@ -163,9 +218,9 @@ class CyclePlanner:
             with attempt.watch("scene"):
                 self.prepare(Phase.APPROACH, name, q_current)
         self._check_start(attempt, q_current)
-        offset = self.scenario.object(name).approach_offset
         grasps = self.grasps(name)
         X_WO = self._pose(attempt)
+        offset = self.line_height(name, X_WO, Phase.APPROACH)
         targets = [_raised(X_WO @ X_OC, offset) for X_OC in grasps]
         with attempt.watch("ik"):
             index, q_goal = self._solve(attempt, "approach", targets, q_current)
@@ -262,12 +317,16 @@ class CyclePlanner:
             self.prepare(Phase.MOVE, name, q_grasp, X_OC)
         self._check_start(attempt, q_grasp)
         X_place = X_WO_goal @ X_OC
-        X_lift = _raised(X_grasp, obj.approach_offset)
+        lift_height = self.line_height(name, self._pose(attempt), Phase.MOVE)
+        place_height = self.line_height(name, X_WO_goal, Phase.MOVE)
+        # An "auto" line is already the shortest that keeps the clearance.
+        fractions = ABOVE_FRACTIONS if self.scenario.approach_offset(name) else (1.0,)
+        X_lift = _raised(X_grasp, lift_height)
         with attempt.watch("ik"):
             lift = self._reversed_reach(reach, name, q_grasp, X_lift)
             q_lift = self._optional(X_lift, q_grasp) if lift is None else lift[-1]
-            for fraction in ABOVE_FRACTIONS:  # lower if the full height is out of reach
-                X_above = _raised(X_place, fraction * obj.approach_offset)
+            for fraction in fractions:  # lower if the full height is out of reach
+                X_above = _raised(X_place, fraction * place_height)
                 q_above = self._optional(X_above, q_grasp if q_lift is None else q_lift)
                 if q_above is not None:
                     break
@@ -478,6 +537,11 @@ class CyclePlanner:
         if np.linalg.norm(error.translation()) > 1e-5 or not self._valid(chain[-1]):
             return None
         return chain
+
+
+def _pose_key(X_WO: RigidTransform | None) -> bytes | None:
+    """A hashable key of a pose (its 3x4 matrix, bit for bit)."""
+    return None if X_WO is None else X_WO.GetAsMatrix34().tobytes()
 
 
 def _check_pose(X: RigidTransform, what: str, attempt: Attempt | None = None) -> None:

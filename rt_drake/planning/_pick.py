@@ -217,7 +217,11 @@ def plan_pick(
         reach.chain[0],
     )
     descent = reach.chain
-    if q_turn is not None and TURN_STEP < planner.scenario.object(name).approach_offset:
+    line = (
+        X_approach.translation()[2]
+        - planner.scene.cup_pose(reach.q_goal).translation()[2]
+    )
+    if q_turn is not None and TURN_STEP < line:
         descent = np.vstack([descent[:1], [q_turn], descent[1:]])
     blend_s = time.perf_counter() - start
     approach_timing, transit = goal.attempt.watch.timing(), None

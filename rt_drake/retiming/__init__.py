@@ -20,9 +20,10 @@ objects), ``_between`` (limits held between grid points), ``_samples``,
 ``_joint_path`` (any path as ``q(s)``; the path type itself is
 :class:`rt_drake.types.path.GeometricPath`), ``_precompile`` (compiles the
 kernels before anything is timed), ``_timed_path``, ``_time_scaled``,
-``_check`` (dense 1 kHz verification), ``_jerk``, ``_jerk_rows`` and
-``_jerk_timed_path`` (jerk limits: LPs after TOPP-RA, and the motion they
-give), ``_trajectory_file`` (the ``.npz``
+``_check`` (dense 1 kHz verification), ``_stop`` and ``_stop_pass``
+(protective stops along the path), ``_jerk``, ``_jerk_rows``,
+``_jerk_points`` and ``_jerk_timed_path`` (jerk limits: LPs after TOPP-RA,
+and the motion they give), ``_trajectory_file`` (the ``.npz``
 format) and ``_retime_errors`` (typed errors and statuses).
 """
 
@@ -52,6 +53,12 @@ from rt_drake.retiming._retime_errors import (
 from rt_drake.retiming._solve import (
     RetimeResult,
     retime,
+)
+from rt_drake.retiming._stop import (
+    StopNotFoundError,
+    StopResult,
+    joint_brake_stop,
+    protective_stop,
 )
 from rt_drake.retiming._time_scaled import TimeScaled
 from rt_drake.retiming._timed_path import TimedPath
@@ -93,6 +100,8 @@ __all__ = [
     "RetimeResult",
     "RetimeStatus",
     "SavedTrajectory",
+    "StopNotFoundError",
+    "StopResult",
     "TimeScaled",
     "TimedPath",
     "ToolGrasp",
@@ -102,8 +111,10 @@ __all__ = [
     "WorstMargin",
     "check_trajectory",
     "chord_knots",
+    "joint_brake_stop",
     "load_trajectory",
     "path_waypoints_and_knots",
+    "protective_stop",
     "retime",
     "sample_trajectory",
     "save_trajectory",

@@ -260,6 +260,10 @@ def _joint_name(plant: MultibodyPlant, velocity_index: int) -> str:
     return f"velocity {velocity_index}"
 
 
+#: Largest share of g a grasp margin may keep free (``with_margin``).
+MAX_GRASP_MARGIN = 0.9
+
+
 @dataclasses.dataclass(frozen=True, eq=False)
 class GraspConstraint:
     """Grasp stability ``F w <= g`` of a held object (paper eq. 20).
@@ -435,6 +439,28 @@ class GraspConstraint:
     def describe(self) -> str:
         """E.g. ``object 0.551 kg`` (a cup adds its suction, a tool its cups)."""
         return f"object {self.held.mass:.3g} kg"
+
+    def with_margin(self, fraction: float) -> GraspConstraint:
+        """This constraint with a share of each row kept free: ``F w <= (1 - m) g``.
+
+        ``m = fraction`` in [0, :data:`MAX_GRASP_MARGIN`]. The set is the
+        original scaled by ``1 - m`` about the zero wrench (inside it), so a
+        subset: a motion retimed under it keeps ``m g`` of every row for
+        what the retimer does not see, e.g. a controller's interpolation
+        between samples (docs: export guide). Same class, same source;
+        ``fraction = 0`` returns ``self``.
+
+        Raises:
+            RetimeInputError: ``fraction`` not a number in that range.
+        """
+        where = f"{type(self).__name__}.with_margin"
+        fraction = arguments.number(
+            fraction, "fraction", where=where, low=0.0, high=MAX_GRASP_MARGIN,
+            error=RetimeInputError,
+        )  # fmt: skip
+        if fraction == 0.0:
+            return self
+        return dataclasses.replace(self, g=(1.0 - fraction) * self.g)
 
     @staticmethod
     def for_tool(
@@ -637,6 +663,7 @@ GRASP_ATTRIBUTES = ("held", "F", "g", "is_robust")
 
 __all__ = [
     "GRASP_ATTRIBUTES",
+    "MAX_GRASP_MARGIN",
     "CupGrasp",
     "GraspConstraint",
     "JointLimits",

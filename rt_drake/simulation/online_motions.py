@@ -226,8 +226,10 @@ class OnlineMotions:
 
         Robust (every object of its uncertainty set, every cup of the cup's
         range) when ``robust`` (default: as constructed) and the scenario
-        gives a set or a range; else the nominal object and cup.
+        gives a set or a range; else the nominal object and cup. Shrunk by
+        the scenario's ``planning.grasp_margin``.
         """
+        margin = self._scenario.planning.grasp_margin
         robust = self._robust if robust is None else robust
         held = held_object(obj, X_OC)
         uncertainty = obj.uncertainty or ObjectUncertainty()
@@ -236,12 +238,13 @@ class OnlineMotions:
         )
         if not robust or (uncertainty.is_zero() and not uncertain_cup):
             polytope = self._polytope or move_polytope(self._scenario)
-            return GraspConstraint.for_polytope(held, polytope)
+            return GraspConstraint.for_polytope(held, polytope).with_margin(margin)
         cup = move_cup(self._scenario)
         F, g = self._worst_cup or worst_cup_polytope(cup)
         R_CO = X_OC.inverse().rotation().matrix()
         objects = uncertain_object(held, uncertainty, R_CO)
-        return ObjectSetGrasp(held=held, F=F, g=g, cup=cup, objects=objects)
+        grasp = ObjectSetGrasp(held=held, F=F, g=g, cup=cup, objects=objects)
+        return grasp.with_margin(margin)
 
     def velocity_bound(self, path: GeometricPath, s: np.ndarray) -> np.ndarray:
         """Largest s' (1/s) the joint velocity limits allow at each s."""

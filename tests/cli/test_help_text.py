@@ -54,6 +54,7 @@ def test_the_walk_reaches_every_subcommand():
     assert {("run",), ("constraint",), ("plan",), ("retime",), ("show",)} <= set(
         COMMANDS
     )
+    assert ("export",) in COMMANDS
     assert {("experiment", name) for name in ("transport", "cycle", "campaign")} <= (
         set(COMMANDS)
     )

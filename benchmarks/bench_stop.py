@@ -1,0 +1,136 @@
+"""CPU time of a protective stop beside the retime of its MOVE, and what it costs.
+
+Run: ``PYTHONPATH=. python benchmarks/bench_stop.py [--paths 6] [--instants 9]``.
+
+The MOVE-like paths of ``bench_retime.py`` (lift, swing joint 1 by 0.6 to
+1.8 rad, set down; the notebook on the scenario's cup, 100 grid points) are
+retimed under the grasp; each is stopped at ``--instants`` evenly spaced
+instants strictly inside it, grasp-aware (``protective_stop``) and by the
+joint brake (``joint_brake_stop``). Interleaved on the same paths, in CPU
+time of this thread (``time.thread_time``: the machine is shared): the
+retime of the whole MOVE, each stop. Also: the stop times (s) and the
+joint brake's grasp margin at 1 kHz (negative: the wrench leaves the grasp
+set), so the price of keeping the grasp is measured beside its cost.
+
+OpenBLAS is made single-threaded (unless OPENBLAS_NUM_THREADS is set).
+"""
+
+import os
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import argparse  # noqa: E402
+import statistics  # noqa: E402
+import time  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from rt_drake.model.held import held_object_of  # noqa: E402
+from rt_drake.model.plant import make_arm_plant  # noqa: E402
+from rt_drake.model.resources import scenarios_dir  # noqa: E402
+from rt_drake.model.scenario import load_scenario  # noqa: E402
+from rt_drake.retiming import (  # noqa: E402
+    GraspConstraint,
+    JointLimits,
+    Margin,
+    check_trajectory,
+    joint_brake_stop,
+    protective_stop,
+    retime,
+)
+
+HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
+
+
+def move_paths(count: int) -> list[np.ndarray]:
+    """Waypoints of MOVE-like paths: lift, swing joint 1 (and the wrist), set down."""
+    paths = []
+    for swing in np.linspace(0.6, 1.8, count):
+        lift = HOME + [0.0, -0.25, -0.3, 0.0, 0.45, 0.0]
+        paths.append(
+            np.array(
+                [
+                    HOME,
+                    lift,
+                    lift + [0.5 * swing, 0.05, 0.1, 0.1, -0.1, 0.3 * swing],
+                    lift + [swing, 0.0, 0.0, 0.0, 0.0, 0.6 * swing],
+                    HOME + [swing, 0.0, 0.0, 0.0, 0.0, 0.6 * swing],
+                ]
+            )
+        )
+    return paths
+
+
+def cpu(call):  # noqa: ANN001, ANN201
+    """(result, CPU seconds of this thread)."""
+    start = time.thread_time()
+    value = call()
+    return value, time.thread_time() - start
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--paths", type=int, default=6)
+    parser.add_argument("--instants", type=int, default=9)
+    args = parser.parse_args()
+    scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
+    plant = make_arm_plant(scenario)
+    context = plant.CreateDefaultContext()
+    limits = JointLimits.from_plant(plant, scenario.robot)
+    grasp = GraspConstraint.for_cup(
+        held_object_of(scenario.object("notebook")), scenario.cup
+    )
+    path0 = move_paths(1)[0]
+    retime(plant, path0, limits, grasp, context=context)  # compile, warm up
+    protective_stop(plant, path0, limits, retime(plant, path0, limits, grasp), 0.3)
+    retimes, held_cpu, brake_cpu = [], [], []
+    held_time, brake_time, brake_margin, held_margin = [], [], [], []
+    for path in move_paths(args.paths):
+        for k in range(1, args.instants + 1):
+            result, seconds = cpu(
+                lambda p=path: retime(plant, p, limits, grasp, context=context)
+            )
+            retimes.append(seconds)
+            t = k / (args.instants + 1) * result.duration
+            held, seconds = cpu(
+                lambda p=path, r=result, t=t: protective_stop(
+                    plant, p, limits, r, t, grasp, context=context
+                )
+            )
+            held_cpu.append(seconds)
+            brake, seconds = cpu(
+                lambda p=path, r=result, t=t: joint_brake_stop(
+                    plant, p, limits, r, t, context=context
+                )
+            )
+            brake_cpu.append(seconds)
+            held_time.append(held.duration)
+            brake_time.append(brake.duration)
+            for stop, out in ((held, held_margin), (brake, brake_margin)):
+                check = check_trajectory(plant, stop.stop, limits, grasp)
+                out.append(check.margins[Margin.GRASP].value)
+    count = len(retimes)
+
+    def row(name: str, values: list[float], scale: float, unit: str) -> str:
+        v = np.asarray(values) * scale
+        return (
+            f"| {name} | {statistics.median(v):.3g} | {v.min():.3g} | "
+            f"{v.max():.3g} | {unit} |"
+        )
+
+    print(f"{args.paths} paths x {args.instants} instants = {count} stops")
+    print("| quantity | median | min | max | unit |")
+    print("|---|---:|---:|---:|---|")
+    print(row("retime of the MOVE (CPU)", retimes, 1e3, "ms"))
+    print(row("protective_stop (CPU)", held_cpu, 1e3, "ms"))
+    print(row("joint_brake_stop (CPU)", brake_cpu, 1e3, "ms"))
+    print(row("grasp-aware stop time", held_time, 1.0, "s"))
+    print(row("joint-brake stop time", brake_time, 1.0, "s"))
+    print(row("grasp margin, grasp-aware stop", held_margin, 1.0, "1"))
+    print(row("grasp margin, joint-brake stop", brake_margin, 1.0, "1"))
+    left = sum(m < -1e-3 for m in brake_margin)
+    print(f"joint-brake stops leaving the grasp set (margin < -1e-3): {left}/{count}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,446 @@
+"""Protective stops along the path: :func:`protective_stop`, :func:`joint_brake_stop`.
+
+A light curtain trips at time t of a retimed MOVE. The robot is at the path
+parameter ``s_t = s(t)`` with ``x_t = s'(t)^2``; the stop brings it to rest
+along the same path ``q(s)``, never leaving it.
+
+:func:`protective_stop` keeps every limit of the retime and the grasp:
+
+1. the shortest stop: the first grid point at rest under maximal braking,
+   from the controllable sets of rest (:mod:`._stop_pass`), on the retime's
+   own grid from ``s_t`` on, then again with the segments up to that point
+   split into :data:`STOP_SUBDIVISION` (so the stop ends at most a quarter
+   of a grid step beyond the shortest on the retime's grid);
+2. the fastest profile to that point: :func:`~._solve.retime` of the
+   sub-path ``[s_t, s_stop]`` (reparametrised to [0, 1], ``sigma = (s -
+   s_t) / L``, ``L = s_stop - s_t``, so ``x_sigma = x_s / L^2``) from
+   ``sd_start = sqrt(x_t) / L`` to rest: TOPP-RA's backward pass from rest at
+   ``s_stop``, met by the trajectory's own state at t. The retimer holds
+   every limit between grid points too (cuts and refinements), so the stop
+   passes :func:`~._check.check_trajectory` at 1 kHz within its 1e-3
+   contract. Where it adds constraints the grid-point pass did not see and
+   ``s_stop`` is no longer reachable at rest, the next candidates are tried
+   (1, 2, 4, ... grid points further); at the path's end the stop is the
+   retimed trajectory itself, which ends at rest.
+
+:func:`joint_brake_stop` is what robots do today: each joint brakes as hard
+as its acceleration limit allows, along the path, under the joint velocity
+and acceleration limits only (no grasp, no torques).
+
+Jerk is not limited on either stop: the path acceleration jumps at t (as
+TOPP-RA's does between segments).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+
+import numpy as np
+from pydrake.multibody.plant import MultibodyPlant
+from pydrake.systems.framework import Context
+from pydrake.trajectories import PiecewisePolynomial, Trajectory
+
+from rt_drake import arguments
+from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.retiming._joint_path import JointPath, PathLike, as_joint_path
+from rt_drake.retiming._retime_errors import (
+    PathNotControllableError,
+    RetimeError,
+    RetimeInputError,
+)
+from rt_drake.retiming._samples import sample_path
+from rt_drake.retiming._solve import RetimeResult, retime
+from rt_drake.retiming._stop_pass import REST_X, StopPass, grid_constraints, stop_pass
+from rt_drake.retiming._timed_path import TimedPath
+from rt_drake.retiming.grid import MIN_STEP
+from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint, JointLimits
+
+#: Uniform points, at least, of the grid of the sub-path a stop is retimed on
+#: (with the retime's own grid points in it).
+STOP_GRIDPOINTS = 30
+#: Parts each grid segment up to the first stop point is split into, for a
+#: second braking pass (a stop at most a fine step longer than the shortest).
+STOP_SUBDIVISION = 4
+#: s: how long the trajectory of a stop at the very start (the robot at rest
+#: there) holds the start configuration.
+STANDSTILL_S = 1e-3
+
+
+class StopNotFoundError(RetimeError):
+    """The state at t cannot be brought to rest within the path's limits."""
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class StopResult:
+    """A protective stop (see the module docstring).
+
+    Attributes:
+        trajectory: The whole motion, q(t): the retimed trajectory up to
+            ``start_time``, then the stop; it ends at rest at ``s_stop``
+            (a ``TimedPath``; at t = the start, where the robot is at
+            rest, it holds the start for :data:`STANDSTILL_S`).
+        stop: The stop alone, from t to rest (at rest at t: holding q(t)
+            for :data:`STANDSTILL_S`).
+        start_time: t, s: when the stop begins.
+        duration: s from t to rest (0 if at rest at t).
+        s_start: Path parameter at t.
+        sd_start: Path velocity ``s'(t)``, 1/s.
+        s_stop: Path parameter where the robot comes to rest.
+        grasp_aware: Whether the grasp (and torques, if limited) were kept.
+    """
+
+    trajectory: Trajectory
+    stop: Trajectory
+    start_time: float
+    duration: float
+    s_start: float
+    sd_start: float
+    s_stop: float
+    grasp_aware: bool
+
+    @property
+    def end_time(self) -> float:
+        """Time (s) at which the robot is at rest."""
+        return self.start_time + self.duration
+
+
+def protective_stop(
+    plant: MultibodyPlant,
+    path: PathLike,
+    limits: JointLimits,
+    result: RetimeResult,
+    t: float,
+    grasp: GraspConstraint | None = None,
+    *,
+    context: Context | None = None,
+    cup: CupFrame | None = None,
+) -> StopResult:
+    """The fastest stop to rest from time ``t`` of ``result`` that keeps the grasp.
+
+    Args:
+        plant: The retimer's plant, as given to
+            :func:`~rt_drake.retiming.retime` for ``result``.
+        path: The path ``result`` retimed.
+        limits: Its joint limits (torques kept if ``limits.torque``).
+        result: The retimed trajectory.
+        t: When the stop begins, s, in ``[start_time, end_time]`` of
+            ``result.trajectory``.
+        grasp: Its grasp (one held object; a set of objects is not
+            supported); None: no object.
+        context: Scratch context of ``plant``.
+        cup: The cup frame C (default: the plant's ``suction_cup``).
+
+    Returns:
+        The stop; velocity, acceleration, torque (if limited) and grasp
+        limits hold throughout.
+
+    Raises:
+        RetimeInputError: ``t`` not a finite number inside the trajectory,
+            a malformed argument, or a grasp of a set of objects.
+        StopNotFoundError: the state at t cannot be brought to rest within
+            the path (not for a trajectory this retimer made).
+    """
+    return _stop(plant, path, limits, result, t, grasp, context, cup, True)
+
+
+def joint_brake_stop(
+    plant: MultibodyPlant,
+    path: PathLike,
+    limits: JointLimits,
+    result: RetimeResult,
+    t: float,
+    *,
+    context: Context | None = None,
+    cup: CupFrame | None = None,
+) -> StopResult:
+    """The stop robots make today: the joints brake at their limits, grasp ignored.
+
+    The fastest stop along the path from time ``t`` of ``result`` under the
+    joint velocity and acceleration limits only (torques and grasp are not
+    constrained). Arguments and errors as :func:`protective_stop`.
+    """
+    if isinstance(limits, JointLimits):
+        limits = dataclasses.replace(limits, torque=None)
+    return _stop(plant, path, limits, result, t, None, context, cup, False)
+
+
+def _stop(
+    plant: MultibodyPlant,
+    path: PathLike,
+    limits: JointLimits,
+    result: RetimeResult,
+    t: float,
+    grasp: GraspConstraint | None,
+    context: Context | None,
+    cup: CupFrame | None,
+    grasp_aware: bool,
+) -> StopResult:
+    """Both stops (see the module docstring)."""
+    _check_objects(plant, limits, result, grasp, context, cup)
+    spline = as_joint_path(path)
+    if spline.num_joints != limits.num_joints:
+        raise RetimeInputError(
+            f"stop: path has {spline.num_joints} joints but {limits.num_joints=}"
+        )
+    s_t, sd_t = state_at(result, t)
+    context = context or plant.CreateDefaultContext()
+    cup = cup or CupFrame.of(plant)
+    if sd_t * sd_t <= REST_X:  # at rest already: the trajectory up to t
+        return _at_rest(result, spline, float(t), s_t, sd_t, grasp_aware)
+    if s_t >= 1.0 - MIN_STEP:  # at the end already: the MOVE rests there
+        stop_s, stop_x = _remainder(result, s_t, sd_t)
+        return _joined(result, spline, float(t), s_t, sd_t, stop_s, stop_x, grasp_aware)
+    s_grid = result.gridpoints  # it ends at 1
+    held = None if grasp is None else grasp.held
+    F, g = (None, None) if grasp is None else (grasp.F, grasp.g)
+
+    def brake(s: np.ndarray) -> StopPass:
+        samples = sample_path(
+            plant, spline, s, limits.velocity, limits.torque is not None, held,
+            context, cup,
+        )  # fmt: skip
+        return stop_pass(grid_constraints(samples, limits, F, g), s, sd_t * sd_t)
+
+    s = np.concatenate([[s_t], s_grid[s_grid > s_t + MIN_STEP]])
+    braking = brake(s)
+    if braking.stop_index is not None:  # again, on a finer grid up to there
+        index = braking.stop_index
+        head = subdivided(s[: index + 1], STOP_SUBDIVISION)
+        fine = brake(head)  # rest at s[index] reachable: its controllable sets
+        if fine.stop_index is not None:
+            s, braking = np.concatenate([head, s[index + 1 :]]), fine
+    if braking.stop_index is None:
+        raise StopNotFoundError(
+            f"no stop to rest within the path from t = {t:.4f} s (s = {s_t:.4f}, "
+            f"s' = {sd_t:.4g} 1/s): the state is outside the set from which rest "
+            f"is reachable",
+            s=s_t,
+        )
+    for index in _candidates(braking.stop_index, len(s) - 1):
+        if index == len(s) - 1 and s[index] >= 1.0 - MIN_STEP:
+            stop_s, stop_x = _remainder(result, s_t, sd_t)
+        else:
+            try:
+                stop_s, stop_x = _retimed_stop(
+                    plant, spline, limits, grasp, context, cup, s, index, sd_t
+                )
+            except PathNotControllableError:
+                continue
+        return _joined(result, spline, float(t), s_t, sd_t, stop_s, stop_x, grasp_aware)
+    raise AssertionError("the path's end is always a candidate")  # pragma: no cover
+
+
+def state_at(result: RetimeResult, t: float) -> tuple[float, float]:
+    """``(s(t), s'(t))`` of a retimed trajectory (exact, from its profile).
+
+    Within segment k, ``s = s_k + s'_k tau + u_k tau^2 / 2``, ``s' = s'_k +
+    u_k tau`` with ``tau = t - t_k``.
+
+    Raises:
+        RetimeInputError: ``t`` not a finite number in ``[t0, tf]``.
+    """
+    times = result.trajectory.times
+    if not (
+        isinstance(t, (int, float, np.number))
+        and not isinstance(t, bool)
+        and np.isfinite(t)
+    ):
+        raise RetimeInputError(f"stop: t must be a finite number (s), got {t!r}")
+    if not times[0] <= t <= times[-1]:
+        raise RetimeInputError(
+            f"stop: t = {t!r} s is outside the trajectory "
+            f"[{times[0]:.6g}, {times[-1]:.6g}] s"
+        )
+    k = int(np.clip(np.searchsorted(times, t, side="right") - 1, 0, len(times) - 2))
+    tau = float(t) - times[k]
+    u = result.sdd[k]
+    sd = max(result.sd[k] + u * tau, 0.0)
+    s = min(result.gridpoints[k] + result.sd[k] * tau + 0.5 * u * tau**2, 1.0)
+    return float(s), float(sd)
+
+
+def subdivided(s: np.ndarray, parts: int) -> np.ndarray:
+    """The grid ``s`` with each segment split into ``parts`` equal ones."""
+    steps = np.arange(parts) / parts
+    fine = (s[:-1, None] + np.diff(s)[:, None] * steps).ravel()
+    return np.append(fine, s[-1])
+
+
+def _candidates(first: int, last: int) -> list[int]:
+    """Grid indices to try: ``first``, then 1, 2, 4, ... further, then ``last``."""
+    out, step = [first], 1
+    while out[-1] < last:
+        out.append(min(first + step, last))
+        step *= 2
+    return out
+
+
+def _retimed_stop(
+    plant: MultibodyPlant,
+    spline: JointPath,
+    limits: JointLimits,
+    grasp: GraspConstraint | None,
+    context: Context,
+    cup: CupFrame,
+    s: np.ndarray,
+    index: int,
+    sd_t: float,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The retimed sub-path from ``s[0]`` to rest at ``s[index]``: (s, x) grid.
+
+    Raises:
+        PathNotControllableError: the state at ``s[0]`` cannot reach rest
+            there under the retimer's constraints (or only from a lower
+            speed, after TOPP-RA's safeguard lowered it).
+    """
+    start, length = s[0], s[index] - s[0]
+    sub = sub_path(spline, start, s[index])
+    own = (s[1:index] - start) / length
+    grid = np.unique(np.concatenate([np.linspace(0, 1, STOP_GRIDPOINTS), own]))
+    grid = grid[np.concatenate([[True], np.diff(grid) > MIN_STEP])]
+    grid[-1] = 1.0
+    stop = retime(
+        plant, sub, limits, grasp, grid, sd_start=sd_t / length, context=context,
+        cup=cup,
+    )  # fmt: skip
+    if abs(length * stop.sd[0] - sd_t) > 1e-9 * max(sd_t, 1.0):
+        # TOPP-RA's forward pass lowered the start (its safeguard when the
+        # start is on the edge of K_0): not the trajectory's state at t.
+        raise PathNotControllableError("the stop does not start at s'(t)", s=start)
+    return start + length * stop.gridpoints, (length * stop.sd) ** 2
+
+
+def _remainder(
+    result: RetimeResult, s_t: float, sd_t: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """The retimed trajectory itself from ``s_t`` to its end at rest: (s, x)."""
+    s = result.gridpoints
+    later = s > s_t + MIN_STEP
+    later[-1] = True  # s = 1, where it rests
+    return (
+        np.concatenate([[s_t], s[later]]),
+        np.concatenate([[sd_t * sd_t], result.sd[later] ** 2]),
+    )
+
+
+def sub_path(spline: JointPath, start: float, end: float) -> JointPath:
+    """``q(start + sigma (end - start))``, sigma in [0, 1], as a JointPath.
+
+    Its derivatives in sigma are ``L^k d^k q / ds^k`` (``L = end - start``);
+    its breaks are those of ``spline`` inside, mapped.
+    """
+    length = end - start
+    inside = spline.breaks[(spline.breaks > start) & (spline.breaks < end)]
+    breaks = np.concatenate([[0.0], (inside - start) / length, [1.0]])
+
+    def evaluate(sigma: np.ndarray, order: int) -> np.ndarray:
+        s = np.minimum(start + sigma * length, end)
+        return spline(s, order) * length**order
+
+    return JointPath(evaluate, breaks, spline.cubic, spline.num_joints)
+
+
+def _joined(
+    result: RetimeResult,
+    spline: JointPath,
+    t: float,
+    s_t: float,
+    sd_t: float,
+    stop_s: np.ndarray,
+    stop_x: np.ndarray,
+    grasp_aware: bool,
+) -> StopResult:
+    """The retimed trajectory up to ``s_t``, then the stop profile, as one."""
+    before = _before(result.gridpoints, s_t)
+    grid = np.concatenate([result.gridpoints[before], stop_s])
+    x = np.concatenate([result.sd[before] ** 2, [sd_t * sd_t], stop_x[1:]])
+    start = result.trajectory.start_time()
+    whole = TimedPath(spline, grid, x, start)
+    stop_alone = TimedPath(spline, stop_s, np.append(sd_t * sd_t, stop_x[1:]), t)
+    return StopResult(
+        trajectory=whole,
+        stop=stop_alone,
+        start_time=t,
+        duration=stop_alone.duration,
+        s_start=s_t,
+        sd_start=sd_t,
+        s_stop=float(stop_s[-1]),
+        grasp_aware=grasp_aware,
+    )
+
+
+def _before(s: np.ndarray, s_t: float) -> np.ndarray:
+    """Grid points kept before ``s_t``: the start, and those MIN_STEP before it.
+
+    A point closer to ``s_t`` would make a segment too short for its path
+    acceleration to be computed from x (rounding over a step of 1e-12); the
+    profile changes by at most ``2 MIN_STEP |u|`` in x without it.
+    """
+    before = s < s_t - MIN_STEP
+    before[0] = s[0] < s_t
+    return before
+
+
+def _at_rest(
+    result: RetimeResult,
+    spline: JointPath,
+    t: float,
+    s_t: float,
+    sd_t: float,
+    grasp_aware: bool,
+) -> StopResult:
+    """A stop of no duration: the robot is at rest at t (the path's ends)."""
+    s = result.gridpoints
+    before = _before(s, s_t)
+    q = spline(s_t).reshape(-1, 1)
+    hold = PiecewisePolynomial.FirstOrderHold([t, t + STANDSTILL_S], np.hstack([q, q]))
+    trajectory: Trajectory = hold
+    if before.any():
+        grid = np.append(s[before], s_t)
+        x = np.append(result.sd[before] ** 2, 0.0)
+        trajectory = TimedPath(spline, grid, x, result.trajectory.start_time())
+    return StopResult(trajectory, hold, t, 0.0, s_t, sd_t, s_t, grasp_aware)
+
+
+def _check_objects(
+    plant: object,
+    limits: object,
+    result: object,
+    grasp: object,
+    context: object,
+    cup: object,
+) -> None:
+    """Refuse arguments of the wrong type, naming them."""
+    check = functools.partial(arguments.instance, where="stop", error=RetimeInputError)
+    check(plant, "plant", MultibodyPlant)
+    check(limits, "limits", JointLimits)
+    check(result, "result", RetimeResult)
+    if grasp is not None:
+        arguments.having(
+            grasp, "grasp", "GraspConstraint", GRASP_ATTRIBUTES, where="stop",
+            error=RetimeInputError,
+        )  # fmt: skip
+        if getattr(grasp, "is_robust", False):
+            raise RetimeInputError(
+                "stop: a grasp of a set of objects is not supported; give the "
+                "nominal object's GraspConstraint"
+            )
+    if context is not None:
+        check(context, "context", Context)
+    if cup is not None:
+        check(cup, "cup", CupFrame)
+
+
+__all__ = [
+    "STANDSTILL_S",
+    "STOP_GRIDPOINTS",
+    "STOP_SUBDIVISION",
+    "StopNotFoundError",
+    "StopResult",
+    "joint_brake_stop",
+    "protective_stop",
+    "state_at",
+    "sub_path",
+    "subdivided",
+]
