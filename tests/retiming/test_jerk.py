@@ -179,3 +179,34 @@ def test_jerk_limits_and_a_set_of_objects_are_refused(plant, limits, scenario):
     path = np.array([HOME, HOME + [0.5, 0, 0, 0, 0, 0]])
     with pytest.raises(RetimeInputError, match="jerk limits with the grasp of a set"):
         retime(plant, path, limits, robust)
+
+
+def test_the_file_and_its_export_keep_the_jerk_limited_motion(
+    plant, limits, scenario, tmp_path
+):
+    """``.npz`` round trip: the export rebuilds the jerk-limited motion from
+    the file's path and profile, not TOPP-RA's constant-s'' motion."""
+    from rt_drake.export import export_trajectory
+    from rt_drake.retiming import load_trajectory, sample_trajectory, save_trajectory
+    from rt_drake.types.path import path_waypoints_and_knots
+
+    path = np.array([HOME, HOME + [0.6, -0.3, 0.2, 0.0, 0.3, 0.5]])
+    result = retime(plant, path, limits)
+    waypoints, knots = path_waypoints_and_knots(path)
+    held = held_object_of(scenario.object("carton_box"))
+    saved = sample_trajectory(
+        plant, result, held, None, scenario.cup, "carton_box", waypoints, knots
+    )
+    file = save_trajectory(tmp_path / "jerk.npz", saved)
+    loaded = load_trajectory(file)
+    np.testing.assert_array_equal(loaded.path_acceleration, result.path_acceleration)
+    csv = export_trajectory(
+        file, tmp_path / "jerk.csv", format="csv", period=0.004, plant=plant
+    )
+    table = np.loadtxt(csv, delimiter=",", skiprows=1)
+    t = table[:, 0]
+    inside = t <= result.duration
+    q, qd, qdd = result.trajectory.sample(t[inside], order=2)
+    np.testing.assert_allclose(table[inside, 1:7], q, atol=1e-9)
+    np.testing.assert_allclose(table[inside, 7:13], qd, atol=1e-9)
+    np.testing.assert_allclose(table[inside, 13:19], qdd, atol=1e-7)
