@@ -28,6 +28,7 @@ PRINTS = {
         "joint brake grasp margin: -",
     ],
     "docs/reference/cli.md": ["True", ", 6) scene"],
+    "docs/guides/jerk-limits.md": ["s with jerk limits", "jerk:", "holds: True"],
     "docs/guides/export.md": ["points to", "joints shoulder_pan_joint", "end: True"],
 }
 
