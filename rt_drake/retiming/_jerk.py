@@ -62,7 +62,7 @@ SCREEN = 0.9
 #: previous LP's) with at least this ratio enter the LPs.
 JOINT_SCREEN = 0.5
 #: Relative change of the duration that ends a sequence of LPs.
-CONVERGED = 1e-4
+CONVERGED = 1e-3
 #: LPs per sequence, at most.
 MAX_LPS = 12
 #: Sequences of LPs (rounds of added points), at most.
