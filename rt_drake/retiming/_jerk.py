@@ -8,22 +8,26 @@ grasp rows exact at its points (:mod:`._jerk_rows`):
 
 1. the grid is TOPP-RA's, with six points halving towards each end at rest
    (the jerk ramps up there, ``u ~ s^(1/3)``);
-2. each LP maximises ``sum_i w_i x_i``, ``w_i = ds_i / (2 xbar_i^1.5)`` (the
-   first-order decrease of the duration ``sum ds / sqrt(x)``), under the
-   rows at the constraint points, the jerk rows linearised at the previous
-   iterate ``xbar`` (tangent of a convex bound: every iterate keeps the
-   jerk at those points), until the duration changes by less than
+2. each LP maximises the first-order decrease of the duration ``T = sum
+   ds / sqrt(x)`` (Simpson's rule on each segment, linearised at the
+   previous profile ``xbar``: weights ``x^-1.5 / 2``), under the rows at the
+   grid points (both sides for the jerk), the jerk rows linearised at
+   ``xbar`` (tangent of a convex bound: every iterate keeps the jerk at
+   those points), until the duration changes by less than
    :data:`CONVERGED`;
-3. every limit, all grasp rows and the jerk are then evaluated exactly at
-   nine points per segment; points over a limit by more than
-   ``BETWEEN_TOLERANCE`` join the LP (and violated grasp rows with them),
-   and the LPs run again, at most :data:`MAX_ROUNDS` times; an excess
-   still beyond the 1e-3 contract raises
-   :class:`._retime_errors.LimitsBetweenGridPointsError`.
+3. every limit and all grasp rows are then evaluated exactly at 9 points
+   per segment, the jerk at 33 (:mod:`._jerk_points`); points over a limit
+   by more than ``BETWEEN_TOLERANCE`` join the LPs (with every row there,
+   and the violated grasp rows), and the LPs run again, at most
+   :data:`MAX_ROUNDS` times; an excess still beyond the 1e-3 contract
+   raises :class:`._retime_errors.LimitsBetweenGridPointsError`.
 
-Grasp rows enter the LPs where TOPP-RA's profile used at least
-:data:`SCREEN` of them (ratio ``F_r w / g_r``), and wherever step 3 finds one
-exceeded. Units: s, rad, 1/s^2 for x and u.
+Rows screened into the LPs: grasp rows where TOPP-RA's profile used at
+least :data:`SCREEN` of them (ratio ``F_r w / g_r``), acceleration and
+torque rows at :data:`JOINT_SCREEN` of their limit on TOPP-RA's profile,
+jerk rows at :data:`JOINT_SCREEN` on an LP's profile (kept once in), and
+every row where step 3 finds a limit exceeded. Units: s, rad, 1/s^2 for x
+and u.
 """
 
 from __future__ import annotations
