@@ -168,7 +168,7 @@ def jerk_limited(
         kinds[-1] = Piece.STOP
     grasp = None if F is None or g is None else GraspRows(F, g)
     dense = DensePoints.of(sample, s, kinds, grasp)
-    points = JerkPoints.of(spline, s, kinds)
+    points = JerkPoints.of(spline, s, kinds, limits.velocity)
     problem = _Problem(
         s, kinds, dense, points, limits, rest_bounds(spline, s, kinds, limits.jerk),
         sd_start, sd_end,
@@ -217,7 +217,7 @@ def jerk_limited(
         assert best is not None
         z = best[1]
         over = dense.excess(z, limits) > tolerance
-        jerk_over = points.ratio(z, limits, problem.bounds) - 1.0 > tolerance
+        jerk_over = _point_excess(problem, z) > tolerance
         if not (over.any() or jerk_over.any()) or rounds == MAX_ROUNDS:
             break
         chosen.active |= over
@@ -242,11 +242,48 @@ def jerk_limited(
     )
 
 
+def check_smooth(spline: JointPath) -> None:
+    """Refuse a path whose q' or q'' jumps at a break.
+
+    There the joint acceleration ``q' s'' + q'' s'^2`` jumps unless the
+    motion stops, so no jerk limit can hold; the motion's pieces
+    (:mod:`._jerk_timed_path`) stop only at the ends.
+
+    Raises:
+        RetimeInputError: naming the joint, the jump and s.
+    """
+    inner = spline.breaks[1:-1]
+    if not inner.size:
+        return
+    step = 1e-9
+    for order in (1, 2):
+        jump = spline(inner + step, order) - spline(inner - step, order)
+        scale = max(1.0, float(np.max(np.abs(spline(spline.breaks, order)))))
+        if np.max(np.abs(jump)) > 1e-6 * scale:
+            i, j = np.unravel_index(int(np.argmax(np.abs(jump))), jump.shape)
+            name = "q'" if order == 1 else "q''"
+            raise RetimeInputError(
+                f"jerk limits need a path with continuous q' and q'': {name} of "
+                f"joint {j + 1} jumps by {jump[i, j]:.4g} at s = {inner[i]:.4f} "
+                "(a break of the path), where the joint acceleration would jump; "
+                "give waypoints (the clamped cubic spline) or retime without "
+                "jerk limits",
+                s=float(inner[i]),
+            )
+
+
+def _point_excess(problem: _Problem, z: np.ndarray) -> np.ndarray:
+    """Excess of the jerk, velocity or acceleration at the jerk points, (P,)."""
+    points = problem.jerk
+    ratio = points.ratio(z, problem.limits, problem.bounds)
+    return np.maximum(ratio, points.joint_ratio(z, problem.limits)) - 1.0
+
+
 def _refuse(problem: _Problem, z: np.ndarray) -> None:
     """Raise if a limit is exceeded beyond the contract at any point."""
     dense, points = problem.dense, problem.jerk
     excess = dense.excess(z, problem.limits)
-    jerk = points.ratio(z, problem.limits, problem.bounds) - 1.0
+    jerk = _point_excess(problem, z)
     worst, at = float(excess.max()), float(dense.s[int(np.argmax(excess))])
     if float(jerk.max()) > worst:
         worst, at = float(jerk.max()), float(points.s[int(np.argmax(jerk))])
@@ -348,6 +385,20 @@ def _solve(
     )  # fmt: skip
     blocks.append(A)
     rhs.append(b)
+    added = index[~np.isin(points.k[index], (0, len(JERK_DENSE) - 1))]
+    if added.size:  # where a limit was exceeded: velocity, acceleration too
+        extra = PointMaps(*(m[added] for m in points.maps))
+        for sign in (1.0, -1.0):
+            A, b = affine_rows(
+                extra, sign * points.dq[added], sign * points.ddq[added],
+                np.broadcast_to(limits.acceleration, points.dq[added].shape),
+            )  # fmt: skip
+            blocks.append(A)
+            rhs.append(b)
+        zeros = np.zeros((added.size, 1))
+        A, b = affine_rows(extra, zeros, zeros + 1.0, points.x_cap[added][:, None])
+        blocks.append(A)
+        rhs.append(b)
     ds = np.diff(s)
     # Simpson's rule on each segment: T = sum ds / sqrt(x) at its ends and
     # middle, linearised at the previous profile (d/dx x^-1/2 = -x^-1.5 / 2).
@@ -359,6 +410,8 @@ def _solve(
     weight[:size] -= width / (2.0 * np.maximum(x_bar, 1e-3 * scale) ** 1.5)
     blocks.append(-dense.maps.X[middle])  # x >= 0 in the middle of each segment
     rhs.append(np.zeros(len(middle)))
+    blocks.append(_bernstein(s, problem.kinds))  # x >= 0 all along each segment
+    rhs.append(np.zeros(int(np.sum(problem.kinds == Piece.INTERIOR))))
     A_eq, b_eq = _continuity(s, problem.kinds)
     result = linprog(
         weight / np.max(np.abs(weight)),
@@ -374,6 +427,22 @@ def _solve(
             f"jerk-limited retiming: no admissible profile ({result.message})", s=0.0
         )
     return np.asarray(result.x)
+
+
+def _bernstein(s: np.ndarray, kinds: np.ndarray) -> sparse.csr_matrix:
+    """Rows ``-(x_i + ds_i u_i) <= 0`` of the interior segments.
+
+    ``x(sigma)`` on segment i is the quadratic with Bernstein coefficients
+    ``x_i``, ``x_i + ds_i u_i``, ``x_{i+1}``: the middle one >= 0 (and the
+    ends >= 0, > 0 in the interior of the path) keeps x > 0 all along it,
+    so the motion never stops inside a segment.
+    """
+    size = len(s)
+    inner = np.flatnonzero(kinds == Piece.INTERIOR)
+    rows = np.repeat(np.arange(len(inner)), 2)
+    cols = np.column_stack([inner, size + inner]).ravel()
+    values = np.column_stack([-np.ones(len(inner)), -np.diff(s)[inner]]).ravel()
+    return sparse.csr_matrix((values, (rows, cols)), shape=(len(inner), 2 * size))
 
 
 def _bounds(problem: _Problem) -> np.ndarray:
@@ -418,4 +487,11 @@ def _continuity(
     return A, np.zeros(len(kinds))
 
 
-__all__ = ["CONVERGED", "MAX_LPS", "MAX_ROUNDS", "JerkProfile", "jerk_limited"]
+__all__ = [
+    "check_smooth",
+    "CONVERGED",
+    "MAX_LPS",
+    "MAX_ROUNDS",
+    "JerkProfile",
+    "jerk_limited",
+]

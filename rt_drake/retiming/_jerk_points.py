@@ -195,12 +195,15 @@ class JerkPoints:
 
     The jerk varies most inside a segment (it holds ``k = du/ds``), so it is
     evaluated at more points than the other limits; it needs only the
-    spline's derivatives, not Drake.
+    spline's derivatives, not Drake. So do the velocity and acceleration,
+    checked here too (on a coarse grid they can peak between the 9 points of
+    :class:`DensePoints`).
     """
 
     s: np.ndarray
     k: np.ndarray
     inner: np.ndarray
+    x_cap: np.ndarray
     dq: np.ndarray
     ddq: np.ndarray
     dddq: np.ndarray
@@ -208,7 +211,9 @@ class JerkPoints:
     segment: np.ndarray
 
     @staticmethod
-    def of(spline: JointPath, s: np.ndarray, kinds: np.ndarray) -> JerkPoints:
+    def of(
+        spline: JointPath, s: np.ndarray, kinds: np.ndarray, velocity: np.ndarray
+    ) -> JerkPoints:
         """The points of every segment (q''' on the segment side of a knot)."""
         count = len(JERK_DENSE)
         segments = np.repeat(np.arange(len(s) - 1), count)
@@ -218,11 +223,15 @@ class JerkPoints:
         at = s[segments] + sigma * ds
         at[k == count - 1] = s[segments + 1][k == count - 1]
         own = np.clip(at, s[segments] + 1e-9 * ds, s[segments + 1] - 1e-9 * ds)
+        dq = spline(at, 1)
+        with np.errstate(divide="ignore", over="ignore"):  # q' = 0: no cap
+            x_cap = np.min(velocity**2 / dq**2, axis=1)
         return JerkPoints(
             s=at,
             k=k,
             inner=kinds[segments] == Piece.INTERIOR,
-            dq=spline(at, 1),
+            x_cap=x_cap,
+            dq=dq,
             ddq=spline(at, 2),
             dddq=spline(own, 3),
             maps=point_maps(s, kinds, segments, sigma),
@@ -247,6 +256,13 @@ class JerkPoints:
         for segment, (variable, bound) in bounds.items():
             out[self.segment == segment] = (abs(z[variable]) / bound) ** 1.5
         return out
+
+    def joint_ratio(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
+        """The largest velocity or acceleration ratio at every point, (P,)."""
+        x, u = np.maximum(self.maps.X @ z, 0.0), self.maps.U @ z
+        velocity = np.sqrt(x / self.x_cap)
+        acceleration = np.abs(self.dq * u[:, None] + self.ddq * x[:, None])
+        return np.maximum(velocity, np.max(acceleration / limits.acceleration, axis=1))
 
     def margins(
         self, z: np.ndarray, limits: JointLimits, bounds: dict[int, tuple[int, float]]

@@ -71,6 +71,17 @@ def stumpff(z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.where(small, s0, c0), np.where(small, s1, c1), np.where(small, s2, c2)
 
 
+def _lowest_x(x: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Smallest ``x(sigma) = x + (2 sigma - sigma^2) a + sigma^2 b`` on [0, 1]."""
+    curvature = b - a
+    with np.errstate(divide="ignore", invalid="ignore"):
+        vertex = np.where(curvature > 0.0, -a / curvature, -1.0)
+    inside = (vertex > 0.0) & (vertex < 1.0)
+    at_vertex = x + (2.0 * vertex - vertex**2) * a + vertex**2 * b
+    ends = np.minimum(x, x + a + b)
+    return np.where(inside, np.minimum(ends, at_vertex), ends)
+
+
 def piece_kinds(x: np.ndarray) -> np.ndarray:
     """START for the first segment if ``x_0 = 0``, STOP for the last if ``x_N = 0``."""
     kinds = np.full(len(x) - 1, Piece.INTERIOR, dtype=int)
@@ -133,28 +144,54 @@ class JerkTimedPath(Trajectory):
         self._order = int(derivative_order)
 
     def _interior_durations(self, index: np.ndarray) -> np.ndarray:
-        """Time to cross each interior segment: ``s(tau) = s_{i+1}`` by Newton.
+        """Time to cross each interior segment: ``s(tau) = s_{i+1}``.
 
-        Started from 16-point Gauss-Legendre quadrature of ``ds / sqrt(x)``.
+        Newton from 16-point Gauss-Legendre quadrature of ``ds / sqrt(x)``;
+        where it has not converged (x nearly 0 inside the segment makes s(t)
+        stiff), bisection on ``s(tau)``, which increases while ``s' > 0``,
+        between 0 and ``ds / sqrt(min x)``.
+
+        Raises:
+            RetimeInputError: x reaches 0 inside a segment (never ends).
         """
         if not index.size:
             return np.zeros(0)
         ds, x, u = self._ds[index], self._x[index], self._u[index]
         u1 = self._u[index + 1]
+        lowest = _lowest_x(x, ds * u, ds * u1)
+        if np.any(lowest <= 0.0):
+            i = int(index[np.flatnonzero(lowest <= 0.0)[0]])
+            raise RetimeInputError(f"s' reaches 0 inside segment {i}: never ends")
         nodes, weights = np.polynomial.legendre.leggauss(16)
         sigma = 0.5 * (nodes + 1.0)
         xs = x[:, None] + ds[:, None] * (
             (2.0 * sigma - sigma**2) * u[:, None] + sigma**2 * u1[:, None]
         )
-        if np.any(xs <= 0.0):
-            i = int(index[np.flatnonzero(np.any(xs <= 0.0, axis=1))[0]])
-            raise RetimeInputError(f"s' reaches 0 inside segment {i}: never ends")
         tau = 0.5 * ds * np.sum(weights / np.sqrt(xs), axis=1)
         sd, k = np.sqrt(x), self._k[index]
-        for _ in range(8):
-            c0, c1, c2 = stumpff(k * tau**2)
-            gap = sd * tau * c1 + u * tau**2 * c2 - ds
-            tau = tau - gap / (sd * c0 + u * tau * c1)
+
+        def reached(t: np.ndarray) -> np.ndarray:
+            _, c1, c2 = stumpff(k * t**2)
+            return sd * t * c1 + u * t**2 * c2
+
+        with np.errstate(over="ignore", invalid="ignore"):
+            for _ in range(8):
+                c0, c1, c2 = stumpff(k * tau**2)
+                tau = tau - (reached(tau) - ds) / (sd * c0 + u * tau * c1)
+            bad = ~(np.abs(reached(tau) - ds) <= 1e-12 * (1.0 + ds))
+            if np.any(bad):
+                low = np.zeros(int(bad.sum()))
+                high = ds[bad] / np.sqrt(lowest[bad])
+                sub = np.flatnonzero(bad)
+                for _ in range(200):
+                    middle = 0.5 * (low + high)
+                    _, c1, c2 = stumpff(k[sub] * middle**2)
+                    below = sd[sub] * middle * c1 + u[sub] * middle**2 * c2 < ds[sub]
+                    low, high = (
+                        np.where(below, middle, low),
+                        np.where(below, high, middle),
+                    )
+                tau[sub] = 0.5 * (low + high)
         return tau
 
     @property
@@ -201,11 +238,12 @@ class JerkTimedPath(Trajectory):
         tau = t - self._t[i]
         kind, k, u = self._kind[i], self._k[i], self._u[i]
         sd0 = np.sqrt(self._x[i])
-        c0, c1, c2 = stumpff(k * tau**2)
-        s = self._s[i] + sd0 * tau * c1 + u * tau**2 * c2
-        sd = sd0 * c0 + u * tau * c1
-        sdd = u + k * (s - self._s[i])
-        sddd = k * sd
+        with np.errstate(over="ignore", invalid="ignore"):  # start/stop: unused
+            c0, c1, c2 = stumpff(k * tau**2)
+            s = self._s[i] + sd0 * tau * c1 + u * tau**2 * c2
+            sd = sd0 * c0 + u * tau * c1
+            sdd = u + k * (s - self._s[i])
+            sddd = k * sd
         j = self._jerk[i]
         start, stop = kind == Piece.START, kind == Piece.STOP
         rho = self._t[i + 1] - t

@@ -78,7 +78,7 @@ from rt_drake.retiming._grasp_rows import (
     ROW_TOLERANCE,
     ObjectRows,
 )
-from rt_drake.retiming._jerk import jerk_limited
+from rt_drake.retiming._jerk import check_smooth, jerk_limited
 from rt_drake.retiming._jerk_timed_path import JerkTimedPath
 from rt_drake.retiming._joint_path import (
     JointPath,
@@ -251,6 +251,8 @@ def retime(
             "jerk limits with the grasp of a set of objects are not supported: "
             "retime without them (limits.jerk None, --no-jerk-limits)"
         )
+    if limits.jerk is not None:
+        check_smooth(spline)
     context = context or plant.CreateDefaultContext()
     cup = cup or CupFrame.of(plant)
     knots = spline.breaks

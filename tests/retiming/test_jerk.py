@@ -210,3 +210,24 @@ def test_the_file_and_its_export_keep_the_jerk_limited_motion(
     np.testing.assert_allclose(table[inside, 1:7], q, atol=1e-9)
     np.testing.assert_allclose(table[inside, 7:13], qd, atol=1e-9)
     np.testing.assert_allclose(table[inside, 13:19], qdd, atol=1e-7)
+
+
+def test_a_path_whose_curvature_jumps_is_refused(plant, limits):
+    """Two rest-to-rest cubics joined at s = 0.5: q'' jumps there, so the
+    joint acceleration would jump unless the motion stopped."""
+    from pydrake.trajectories import CompositeTrajectory
+
+    waypoints = [HOME, HOME + [0.4, 0, 0, 0, 0, 0], HOME + [0.8, 0, 0, 0, 0, 0]]
+    pieces = [
+        PiecewisePolynomial.CubicWithContinuousSecondDerivatives(
+            [k, k + 1.0],
+            np.column_stack(waypoints[k : k + 2]),
+            np.zeros(6),
+            np.zeros(6),
+        )
+        for k in range(2)
+    ]
+    path = CompositeTrajectory(pieces)
+    with pytest.raises(RetimeInputError, match=r"q'' of joint 1 jumps .* s = 0\.5000"):
+        retime(plant, path, limits)
+    assert retime(plant, path, limits.without_jerk()).duration > 0.0
