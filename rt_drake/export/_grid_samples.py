@@ -194,8 +194,8 @@ def sample_on_grid(trajectory: Sampleable, period: float, where: str) -> GridSam
 
 
 def _evaluate(motion: Trajectory, times: np.ndarray) -> list[np.ndarray]:
-    """``[q, q', q'']`` at ``times``, each (M, n): vectorised for a TimedPath."""
-    if isinstance(motion, TimedPath):
+    """``[q, q', q'']`` at ``times``, each (M, n): vectorised for the retimer's."""
+    if isinstance(motion, (TimedPath, JerkTimedPath)):
         return motion.sample(times, order=2)
     return [
         np.array([motion.EvalDerivative(ti, order).ravel() for ti in times]).reshape(
