@@ -231,3 +231,17 @@ def test_a_path_whose_curvature_jumps_is_refused(plant, limits):
     with pytest.raises(RetimeInputError, match=r"q'' of joint 1 jumps .* s = 0\.5000"):
         retime(plant, path, limits)
     assert retime(plant, path, limits.without_jerk()).duration > 0.0
+
+
+def test_c2_splines_with_uneven_knots_are_not_refused():
+    """A very short piece makes q'' steep, not discontinuous: no false jump
+    (on Table I, seed 0, MOVE 17 was refused before each side was
+    extrapolated to the break)."""
+    from rt_drake.retiming._jerk import check_smooth
+    from rt_drake.retiming._joint_path import as_joint_path
+
+    rng = np.random.default_rng(1)
+    for _ in range(50):
+        steps = rng.uniform(-0.5, 0.5, size=(rng.integers(2, 8), 6))
+        steps[rng.integers(len(steps))] *= 1e-3  # one piece 1000x shorter
+        check_smooth(as_joint_path(np.cumsum(np.vstack([HOME, steps]), axis=0)))
