@@ -287,5 +287,6 @@ def run_cycle_experiment(args: argparse.Namespace) -> int:
         time_step=1e-3,
         optimize=None,
         no_jerk_limits=args.no_jerk_limits,
+        export=None,  # rt-drake run's --export: nothing exported here
     )
     return run_command.run(namespace)
