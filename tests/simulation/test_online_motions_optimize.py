@@ -22,7 +22,7 @@ from rt_drake.shaping import (
 def test_optimised_move_is_never_slower_than_the_spline_move(scenario_paths):
     scenario = load_scenario(scenario_paths["random_transport"])
     scenario = dataclasses.replace(
-        scenario, planning=PlanningConfig(optimize_move=True, budget_s=0.3)
+        scenario, planning=PlanningConfig(optimize_move=True, max_evaluations=60)
     )
     obj = scenario.objects[0]
     optimised = OnlineMotions(scenario, seed=3)
