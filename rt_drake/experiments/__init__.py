@@ -8,7 +8,8 @@
   uncertainty set, nominal and robust plans played with a true object;
   :mod:`.robust_report` writes its report.
 - :mod:`.cycle_report`: Table II, the cycle's timing breakdown
-  (:class:`CycleReport`).
+  (:class:`CycleReport`); :mod:`.cycle_floor`: the floor it is measured
+  against (:func:`cycle_floors`).
 """
 
 from rt_drake.experiments._robust_transport import (
@@ -34,6 +35,10 @@ from rt_drake.experiments._transport_report import (
     transport_table,
     write_transport_report,
 )
+from rt_drake.experiments.cycle_floor import (
+    ObjectFloor,
+    cycle_floors,
+)
 from rt_drake.experiments.cycle_report import (
     REPORT_FILES,
     CycleReport,
@@ -57,9 +62,11 @@ __all__ = [
     "SPEED_FACTORS",
     "TRANSPORT_FILES",
     "CycleReport",
+    "ObjectFloor",
     "Rollout",
     "RunSettings",
     "critical_speed",
+    "cycle_floors",
     "cycle_report",
     "optimized_summary",
     "robust_table",
