@@ -23,6 +23,7 @@ PRINTS = {
     "docs/guides/own-robot.md": ["min margin"],
     "docs/guides/multi-cup-tools.md": ["one cup:", "W_T: 436 rows", "two cups:"],
     "docs/guides/robust-retiming.md": ["holds every object", "worst excess over"],
+    "docs/guides/cycle-floor.md": ["whetstone_box 1.395 s of motion at least"],
     "docs/reference/cli.md": ["True", ", 6) scene"],
 }
 
