@@ -114,6 +114,14 @@ def run(args: argparse.Namespace) -> int:
         seed=args.seed,
         optimize=args.optimize,
     )
+    optimize = (
+        scenario.planning.optimize_move if args.optimize is None else args.optimize
+    )
+    if optimize and args.no_grasp_constraint:  # said once, not a silent fallback
+        print(
+            "MOVE shaping off: it shapes under the grasp constraint, which "
+            "--no-grasp-constraint turns off; the spline MOVEs are played"
+        )
     phases = [p for p in Phase if p is not Phase.DONE]
     names = [o.name for o in scenario.objects]
     progress = Progress("rt-drake run", len(names) * len(phases), "phase")

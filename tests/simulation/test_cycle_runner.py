@@ -84,7 +84,7 @@ def test_replay_holds_the_recording(constrained_run):
     assert "| floor (joint limits, no grasp) |" in (out / "report.md").read_text()
 
 
-def test_without_the_grasp_constraint_the_object_slips(tmp_path):
+def test_without_the_grasp_constraint_the_object_slips(tmp_path, capsys):
     assert (
         main(
             ["run", "random_transport", "--out", str(tmp_path), "--no-grasp-constraint"]
@@ -94,6 +94,8 @@ def test_without_the_grasp_constraint_the_object_slips(tmp_path):
     (entry,) = json.loads((tmp_path / "report.json").read_text())["objects"]
     assert entry["slip"]["max_translation_mm"] > 5.0
     assert entry["guarantee"] == "none: joint limits only"
+    # The shaping (on by default) needs the grasp constraint: said once.
+    assert capsys.readouterr().out.count("MOVE shaping off") == 1
 
 
 def test_an_uncertain_object_is_moved_robustly_and_the_report_says_so(tmp_path, capsys):
