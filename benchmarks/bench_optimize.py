@@ -18,6 +18,8 @@ points: the fair baseline), ``optimised`` the returned path; the ratios
 thread's CPU ms (spline planning excluded; ``plan`` is that), the paths
 scored, the largest cup tilt and, with ``--discretization``, the loss of the
 optimised and the spline path's retimes against 1000 uniform points (%).
+``--evaluations N`` sets the search's budget in paths scored (default: the
+options' ``max_evaluations``, 200); no clock enters the search.
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/bench_optimize.py --n 20 --seed 0
     OPENBLAS_NUM_THREADS=1 python benchmarks/bench_optimize.py \\

@@ -1,10 +1,11 @@
 """The cycle's floor: how fast the arm's joint limits let any cycle of a scenario go.
 
-    python tools/cycle_floor.py [SCENARIO] [--optimize]
+    python tools/cycle_floor.py [SCENARIO] [--optimize | --no-optimize]
 
 Plans the cycle as ``rt-drake run`` does (the picks blended, each MOVE under
-the grasp constraint, optionally shaped), without the physics, and sets each
-motion's retimed duration beside a lower bound that holds for *any* path
+the grasp constraint, shaped unless --no-optimize), without the physics, and
+sets each motion's retimed duration beside a lower bound that holds for *any*
+path
 through the same rest configurations (home, grasp, place), the same vertical
 lines (the retreat above a placed object, the descent over
 ``approach_offset``) and the arm's velocity and acceleration limits alone,
@@ -96,7 +97,12 @@ def along_line(
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("scenario", nargs="?", default="stack_four_objects")
-    parser.add_argument("--optimize", action="store_true", help="shape the MOVEs")
+    parser.add_argument(
+        "--optimize",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="shape the MOVEs (default: the scenario's planning.optimize_move)",
+    )
     args = parser.parse_args()
     scenario = load_scenario(resolve_scenario_path(args.scenario))
     motions = OnlineMotions(scenario, optimize=args.optimize)
