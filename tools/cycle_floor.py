@@ -5,9 +5,8 @@
 Plans the cycle as ``rt-drake run`` does (the picks blended, each MOVE under
 the grasp constraint, shaped unless --no-optimize), without the physics, and
 sets each motion's retimed duration beside a lower bound that holds for *any*
-path
-through the same rest configurations (home, grasp, place), the same vertical
-lines (the retreat above a placed object, the descent over
+path through the same rest configurations (home, grasp, place), the same
+vertical lines (the retreat above a placed object, the descent over
 ``approach_offset``) and the arm's velocity and acceleration limits alone,
 without the grasp constraint.
 
