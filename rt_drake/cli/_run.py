@@ -210,7 +210,7 @@ def _export_plan(args: argparse.Namespace, scenario, path: Path):  # noqa: ANN00
 
     The directory and its files are checked before the simulation starts.
     """
-    if args.export is None:
+    if getattr(args, "export", None) is None:  # experiment cycle has no --export
         return None
     from rt_drake.cli._output import output_directory
     from rt_drake.cli._run_export import KINDS, export_file_name
