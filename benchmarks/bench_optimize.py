@@ -18,6 +18,8 @@ points: the fair baseline), ``optimised`` the returned path; the ratios
 thread's CPU ms (spline planning excluded; ``plan`` is that), the paths
 scored, the largest cup tilt and, with ``--discretization``, the loss of the
 optimised and the spline path's retimes against 1000 uniform points (%).
+``--evaluations N`` sets the search's budget in paths scored (default: the
+options' ``max_evaluations``, 200); no clock enters the search.
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/bench_optimize.py --n 20 --seed 0
     OPENBLAS_NUM_THREADS=1 python benchmarks/bench_optimize.py \\
@@ -50,7 +52,6 @@ from rt_drake.model.held import held_object_of
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.planning import sample_transports
 from rt_drake.shaping import (
-    Clock,
     MoveOptimizer,
     MoveOptimizerOptions,
     warm_up,
@@ -103,9 +104,7 @@ class Setup:
     def grasp(self, move) -> GraspConstraint:
         obj = self.scenario.object(self.name)
         held = held_object_of(dataclasses.replace(obj, grasp=Transform(move.X_OC)))
-        return GraspConstraint(
-            held, self.polytope.F, self.polytope.g, self.scenario.cup
-        )
+        return GraspConstraint.for_cup(held, self.scenario.cup)
 
 
 def spline_move(planner, name, X_start, X_goal, free_space, duration):
@@ -157,8 +156,6 @@ def main() -> None:
     parser.add_argument("--n", type=int, default=20)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--max-tilt", type=float, default=None)
-    parser.add_argument("--budget", type=float, default=None)
-    parser.add_argument("--clock", choices=["wall", "process"], default="wall")
     parser.add_argument("--evaluations", type=int, default=None)
     parser.add_argument("--starts", type=int, default=None)
     parser.add_argument("--search-gridpoints", type=int, default=None)
@@ -171,9 +168,7 @@ def main() -> None:
     options = dataclasses.replace(
         defaults,
         max_tilt_deg=defaults.max_tilt_deg if args.max_tilt is None else args.max_tilt,
-        budget_s=defaults.budget_s if args.budget is None else args.budget,
-        clock=Clock(args.clock),
-        max_evaluations=args.evaluations,
+        max_evaluations=args.evaluations or defaults.max_evaluations,
         starts=defaults.starts if args.starts is None else args.starts,
         search_gridpoints=args.search_gridpoints or defaults.search_gridpoints,
     )

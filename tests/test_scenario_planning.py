@@ -1,4 +1,4 @@
-"""The scenario's ``planning`` key (issue 13) and ``random_transport.start_on_cup``."""
+"""The scenario's ``planning`` key (issues 13, 27); ``start_on_cup``."""
 
 from __future__ import annotations
 
@@ -7,6 +7,7 @@ import pytest
 from rt_drake.errors import ScenarioError
 from rt_drake.model.resources import scenarios_dir
 from rt_drake.model.scenario import (
+    MOVE_EVALUATIONS,
     PlanningConfig,
     load_scenario,
 )
@@ -14,11 +15,23 @@ from rt_drake.shaping import MoveOptimizerOptions
 
 
 def test_planning_defaults_when_the_key_is_absent(scenario_paths):
-    planning = load_scenario(scenario_paths["stack_four_objects_paper"]).planning
+    """A scenario without ``planning`` shapes its MOVEs, on the evaluation budget."""
+    planning = load_scenario(scenario_paths["random_transport"]).planning
     assert planning == PlanningConfig()
-    assert planning.max_tilt_deg == 45.0 and planning.budget_s == 0.15
+    assert planning.optimize_move
+    assert planning.max_tilt_deg == 45.0
+    assert planning.max_evaluations == MOVE_EVALUATIONS
     options = MoveOptimizerOptions.from_config(planning)
-    assert options.max_tilt_deg == 45.0 and options.budget_s == 0.15
+    assert options.max_tilt_deg == 45.0
+    assert options.max_evaluations == MOVE_EVALUATIONS
+
+
+@pytest.mark.parametrize(
+    "name", ["stack_four_objects", "stack_four_objects_vacuum_sensor"]
+)
+def test_shipped_cycles_shape_their_moves(name):
+    scenario = load_scenario(scenarios_dir() / f"{name}.yaml")
+    assert scenario.planning.optimize_move
 
 
 def test_paper_regions_load_and_start_on_the_cup():
@@ -39,10 +52,10 @@ def test_planning_values_are_read(tmp_path, scenario_paths):
     path = _with_planning(
         tmp_path,
         scenario_paths,
-        "  optimize_move: true\n  max_tilt_deg: 0\n  budget_s: 0.5\n",
+        "  optimize_move: false\n  max_tilt_deg: 0\n  max_evaluations: 40\n",
     )
     planning = load_scenario(path).planning
-    assert planning == PlanningConfig(True, 0.0, 0.5)
+    assert planning == PlanningConfig(False, 0.0, 40)
 
 
 @pytest.mark.parametrize(
@@ -50,7 +63,8 @@ def test_planning_values_are_read(tmp_path, scenario_paths):
     [
         ("  max_tilt_deg: 90\n", ["planning.max_tilt_deg", "[0, 90)", "90"]),
         ("  max_tilt_deg: -5\n", ["planning.max_tilt_deg", "-5"]),
-        ("  budget_s: 0\n", ["planning.budget_s", "> 0"]),
+        ("  max_evaluations: 0\n", ["planning.max_evaluations", ">= 1"]),
+        ("  budget_s: 0.15\n", ["planning.budget_s", "planning.max_evaluations"]),
         ("  optimise_move: true\n", ["planning.optimise_move", "unknown key"]),
     ],
 )

@@ -1,12 +1,12 @@
 """The cycle's floor: how fast the arm's joint limits let any cycle of a scenario go.
 
-    python tools/cycle_floor.py [SCENARIO] [--optimize]
+    python tools/cycle_floor.py [SCENARIO] [--optimize | --no-optimize]
 
 Plans the cycle as ``rt-drake run`` does (the picks blended, each MOVE under
-the grasp constraint, optionally shaped), without the physics, and sets each
-motion's retimed duration beside a lower bound that holds for *any* path
-through the same rest configurations (home, grasp, place), the same vertical
-lines (the retreat above a placed object, the descent over
+the grasp constraint, shaped unless --no-optimize), without the physics, and
+sets each motion's retimed duration beside a lower bound that holds for *any*
+path through the same rest configurations (home, grasp, place), the same
+vertical lines (the retreat above a placed object, the descent over
 ``approach_offset``) and the arm's velocity and acceleration limits alone,
 without the grasp constraint.
 
@@ -35,6 +35,11 @@ A MOVE's floor is rest to rest from grasp to place (its vertical ends left
 out, so the bound is lower still). Per object, the floor plus the vacuum's
 fixed waits is the fastest cycle any planner, shaping or retimer could give
 with these configurations and limits.
+
+``rt-drake run`` reports the strict floor of each object (``floor_s``,
+:func:`rt_drake.experiments.cycle_floors`, which bounds the joints' speeds
+at the lines' ends by the lines' tangents instead of setting J1 at rest);
+this study adds the "along the line" figures and the planned durations.
 """
 
 from __future__ import annotations
@@ -50,18 +55,19 @@ from rt_drake.model.plant import make_arm_plant
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.model.scenario import load_scenario
 from rt_drake.planning import GeometricPath
-from rt_drake.retiming import JointLimits, retime
+from rt_drake.retiming import JointLimits, joint_floor, retime
 from rt_drake.simulation.online_motions import OnlineMotions, time_at
 
 
-def per_joint(
-    d: np.ndarray, v: np.ndarray, a: np.ndarray, rest: np.ndarray
-) -> np.ndarray:
-    """Least time (s) for each joint to move by ``d``, ``rest`` of its ends at rest."""
-    d = np.abs(d)
-    both = np.where(d >= v * v / a, d / v + v / a, 2.0 * np.sqrt(d / a))
-    one = np.where(d >= v * v / (2 * a), d / v + v / (2 * a), np.sqrt(2.0 * d / a))
-    return np.select([rest == 2, rest == 1], [both, one], d / v)
+def per_joint(d: np.ndarray, limits: JointLimits, rest: np.ndarray) -> np.ndarray:
+    """Least time (s) for each joint to move by ``d``, ``rest`` of its ends at rest.
+
+    :func:`rt_drake.retiming.joint_floor` (0: at rest, inf: free).
+    """
+    rest = np.asarray(rest)
+    speed_from = np.where(rest >= 1, 0.0, np.inf)
+    speed_to = np.where(rest == 2, 0.0, np.inf)
+    return joint_floor(d, limits, speed_from, speed_to)
 
 
 def along_line(
@@ -90,13 +96,17 @@ def along_line(
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("scenario", nargs="?", default="stack_four_objects")
-    parser.add_argument("--optimize", action="store_true", help="shape the MOVEs")
+    parser.add_argument(
+        "--optimize",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="shape the MOVEs (default: the scenario's planning.optimize_move)",
+    )
     args = parser.parse_args()
     scenario = load_scenario(resolve_scenario_path(args.scenario))
     motions = OnlineMotions(scenario, optimize=args.optimize)
     plant = make_arm_plant(scenario)
     limits = JointLimits.from_plant(plant, scenario.robot)
-    v, a = limits.velocity, limits.acceleration
     waits = scenario.vacuum.attach_s + scenario.vacuum.detach_s
     q = motions.q_home
     totals = np.zeros(5)
@@ -116,20 +126,20 @@ def main() -> None:
         if retreat:
             rest_start = (np.sign(q_top - q) * np.sign(transit) < 0).astype(int)
             rest_start[0] = 1
-            retreat_strict = per_joint(q_top - q, v, a, np.ones(6, int)).max()
+            retreat_strict = per_joint(q_top - q, limits, np.ones(6, int)).max()
             top = path.value(np.linspace(0.0, planned.s_retreat, 20))
             retreat_line = along_line(top, plant, limits, free_start=False)
         else:
             rest_start = np.ones(6, int)  # the arm starts at rest
             retreat_strict = retreat_line = 0.0
-        transit_floor = per_joint(transit, v, a, rest_start + rest_end).max()
-        descent_strict = per_joint(q_grasp - q_approach, v, a, np.ones(6, int)).max()
+        transit_floor = per_joint(transit, limits, rest_start + rest_end).max()
+        descent_strict = per_joint(q_grasp - q_approach, limits, np.ones(6, int)).max()
         descent_line = along_line(descent, plant, limits, free_start=True)
         pick_strict = retreat_strict + transit_floor + descent_strict
         pick_line = retreat_line + transit_floor + descent_line
         move = motions.move(q_grasp, obj, pick)
         q_place = move.trajectory.value(move.trajectory.end_time()).ravel()
-        move_floor = per_joint(q_place - q_grasp, v, a, np.full(6, 2)).max()
+        move_floor = per_joint(q_place - q_grasp, limits, np.full(6, 2)).max()
         pick_s, move_s = pick.trajectory.end_time(), move.trajectory.end_time()
         totals += [pick_s, pick_strict, pick_line, move_s, move_floor]
         print(

@@ -71,7 +71,6 @@ from rt_drake import PlanningError, RetimeError, check_trajectory, retime  # noq
 from rt_drake.planning.dense_check import check_path  # noqa: E402
 from rt_drake.retiming import Margin  # noqa: E402
 from rt_drake.shaping import (
-    Clock,
     MoveOptimizer,
     MoveOptimizerOptions,
     vertical_drift,
@@ -418,7 +417,7 @@ def main() -> None:
     args = parser.parse_args()
 
     setup = Setup(args.scenario, args.seed)
-    options = MoveOptimizerOptions(clock=Clock.PROCESS)
+    options = MoveOptimizerOptions()
     optimizer = MoveOptimizer(setup.plant, setup.limits, options, setup.cup)
     plant, limits = setup.plant, setup.limits
     kw = {"context": setup.context, "cup": setup.cup}

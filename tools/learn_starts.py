@@ -34,7 +34,6 @@ from bench_optimize import Setup  # noqa: E402
 
 from rt_drake import PlanningError  # noqa: E402
 from rt_drake.shaping import (
-    Clock,
     MoveOptimizer,
     MoveOptimizerOptions,
 )  # noqa: E402
@@ -50,8 +49,7 @@ LIBRARY = Path(__file__).parents[1] / "rt_drake/shaping/data/warm_starts.npz"
 def learn(args: argparse.Namespace) -> None:
     setup = Setup(args.scenario, args.seed)
     options = MoveOptimizerOptions(
-        budget_s=1e3, clock=Clock.PROCESS, max_evaluations=args.evaluations,
-        starts=args.starts,
+        max_evaluations=args.evaluations, starts=args.starts,
     )  # fmt: skip
     optimizer = MoveOptimizer(setup.plant, setup.limits, options, setup.cup)
     chain = optimizer.chain

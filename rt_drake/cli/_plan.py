@@ -12,10 +12,13 @@ their goals (the cycle's order); the others rest at their starts. --out is
 checked before planning (a .csv, never the scenario file) and written
 atomically.
 
-With --optimize (or the scenario's planning.optimize_move), the MOVE is
-then shaped for speed under the grasp constraint: the command prints the
-spline and the optimised MOVE's durations (both retimed on the optimiser's
-adaptive grid) and --out writes the optimised waypoints.
+The MOVE is then shaped for speed under the grasp constraint (the
+scenario's planning.optimize_move, on by default; --no-optimize keeps the
+planner's spline MOVE, --optimize forces the shaping): the command prints
+the spline and the shaped MOVE's durations (both retimed on the
+optimiser's adaptive grid) and --out writes the shaped waypoints. The
+shaping scores a fixed number of paths (planning.max_evaluations), so the
+same seed gives the same path on an idle or a loaded machine.
 """
 
 from __future__ import annotations
@@ -169,7 +172,7 @@ def _optimized(scenario, planner, move):
         f"({result.duration / result.spline_duration:.3f}x; both retimed under the "
         f"grasp constraint on the optimiser's grid), tilt up to "
         f"{result.max_tilt_deg:.1f} deg, {result.evaluations} paths scored in "
-        f"{1e3 * result.wall_s:.0f} ms"
+        f"{1e3 * result.wall_s:.0f} ms ({1e3 * result.cpu_s:.0f} ms of CPU)"
     )
     path = result.path
     return dataclasses.replace(move, path=path, polyline=path.waypoints)

@@ -10,7 +10,8 @@
 - :mod:`._stop_experiment`: protective stops of Table I's MOVEs in physics,
   grasp-aware and joint-brake.
 - :mod:`.cycle_report`: Table II, the cycle's timing breakdown
-  (:class:`CycleReport`).
+  (:class:`CycleReport`); :mod:`.cycle_floor`: the floor it is measured
+  against (:func:`cycle_floors`).
 """
 
 from rt_drake.experiments._robust_transport import (
@@ -43,6 +44,10 @@ from rt_drake.experiments._transport_report import (
     transport_table,
     write_transport_report,
 )
+from rt_drake.experiments.cycle_floor import (
+    ObjectFloor,
+    cycle_floors,
+)
 from rt_drake.experiments.cycle_report import (
     REPORT_FILES,
     CycleReport,
@@ -67,9 +72,11 @@ __all__ = [
     "STOP_FILES",
     "TRANSPORT_FILES",
     "CycleReport",
+    "ObjectFloor",
     "Rollout",
     "RunSettings",
     "critical_speed",
+    "cycle_floors",
     "cycle_report",
     "optimized_summary",
     "robust_table",

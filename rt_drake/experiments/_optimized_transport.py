@@ -12,15 +12,14 @@ and the cup's position, tilt and grasp margin over time along both MOVEs
 (``cup_profiles``). :func:`optimize_spline` is its optimisation alone (the
 campaign's ``optimized`` variant plays its result at speed 1).
 
-The budget is counted in this process's CPU time (``Clock.PROCESS``): the
-trials run two at a time on a shared machine, and a wall-clock budget would
-make the paths depend on its load; ``optimize_wall_s`` is the wall time the
-optimisation took.
+The optimiser's budget is counted in paths scored (the scenario's
+``planning.max_evaluations``), so the trials, two at a time on a shared
+machine, give the same paths whatever its load; ``optimize_wall_s`` is the
+wall time the optimisation took.
 """
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 from typing import Any
 
@@ -38,7 +37,6 @@ from rt_drake.model.scenario import Scenario
 from rt_drake.planning import CyclePlanner, PlannedPath
 from rt_drake.retiming import GraspConstraint, JointLimits, Margin, RetimeResult
 from rt_drake.shaping import (
-    Clock,
     MoveOptimizer,
     MoveOptimizerOptions,
     OptimizedMove,
@@ -112,8 +110,8 @@ def optimize_spline(
 ) -> tuple[MoveOptimizer, OptimizedMove]:
     """Shape the spline MOVE ``spline`` for speed, retimed under ``grasp``.
 
-    The optimiser has the scenario's ``planning`` tilt and budget, the
-    budget counted in this process's CPU time (module docstring).
+    The optimiser has the scenario's ``planning`` tilt and evaluation budget
+    (module docstring).
 
     Returns:
         The optimiser (its ``chain`` gives the cup kinematics) and its result:
@@ -122,9 +120,7 @@ def optimize_spline(
     """
     plant = make_arm_plant(scenario)
     limits = JointLimits.from_plant(plant, scenario.robot)
-    options = dataclasses.replace(
-        MoveOptimizerOptions.from_config(scenario.planning), clock=Clock.PROCESS
-    )
+    options = MoveOptimizerOptions.from_config(scenario.planning)
     warm_up()
     optimizer = MoveOptimizer(plant, limits, options)
     return optimizer, optimizer.optimize(planner, spline, grasp)

@@ -82,7 +82,7 @@ def robust_trial(
     uncertainty = _uncertainty(obj)
     trial = transport_scenario(scenario, object_name, X_WO_start, X_WO_goal)
     motions = OnlineMotions(
-        trial, grasp_constraint=True, seed=seed + index, robust=False
+        trial, grasp_constraint=True, seed=seed + index, robust=False, optimize=False
     )
     planned_obj = trial.objects[0]
     approach = motions.approach(motions.q_home, planned_obj)

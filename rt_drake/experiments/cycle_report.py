@@ -11,6 +11,12 @@ of its uncertainty set, or none); and its total, execution plus the plan on
 the critical path (planning sequentially, as the paper did, the whole plan
 is on it). For the cycle: the totals and the picks per hour,
 ``objects / total_s * 3600``.
+
+With the floors (:func:`~rt_drake.experiments.cycle_floor.cycle_floors`),
+each object and the cycle also carry ``floor_s``, the least time the arm's
+joint limits allow through the same configurations and vertical lines
+without the grasp (the motion floor) plus the ATTACH and DETACH times as
+run, and ``floor_ratio = total_s / floor_s``.
 """
 
 from __future__ import annotations
@@ -22,6 +28,7 @@ from pathlib import Path
 from typing import Any
 
 from rt_drake.atomic_file import write_text_atomically
+from rt_drake.experiments.cycle_floor import ObjectFloor
 from rt_drake.simulation.motion import PlanTimes
 from rt_drake.simulation.records import ObjectRecord
 from rt_drake.types.phase import Phase
@@ -87,6 +94,7 @@ class ObjectReport:
         plan_on_critical_path_s: Simulated seconds the arm waited for plans.
         move_suction_force_n: The vacuum's force when the MOVE started, N.
         guarantee: What the MOVE's retiming holds, in words.
+        floor: Its motion floor, or None if not computed.
     """
 
     name: str
@@ -97,11 +105,26 @@ class ObjectReport:
     plan_on_critical_path_s: float
     move_suction_force_n: float
     guarantee: str
+    floor: ObjectFloor | None = None
 
     @property
     def total_s(self) -> float:
         """Execution plus the plan on the critical path, s."""
         return self.plan_on_critical_path_s + sum(self.exec_s.values())
+
+    @property
+    def floor_s(self) -> float | None:
+        """The motion floor plus ATTACH and DETACH as run, s (None: no floor)."""
+        if self.floor is None:
+            return None
+        waits = self.exec_s.get(Phase.ATTACH, 0.0) + self.exec_s.get(Phase.DETACH, 0.0)
+        return self.floor.motion_s + waits
+
+    @property
+    def floor_ratio(self) -> float | None:
+        """``total_s / floor_s`` (None: no floor)."""
+        floor = self.floor_s
+        return None if floor is None or floor <= 0 else self.total_s / floor
 
     def as_dict(self) -> dict[str, Any]:
         """The entry of ``report.json`` (phases keyed by their values)."""
@@ -115,6 +138,18 @@ class ObjectReport:
             "move_suction_force_n": self.move_suction_force_n,
             "guarantee": self.guarantee,
             "total_s": self.total_s,
+            **self._floor_dict(),
+        }
+
+    def _floor_dict(self) -> dict[str, Any]:
+        if self.floor is None:
+            return {}
+        segments = dataclasses.asdict(self.floor)
+        del segments["name"]
+        return {
+            "floor_s": self.floor_s,
+            "floor_ratio": self.floor_ratio,
+            "floor_segments_s": segments,
         }
 
 
@@ -174,6 +209,20 @@ class CycleReport:
         return self.total_s / n if n else float("nan")
 
     @property
+    def floor_s(self) -> float | None:
+        """The objects' floors summed, s (None if any is missing)."""
+        floors = [o.floor_s for o in self.objects]
+        if not floors or any(f is None for f in floors):
+            return None
+        return math.fsum(f for f in floors if f is not None)
+
+    @property
+    def floor_ratio(self) -> float | None:
+        """``total_s / floor_s`` for the cycle (None: no floor)."""
+        floor = self.floor_s
+        return None if floor is None or floor <= 0 else self.total_s / floor
+
+    @property
     def picks_per_hour(self) -> float:
         """``objects / total_s * 3600`` (0 if no time passed)."""
         total = self.total_s
@@ -187,6 +236,11 @@ class CycleReport:
             "plan_on_critical_path_s": self.plan_on_critical_path_s,
             "mean_cycle_s": self.mean_cycle_s,
             "picks_per_hour": self.picks_per_hour,
+            **(
+                {}
+                if self.floor_s is None
+                else {"floor_s": self.floor_s, "floor_ratio": self.floor_ratio}
+            ),
             **({} if self.run is None else dataclasses.asdict(self.run)),
         }
 
@@ -195,7 +249,9 @@ class CycleReport:
         return json.dumps(self.as_dict(), indent=2) + "\n"
 
 
-def object_report(record: ObjectRecord) -> ObjectReport:
+def object_report(
+    record: ObjectRecord, floor: ObjectFloor | None = None
+) -> ObjectReport:
     """The report entry of one object (see the module docstring)."""
     times = record.plan_times
     none = PlanTimes()
@@ -219,14 +275,23 @@ def object_report(record: ObjectRecord) -> ObjectReport:
         plan_on_critical_path_s=record.plan_on_critical_path_s,
         move_suction_force_n=record.move_suction_force,
         guarantee=record.guarantee,
+        floor=floor,
     )
 
 
 def cycle_report(
-    records: tuple[ObjectRecord, ...], run: RunSettings | None = None
+    records: tuple[ObjectRecord, ...],
+    run: RunSettings | None = None,
+    floors: tuple[ObjectFloor, ...] | None = None,
 ) -> CycleReport:
-    """The whole report of ``records`` (see :class:`CycleReport`)."""
-    return CycleReport(tuple(object_report(r) for r in records), run)
+    """The whole report of ``records`` (see :class:`CycleReport`).
+
+    ``floors``: the objects' motion floors (matched by name), or None.
+    """
+    by_name = {f.name: f for f in floors or ()}
+    return CycleReport(
+        tuple(object_report(r, by_name.get(r.name)) for r in records), run
+    )
 
 
 def table_markdown(report: CycleReport) -> str:
@@ -269,6 +334,9 @@ def table_markdown(report: CycleReport) -> str:
         [o.placement_error.rotation_deg for o in objects],
         "{:.1f}",
     )
+    if report.floor_s is not None:
+        row("floor (joint limits, no grasp)", [o.floor_s or 0.0 for o in objects])
+        row("floor ratio (total / floor)", [o.floor_ratio or 0.0 for o in objects])
     return "\n".join(rows) + "\n"
 
 
@@ -279,6 +347,12 @@ def summary_line(report: CycleReport) -> str:
         f"{n} objects in {report.total_s:.3f} s: {report.mean_cycle_s:.3f} s "
         f"per object, {report.picks_per_hour:.0f} picks per hour; plan on the "
         f"critical path {report.plan_on_critical_path_s:.3f} s"
+        + (
+            ""
+            if report.floor_s is None or report.floor_ratio is None
+            else f"; floor {report.floor_s / n:.3f} s per object, "
+            f"{report.floor_ratio:.3f}x of it"
+        )
     )
 
 

@@ -145,19 +145,30 @@ class RandomTransport:
     start_on_cup: bool = False
 
 
+#: Candidate paths the MOVE optimiser scores per MOVE by default (its search
+#: budget; a median of 0.13-0.14 s of CPU on Table I's transports,
+#: BENCHMARKS.md "Fast by default").
+MOVE_EVALUATIONS = 200
+
+
 @dataclasses.dataclass
 class PlanningConfig:
-    """How MOVEs are planned (issue 13).
+    """How MOVEs are planned (issues 13 and 27).
 
     Attributes:
         optimize_move: Shape each MOVE path for speed under the grasp
             constraint (:func:`rt_drake.shaping.optimize_move`)
-            instead of keeping the planner's spline through its anchors.
+            instead of keeping the planner's spline through its anchors
+            (default on).
         max_tilt_deg: Largest angle (deg) between the cup axis and gravity
             an optimised MOVE may reach, in [0, 90); 0 keeps the cup
             vertical (open containers).
-        budget_s: Wall time (s) the optimisation may take per MOVE, the
-            spline MOVE's planning excluded.
+        max_evaluations: The optimiser's budget per MOVE, in candidate
+            paths scored (>= 1): no clock is read, so the same scenario and
+            seed give the same path on an idle or a loaded machine.
+        budget_s: Removed (a wall-clock budget made the path depend on the
+            machine's load); a file that sets it is refused with a message
+            naming ``max_evaluations``.
         approach_offset: The objects' ``approach_offset`` where they give
             none: metres, or ``"auto"``.
         approach_clearance: m, how far the cup and the held object stay from
@@ -168,9 +179,10 @@ class PlanningConfig:
             guide gives the m that covers each interpolation and period).
     """
 
-    optimize_move: bool = False
+    optimize_move: bool = True
     max_tilt_deg: float = 45.0
-    budget_s: float = 0.15
+    max_evaluations: int = MOVE_EVALUATIONS
+    budget_s: float | None = None
     approach_offset: float | str = 0.2
     approach_clearance: float = 0.02
     grasp_margin: float = 0.0
@@ -456,20 +468,25 @@ def _check_grip(
 
 
 def _check_planning(path: Path, planning: PlanningConfig) -> None:
-    """``max_tilt_deg`` in [0, 90), ``budget_s`` > 0, ``grasp_margin`` in [0, 0.9].
+    """``max_tilt_deg`` in [0, 90), ``max_evaluations`` >= 1, no ``budget_s``.
 
-    And the approach keys.
-
-    NaN and inf never load.
+    And the approach keys and ``grasp_margin`` in [0, 0.9].
     """
     if not 0 <= planning.max_tilt_deg < 90:
         raise ScenarioError(
             f"{path}: key 'planning.max_tilt_deg': must be in [0, 90) deg, got "
             f"{planning.max_tilt_deg}"
         )
-    if not planning.budget_s > 0:
+    if planning.budget_s is not None:
         raise ScenarioError(
-            f"{path}: key 'planning.budget_s': must be > 0 s, got {planning.budget_s}"
+            f"{path}: key 'planning.budget_s' is no longer read (a wall-clock "
+            f"budget made the MOVE depend on the machine's load): set "
+            f"'planning.max_evaluations' (paths scored, default {MOVE_EVALUATIONS})"
+        )
+    if not planning.max_evaluations >= 1:
+        raise ScenarioError(
+            f"{path}: key 'planning.max_evaluations': must be >= 1, got "
+            f"{planning.max_evaluations}"
         )
     _check_offset(f"{path}: key 'planning.approach_offset'", planning.approach_offset)
     if not 0 < planning.approach_clearance <= MAX_APPROACH_CLEARANCE:
@@ -558,6 +575,7 @@ def _check_robot(path: Path, robot: RobotConfig) -> None:
 __all__ = [
     "MAX_DEPTH",
     "MAX_SCENARIO_BYTES",
+    "MOVE_EVALUATIONS",
     "ObjectConfig",
     "PlanningConfig",
     "RandomTransport",

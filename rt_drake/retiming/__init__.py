@@ -20,10 +20,11 @@ objects), ``_between`` (limits held between grid points), ``_samples``,
 ``_joint_path`` (any path as ``q(s)``; the path type itself is
 :class:`rt_drake.types.path.GeometricPath`), ``_precompile`` (compiles the
 kernels before anything is timed), ``_timed_path``, ``_time_scaled``,
-``_check`` (dense 1 kHz verification), ``_stop`` and ``_stop_pass``
-(protective stops along the path), ``_jerk``, ``_jerk_rows``,
-``_jerk_points`` and ``_jerk_timed_path`` (jerk limits: LPs after TOPP-RA,
-and the motion they give), ``_trajectory_file`` (the ``.npz``
+``_check`` (dense 1 kHz verification), ``_floor`` (the least time the
+joint limits allow between two configurations, :func:`segment_floor`),
+``_stop`` and ``_stop_pass`` (protective stops along the path), ``_jerk``,
+``_jerk_rows``, ``_jerk_points`` and ``_jerk_timed_path`` (jerk limits: LPs
+after TOPP-RA, and the motion they give), ``_trajectory_file`` (the ``.npz``
 format) and ``_retime_errors`` (typed errors and statuses).
 """
 
@@ -36,6 +37,12 @@ from rt_drake.retiming._check import (
     check_trajectory,
 )
 from rt_drake.retiming._jerk_timed_path import JerkTimedPath
+from rt_drake.retiming._floor import (
+    joint_floor,
+    junction_speeds,
+    rest_to_rest_jerk,
+    segment_floor,
+)
 from rt_drake.retiming._joint_path import (
     PathLike,
     WaypointPath,
@@ -112,11 +119,15 @@ __all__ = [
     "check_trajectory",
     "chord_knots",
     "joint_brake_stop",
+    "joint_floor",
+    "junction_speeds",
     "load_trajectory",
     "path_waypoints_and_knots",
     "protective_stop",
+    "rest_to_rest_jerk",
     "retime",
     "sample_trajectory",
     "save_trajectory",
+    "segment_floor",
     "warm_up",
 ]

@@ -3,14 +3,16 @@
 :func:`optimize_move` returns a MOVE path from the grasp configuration to
 the place configuration whose time-optimal duration (TOPP-RA under the joint
 limits and the exact grasp polytope ``F w <= g``) is as short as it finds
-within a time budget. It starts from the planner's spline path and never
-returns a slower one. Modules:
+within a fixed number of candidate paths scored (no clock decides anything,
+so the result does not depend on the machine's load). It starts from the
+planner's spline path and never returns a slower one. Modules:
 
 - :mod:`._optimizer`: :class:`MoveOptimizer` and :func:`optimize_move`;
   :mod:`._options`: their options and result;
 - :mod:`._family`: the paths searched (vertical end segments, free via
   points in joint space starting at the spline path's corners);
-- :mod:`._search`: CMA-ES until a deadline; :mod:`._objective`: its objective;
+- :mod:`._search`: CMA-ES within a number of evaluations; :mod:`._objective`:
+  its objective;
 - :mod:`._starts`: warm starts learned on other transports (package data
   ``data/warm_starts.npz``);
 - :mod:`._surrogate`: batched TOPP-RA on a coarse grid (the duration part);
@@ -32,7 +34,6 @@ from rt_drake.shaping._optimizer import (
     optimize_move,
 )
 from rt_drake.shaping._options import (
-    Clock,
     MoveOptimizerError,
     MoveOptimizerOptions,
     MovePlanner,
@@ -40,7 +41,6 @@ from rt_drake.shaping._options import (
 )
 
 __all__ = [
-    "Clock",
     "FamilyError",
     "MoveOptimizer",
     "MoveOptimizerError",

@@ -1,4 +1,4 @@
-"""MoveOptimizer: a faster MOVE path than the planner's spline, within a budget.
+"""MoveOptimizer: a faster MOVE path than the planner's spline, in a fixed effort.
 
 Stages (wall time of each in :attr:`OptimizedMove.timings`, s):
 
@@ -10,18 +10,19 @@ Stages (wall time of each in :attr:`OptimizedMove.timings`, s):
 2. ``baseline``: the spline path retimed by :func:`~._finish.retime_adaptive`,
    the duration to beat (the same scheme as the returned path's).
 3. ``search``: CMA-ES (:mod:`._search`) from the best of x = 0 and the warm
-   starts, until the budget less the time the finish needs (estimated from
-   the baseline's retime and the planner's dense check of the spline path).
-4. ``finish``: the best candidates, best first: dense tilt and vertical-end
-   checks, the planner's continuous collision check with the load
-   (:func:`rt_drake.planning.dense_check.check_path`) and the final retime
-   (:func:`~._finish.retime_adaptive`); the first that passes and beats the
-   baseline is returned, else the spline path (``improved`` False), not an
-   error.
+   starts, ``max_evaluations`` candidate paths scored.
+4. ``finish``: at most ``finish_tries`` of the best candidates, best first:
+   dense tilt and vertical-end checks, the planner's continuous collision
+   check with the load (:func:`rt_drake.planning.dense_check.check_path`)
+   and the final retime (:func:`~._finish.retime_adaptive`); the first that
+   passes and beats the baseline is returned, else the spline path
+   (``improved`` False, the reasons in ``rejected``), not an error.
 
-The planner's spline MOVE is an input: the cycle plans it anyway, and it is
-not counted in the budget (``spline_plan`` in the timings when
-:func:`optimize_move` plans it).
+The effort is counted in evaluations, not in time: no stage reads a clock
+to decide anything (the clocks only fill :attr:`OptimizedMove.timings`), so
+the same spline path, options and seed give the same path on an idle or a
+loaded machine. The planner's spline MOVE is an input: the cycle plans it
+anyway (``spline_plan`` in the timings when :func:`optimize_move` plans it).
 """
 
 from __future__ import annotations
@@ -53,7 +54,6 @@ from rt_drake.shaping._objective import Objective
 from rt_drake.shaping._options import (
     VERTICAL_DRIFT,
     VERTICAL_TOLERANCE_DEG,
-    Clock,
     MoveOptimizerOptions,
     MovePlanner,
     OptimizedMove,
@@ -72,10 +72,9 @@ from rt_drake.types.phase import Phase
 TILT_SAMPLES = 1000
 #: Via points added, one at a time, to rescue a search that found nothing.
 EXTRA_VIA_POINTS = 2
-#: Candidates the finish may try, best first.
+#: Candidates the search returns, best first (the finish tries
+#: ``finish_tries`` of them).
 KEEP = 6
-#: The finish's estimated cost: this times the spline path's retime and check.
-FINISH_MARGIN = 1.2
 
 
 class MoveOptimizer:
@@ -142,8 +141,7 @@ class MoveOptimizer:
             RetimeError: the spline path cannot be retimed.
         """
         options = self.options
-        clock = time.perf_counter if options.clock is Clock.WALL else time.process_time
-        start, wall, cpu = clock(), time.perf_counter(), time.process_time()
+        wall, cpu = time.perf_counter(), time.process_time()
         watch = _Stopwatch(timings)
         chain = self.chain
         with watch("setup"):
@@ -152,9 +150,7 @@ class MoveOptimizer:
             )
             clearance = ClearanceModel(scene, chain)
         with watch("baseline"):
-            before = clock()
             baseline = self.retime(spline.path, grasp)
-            retime_cost = clock() - before
         with watch("setup"):
             surrogate = CoarseRetimer(
                 chain, self.limits, grasp, self.search_grid(baseline)
@@ -186,26 +182,16 @@ class MoveOptimizer:
             return result(
                 spline.path, baseline, False, 0, [family_error], baseline_wall
             )
-        # The finish retimes a candidate and checks it densely: the baseline's
-        # retime, and the planner's dense check (wall time, scaled to the
-        # clock), with a margin: a candidate's check and retime cost up to
-        # 20 % more than the spline path's (BENCHMARKS.md).
-        to_clock = retime_cost / max(baseline_wall, 1e-9)
-        finish_cost = FINISH_MARGIN * (retime_cost + to_clock * spline.timing.check_s)
         with watch("search"):
-            candidates, evaluations = self._search(
-                objective, objective_for, spline,
-                _Deadline(clock, start + options.budget_s - finish_cost),
-            )  # fmt: skip
+            candidates, evaluations = self._search(objective, objective_for, spline)
         rejected: list[str] = []
         # The spline path on the search's grid: what a candidate must beat
         # there to be worth the finish (the grids' errors differ by percents).
         to_beat = surrogate.durations(spline.path.waypoints[None])[0]
         found = None
         with watch("finish"):
-            for index, (family, candidate) in enumerate(candidates):
-                late = clock() + 0.5 * finish_cost > start + options.budget_s
-                if candidate.duration >= to_beat or (index and late):
+            for family, candidate in candidates[: options.finish_tries]:
+                if candidate.duration >= to_beat:
                     break
                 path = GeometricPath.from_waypoints(family.waypoints(candidate.x)[0])
                 reason = _certify(chain, family, scene, path, options)
@@ -262,15 +248,13 @@ class MoveOptimizer:
         objective: Objective,
         objective_for: Callable[[int], Objective],
         spline: PlannedPath,
-        expired: Callable[[], bool],
     ) -> tuple[list[tuple[PathFamily, Candidate]], int]:
         """CMA-ES from x = 0 and the warm starts; rescue paths if nothing is found."""
         options = self.options
         x0 = start_parameters(objective.family, spline.path, options.starts)
         found = cma_search(
-            objective, objective.family.dim, expired, options.sigma, options.seed,
-            options.population, keep=KEEP, max_evaluations=options.max_evaluations,
-            x0=x0,
+            objective, objective.family.dim, options.max_evaluations, options.sigma,
+            options.seed, options.population, keep=KEEP, x0=x0,
         )  # fmt: skip
         candidates = [(objective.family, c) for c in found.candidates]
         evaluations = found.evaluations
@@ -308,8 +292,7 @@ def optimize_move(
     """A MOVE of object ``name`` from ``q_grasp`` to its place, as fast as found.
 
     :meth:`MoveOptimizer.optimize` for one MOVE, planning the spline MOVE
-    first if ``spline`` is None (its time is ``timings["spline_plan"]``, not
-    part of the budget).
+    first if ``spline`` is None (its time is ``timings["spline_plan"]``).
 
     Args:
         planner: The cycle planner (:class:`MovePlanner`).
@@ -362,24 +345,6 @@ class _Stopwatch:
     def __exit__(self, *exc) -> None:
         self.timings[self._stage] += time.perf_counter() - self._start
         self.timings[f"cpu_{self._stage}"] += time.process_time() - self._cpu
-
-
-class _Deadline:
-    """Callable: True once another step as long as the last would end past ``at``.
-
-    Called once per CMA-ES generation, it stops the search before the
-    generation that would overrun the deadline (clock seconds).
-    """
-
-    def __init__(self, clock: Callable[[], float], at: float) -> None:
-        self._clock = clock
-        self._at = at
-        self._last = clock()
-
-    def __call__(self) -> bool:
-        now = self._clock()
-        step, self._last = now - self._last, now
-        return now + step > self._at
 
 
 def _s() -> np.ndarray:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import dataclasses
-import enum
 from typing import Protocol
 
 import numpy as np
@@ -11,7 +10,7 @@ from pydrake.math import RigidTransform
 
 from rt_drake import arguments
 from rt_drake.errors import InputError
-from rt_drake.model.scenario import PlanningConfig
+from rt_drake.model.scenario import MOVE_EVALUATIONS, PlanningConfig
 from rt_drake.planning.result import PlannedPath
 from rt_drake.planning.scene import PlanningScene
 from rt_drake.retiming import RetimeResult
@@ -52,13 +51,6 @@ class MovePlanner(Protocol):
         """Set the scene's objects for a phase (MOVE: ``name`` carried at X_OC)."""
 
 
-class Clock(enum.Enum):
-    """What the budget counts: wall time, or this process's CPU time."""
-
-    WALL = "wall"
-    PROCESS = "process"
-
-
 @dataclasses.dataclass(frozen=True)
 class MoveOptimizerOptions:
     """Settings of :func:`optimize_move`.
@@ -66,10 +58,10 @@ class MoveOptimizerOptions:
     Attributes:
         max_tilt_deg: Largest angle (deg) between the cup axis and gravity on
             the path; 0 keeps the cup vertical (within 0.5 deg).
-        budget_s: Time budget (s) of the optimisation, the spline path's
-            planning excluded.
-        clock: What the budget counts (wall time in a cell; CPU time gives
-            repeatable benchmarks on a shared machine).
+        max_evaluations: The search's budget: CMA-ES stops before the first
+            generation that starts with this many candidate paths scored
+            (the starts included). No clock is read: the same spline path
+            and seed give the same path on an idle or a loaded machine.
         vertical_height: Length (m) of the vertical segment at each end.
         vertical_points: Waypoints on each vertical segment.
         via_points: Free via points K (n K parameters); if the search finds
@@ -90,12 +82,12 @@ class MoveOptimizerOptions:
         clearance_margin: Clearance (m) the search keeps (estimate).
         population: CMA-ES's candidates per generation (default 4 + 3 ln d).
         seed: Seed of CMA-ES.
-        max_evaluations: Stop the search after this many paths as well.
+        finish_tries: The finish checks and retimes at most this many of the
+            best candidates, best first.
     """
 
     max_tilt_deg: float = 45.0
-    budget_s: float = 0.15
-    clock: Clock = Clock.WALL
+    max_evaluations: int = MOVE_EVALUATIONS
     vertical_height: float = 0.03
     vertical_points: int = 2
     via_points: int = 2
@@ -107,13 +99,13 @@ class MoveOptimizerOptions:
     clearance_margin: float = 0.01
     population: int | None = None
     seed: int = 0
-    max_evaluations: int | None = None
     starts: int = 12
+    finish_tries: int = 3
 
     def __post_init__(self) -> None:
         for field in dataclasses.fields(self):
             value = getattr(self, field.name)
-            if field.name in ("clock", "joint_scale") or value is None:
+            if field.name == "joint_scale" or value is None:
                 continue
             arguments.number(
                 value,
@@ -130,8 +122,7 @@ class MoveOptimizerOptions:
         )
         checks = {
             "max_tilt_deg": 0.0 <= self.max_tilt_deg < 90.0,
-            "budget_s": self.budget_s > 0.0,
-            "clock": isinstance(self.clock, Clock),
+            "max_evaluations": self.max_evaluations >= 1,
             "vertical_height": self.vertical_height > 0.0,
             "vertical_points": self.vertical_points >= 1,
             "via_points": self.via_points >= 1,
@@ -142,9 +133,8 @@ class MoveOptimizerOptions:
             or 0.0 <= self.search_grid_weight <= 1.0,
             "final_gridpoints": self.final_gridpoints >= 4,
             "clearance_margin": self.clearance_margin >= 0.0,
-            "max_evaluations": self.max_evaluations is None
-            or self.max_evaluations >= 1,
             "starts": self.starts >= 0,
+            "finish_tries": self.finish_tries >= 1,
         }
         for name, ok in checks.items():
             if not ok:
@@ -154,8 +144,11 @@ class MoveOptimizerOptions:
 
     @classmethod
     def from_config(cls, planning: PlanningConfig) -> MoveOptimizerOptions:
-        """The defaults with a scenario's ``planning`` tilt and budget."""
-        return cls(max_tilt_deg=planning.max_tilt_deg, budget_s=planning.budget_s)
+        """The defaults with a scenario's ``planning`` tilt and evaluation budget."""
+        return cls(
+            max_tilt_deg=planning.max_tilt_deg,
+            max_evaluations=planning.max_evaluations,
+        )
 
     @property
     def tilt_bound(self) -> float:
@@ -209,7 +202,6 @@ class OptimizedMove:
 
 
 __all__ = [
-    "Clock",
     "MoveOptimizerError",
     "MoveOptimizerOptions",
     "MovePlanner",

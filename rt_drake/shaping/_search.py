@@ -1,4 +1,4 @@
-"""CMA-ES over the path family's parameters, until a deadline.
+"""CMA-ES over the path family's parameters, within a number of evaluations.
 
 CMA-ES (the ``cmaes`` package, Hansen's algorithm) samples each generation
 around its mean, ranks the candidates by the objective
@@ -8,9 +8,11 @@ descent on the same objective stalled at 0.79-0.82 of the spline path's
 duration where CMA-ES reached 0.73-0.80 with as many evaluations.
 
 The search evaluates x = 0 (the via points at the spline path's corners)
-and the warm starts (:mod:`._starts`), starts at the best of them, stops at
-the deadline (or after ``max_evaluations``) and returns the feasible
-candidates with the lowest durations, best first.
+and the warm starts (:mod:`._starts`), starts at the best of them, runs
+whole generations until ``max_evaluations`` candidates have been scored and
+returns the feasible candidates with the lowest durations, best first. It
+reads no clock: the same objective and seed give the same candidates
+whatever the machine's load.
 """
 
 from __future__ import annotations
@@ -42,25 +44,24 @@ class SearchResult:
 def cma_search(
     objective: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
     dim: int,
-    expired: Callable[[], bool],
+    max_evaluations: int,
     sigma: float,
     seed: int,
     population: int | None = None,
     keep: int = 4,
-    max_evaluations: int | None = None,
     x0: np.ndarray | None = None,
 ) -> SearchResult:
-    """Minimise ``objective`` from the best of x = 0 and ``x0`` until ``expired()``.
+    """Minimise ``objective`` from the best of x = 0 and ``x0``, ``max_evaluations``.
 
     Args:
         objective: Maps a batch x (P, dim) to (values (P,), feasible (P,)).
         dim: Number of parameters.
-        expired: True once the search must stop (checked per generation).
+        max_evaluations: No generation starts once this many candidates
+            (the first batch included) have been scored.
         sigma: Initial step size, in units of x.
         seed: Seed of CMA-ES's sampler.
         population: Candidates per generation (default: 4 + 3 ln dim).
         keep: How many feasible candidates to return.
-        max_evaluations: Stop after this many evaluations as well.
         x0: (S, dim) warm starts evaluated with x = 0 in the first batch;
             CMA-ES starts at the best of them.
     """
@@ -75,9 +76,7 @@ def cma_search(
     best = [Candidate(start[i], float(values[i])) for i in np.flatnonzero(feasible)]
     best = sorted(best, key=lambda c: c.duration)[:keep]
     evaluations, generations = len(start), 0
-    while not expired():
-        if max_evaluations is not None and evaluations >= max_evaluations:
-            break
+    while evaluations < max_evaluations:
         x = np.array([optimizer.ask() for _ in range(optimizer.population_size)])
         values, feasible = objective(x)
         evaluations += len(x)

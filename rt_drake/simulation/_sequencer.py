@@ -20,7 +20,13 @@ source, with their arguments, are the same.
 
 ATTACH and DETACH follow the scenario's vacuum (:mod:`rt_drake.model.vacuum`): fixed
 waits, or "part present" and "released" (force below the object's weight,
-object at rest) with the waits as time-outs.
+object at rest) with the waits as time-outs. With the ``first_order``
+vacuum the valve opens during the last stretch of the descent, the time the
+vacuum needs to reach "part present" (``time_to_part_present``) before
+REACH ends: the level builds only once the cup seals (its face within the
+seal distance), so the seal forms at contact and the build-up overlaps the
+motion's end; the MOVE still starts at "part present", retimed for the
+force certain then.
 
 It measures, from the plant's body poses, how far the held object slips on
 the cup and where it lands. All that changes lives in the Context's abstract
@@ -43,6 +49,7 @@ from rt_drake.model.vacuum import (
     Vacuum,
     VacuumModel,
     is_released,
+    time_to_part_present,
     wait_over,
 )
 from rt_drake.simulation.motion import Motion, MotionSource, PendingMotion
@@ -187,8 +194,23 @@ class Sequencer(LeafSystem):
         output.SetFromVector(self._reference(context, 2))
 
     def _CalcValve(self, context: Context, output: BasicVector) -> None:
-        phase = self.sequencer_state(context).phase
-        output.SetFromVector([1.0 if phase in (Phase.ATTACH, Phase.MOVE) else 0.0])
+        state = self.sequencer_state(context)
+        on = state.phase in (Phase.ATTACH, Phase.MOVE) or self._opens_early(
+            context, state
+        )
+        output.SetFromVector([1.0 if on else 0.0])
+
+    def _opens_early(self, context: Context, state: SequencerState) -> bool:
+        """first_order: on for the last ``time_to_part_present`` s of REACH."""
+        if (
+            self._vacuum.kind is not VacuumModel.FIRST_ORDER
+            or state.phase is not Phase.REACH
+            or state.motion is None
+        ):
+            return False
+        t = context.get_time() - state.t_motion_start
+        lead = time_to_part_present(self._vacuum)
+        return t >= state.motion.phase_end(Phase.REACH) - lead
 
     # -- updates ------------------------------------------------------------
     def _Initialize(self, context: Context, state: State) -> None:

@@ -8,7 +8,8 @@ grasp constraint ``F w <= g`` of the held object (unless disabled). With
 MOVE optimisation on (the scenario's ``planning.optimize_move``, or
 ``optimize=True``), the spline MOVE is then reshaped for speed by
 :class:`~rt_drake.shaping.MoveOptimizer` within
-``planning.budget_s``, and the path it returns is the one retimed. Both are
+``planning.max_evaluations`` paths scored, and the path it returns is the
+one retimed. Both are
 timed on the wall clock, as in the paper's Table II. The grasp polytope is
 computed once, offline, per cup or multi-cup tool (as the paper did: the
 exact W_c, or the tool's set about the tool frame, :func:`move_polytope`),

@@ -104,6 +104,7 @@ def test_optimized_row_is_a_fresh_retime_of_its_stored_path(campaign_run):
         seed=combination.planner_seed,
         gridpoints=2000,
         robust=False,  # the nominal notebook (its set is the robust row's)
+        optimize=False,  # the spline MOVE the optimised row started from
     )
     (obj,) = combination.scenario.objects
     approach = motions.approach(motions.q_home, obj)
@@ -157,7 +158,10 @@ def test_robust_row_against_a_stacked_retime_of_the_set_corners(campaign_run):
         RowKey("notebook", "paper", 0, 0, Variant.ROBUST)
     )
     motions = OnlineMotions(
-        combination.scenario, seed=combination.planner_seed, robust=False
+        combination.scenario,
+        seed=combination.planner_seed,
+        robust=False,
+        optimize=False,  # the robust row plays the spline MOVE
     )
     (obj,) = combination.scenario.objects
     assert obj.uncertainty is not None

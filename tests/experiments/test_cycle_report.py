@@ -1,4 +1,4 @@
-"""The cycle report: totals, the plan on the critical path, picks per hour."""
+"""The cycle report: totals, the plan on the critical path, picks per hour, floor."""
 
 from __future__ import annotations
 
@@ -10,8 +10,10 @@ import pytest
 
 from rt_drake.experiments import (
     CycleReport,
+    ObjectFloor,
     RunSettings,
     cycle_report,
+    summary_line,
     table_markdown,
     write_report,
 )
@@ -143,3 +145,31 @@ def test_an_empty_cycle_has_no_mean_and_no_picks():
     report = cycle_report(())
     assert math.isnan(report.mean_cycle_s) and report.picks_per_hour == 0.0
     assert json.loads(report.to_json())["objects"] == []
+
+
+def test_the_floor_is_set_beside_each_object_and_the_cycle(tmp_path):
+    """floor_s = the motion floor + ATTACH + DETACH as run; ratio = total / floor."""
+    floors = (
+        ObjectFloor("a", 0.0, 0.6, 0.2, 0.5),
+        ObjectFloor("b", 0.1, 0.55, 0.25, 0.6),
+    )
+    report = cycle_report((_record("a", 0.034), _record("b", 0.0)), None, floors)
+    data = json.loads(report.to_json())
+    for entry, floor in zip(data["objects"], floors, strict=True):
+        expected = 0.0
+        for part in (floor.retreat_s, floor.transit_s, floor.descent_s, floor.move_s):
+            expected += part
+        expected += entry["exec_s"]["attach"] + entry["exec_s"]["detach"]
+        assert entry["floor_s"] == pytest.approx(expected, rel=1e-12)
+        assert entry["floor_ratio"] == pytest.approx(entry["total_s"] / expected)
+        assert entry["floor_segments_s"]["move_s"] == floor.move_s
+    total_floor = sum(e["floor_s"] for e in data["objects"])
+    assert data["floor_s"] == pytest.approx(total_floor, rel=1e-12)
+    assert data["floor_ratio"] == pytest.approx(data["total_s"] / total_floor)
+    table = table_markdown(report)
+    assert "| floor (joint limits, no grasp) | 3.300 | 3.500 |" in table
+    assert "floor ratio (total / floor)" in table
+    assert "floor 3.400 s per object" in summary_line(report)
+    # without floors the report has no floor keys (older report.json files)
+    plain = json.loads(cycle_report((_record("a", 0.0),)).to_json())
+    assert "floor_s" not in plain and "floor_s" not in plain["objects"][0]

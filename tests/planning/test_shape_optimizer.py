@@ -31,7 +31,6 @@ from rt_drake import (
 from rt_drake.model.held import held_object_of
 from rt_drake.planning import PlanTiming, sample_transports
 from rt_drake.shaping import (
-    Clock,
     MoveOptimizer,
     MoveOptimizerOptions,
     optimize_move,
@@ -41,9 +40,7 @@ from rt_drake.shaping import (
 from rt_drake.types.phase import Phase
 
 CUP_STEP = 1e-3  # m
-OPTIONS = MoveOptimizerOptions(
-    budget_s=60.0, clock=Clock.PROCESS, max_evaluations=80, max_tilt_deg=30.0
-)
+OPTIONS = MoveOptimizerOptions(max_evaluations=80, max_tilt_deg=30.0)
 
 
 @dataclasses.dataclass

@@ -49,6 +49,14 @@ def test_report_has_every_field(constrained_run):
     assert report["picks_per_hour"] == pytest.approx(3600.0 / report["total_s"])
     # The simulation waited for the plan on the critical path: it adds up.
     assert report["sim_time_s"] == pytest.approx(report["total_s"], abs=0.01)
+    # The floor: the motion floor plus ATTACH and DETACH; no cycle beats it.
+    waits = entry["exec_s"]["attach"] + entry["exec_s"]["detach"]
+    motion = sum(entry["floor_segments_s"].values())
+    assert entry["floor_s"] == pytest.approx(motion + waits)
+    assert motion > 0.0
+    assert entry["floor_ratio"] == pytest.approx(entry["total_s"] / entry["floor_s"])
+    assert entry["floor_ratio"] > 1.0
+    assert report["floor_ratio"] == pytest.approx(report["total_s"] / entry["floor_s"])
 
 
 def test_object_lands_on_its_goal_without_slipping(constrained_run):
@@ -72,9 +80,10 @@ def test_replay_holds_the_recording(constrained_run):
     paths = meshcat_paths_in_html(html)
     assert any("/notebook/" in p for p in paths) and any("/vs060/" in p for p in paths)
     assert "| MOVE retime |" in (out / "report.md").read_text()
+    assert "| floor (joint limits, no grasp) |" in (out / "report.md").read_text()
 
 
-def test_without_the_grasp_constraint_the_object_slips(tmp_path):
+def test_without_the_grasp_constraint_the_object_slips(tmp_path, capsys):
     assert (
         main(
             [
@@ -91,6 +100,8 @@ def test_without_the_grasp_constraint_the_object_slips(tmp_path):
     (entry,) = json.loads((tmp_path / "report.json").read_text())["objects"]
     assert entry["slip"]["max_translation_mm"] > 5.0
     assert entry["guarantee"] == "none: joint limits only"
+    # The shaping (on by default) needs the grasp constraint: said once.
+    assert capsys.readouterr().out.count("MOVE shaping off") == 1
 
 
 def test_an_uncertain_object_is_moved_robustly_and_the_report_says_so(tmp_path, capsys):

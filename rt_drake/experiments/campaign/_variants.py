@@ -98,6 +98,7 @@ def plan_move(combination: Combination, grasp_constraint: bool) -> PlannedMove:
         grasp_constraint=grasp_constraint,
         seed=combination.planner_seed,
         robust=False,
+        optimize=False,  # the spline MOVE (the ``optimized`` variant shapes it)
     )
     (obj,) = combination.scenario.objects
     approach = motions.approach(motions.q_home, obj)

@@ -1,0 +1,82 @@
+"""The cycle's floor is a lower bound: no planned motion through its lines beats it.
+
+The planner's own picks (retreat, transit and descent blended in one path)
+and MOVEs of the shipped cycle, as ``rt-drake run`` plans them, retimed at
+the joint limits without the grasp by toppra (an independent TOPP-RA), take
+at least the floor of their segments. The MOVE floor is also checked
+against the per-joint trapezoid written out here.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import toppra
+import toppra.algorithm
+import toppra.constraint
+
+from rt_drake import CyclePlanner, JointLimits
+from rt_drake.experiments import cycle_floors
+from rt_drake.model.plant import make_arm_plant
+
+#: Relative slack for toppra's grid (its duration on 2000 points).
+GRID_SLACK = 2e-3
+
+
+def toppra_duration(path, limits: JointLimits) -> float:
+    """Time-optimal duration (s) of ``path`` (q(s), s in [0, 1]) at the limits."""
+    s = np.linspace(0.0, 1.0, 2000)
+    waypoints = path.value(s)
+    spline = toppra.SplineInterpolator(s, waypoints)
+    constraints = [
+        toppra.constraint.JointVelocityConstraint(
+            np.column_stack([-limits.velocity, limits.velocity])
+        ),
+        toppra.constraint.JointAccelerationConstraint(
+            np.column_stack([-limits.acceleration, limits.acceleration])
+        ),
+    ]
+    instance = toppra.algorithm.TOPPRA(constraints, spline, gridpoints=s)
+    return float(instance.compute_trajectory(0.0, 0.0).duration)
+
+
+@pytest.fixture(scope="module")
+def cycle(scenario):
+    """The floors and, per object, the planner's pick and MOVE (seed 0)."""
+    floors = cycle_floors(scenario, seed=0)
+    planner = CyclePlanner(scenario, seed=0)
+    q = planner.q_home
+    plans = []
+    for index, obj in enumerate(scenario.objects):
+        for k, other in enumerate(scenario.objects):
+            pose = other.goal if k < index else other.start
+            planner.set_object_pose(other.name, pose.GetDeterministicValue())
+        pick = planner.plan_pick(q, obj.name, retreat=index > 0)
+        move = planner.plan_move(pick.path.q_goal, obj.name, reach=pick.path)
+        plans.append((pick, move))
+        q = move.q_goal
+    plant = make_arm_plant(scenario)
+    return floors, plans, JointLimits.from_plant(plant, scenario.robot)
+
+
+@pytest.mark.slow
+def test_no_planned_motion_through_the_lines_beats_its_floor(cycle):
+    floors, plans, limits = cycle
+    assert [f.name for f in floors] == [pick.path.object for pick, _ in plans]
+    for floor, (pick, move) in zip(floors, plans, strict=True):
+        pick_floor = floor.retreat_s + floor.transit_s + floor.descent_s
+        assert toppra_duration(pick.path.path, limits) >= pick_floor * (1 - GRID_SLACK)
+        assert toppra_duration(move.path, limits) >= floor.move_s * (1 - GRID_SLACK)
+        assert floor.transit_s > 0.0 and floor.descent_s > 0.0
+
+
+def test_the_move_floor_is_the_slowest_joints_trapezoid(cycle):
+    floors, plans, limits = cycle
+    v, a = limits.velocity, limits.acceleration
+    for floor, (_, move) in zip(floors, plans, strict=True):
+        d = np.abs(move.q_goal - move.q_start)
+        times = [
+            dj / vj + vj / aj if dj >= vj * vj / aj else 2.0 * np.sqrt(dj / aj)
+            for dj, vj, aj in zip(d, v, a, strict=True)
+        ]
+        assert floor.move_s == pytest.approx(max(times), rel=1e-12)
