@@ -36,13 +36,13 @@ from rt_drake.retiming._check import (
     WorstMargin,
     check_trajectory,
 )
-from rt_drake.retiming._jerk_timed_path import JerkTimedPath
 from rt_drake.retiming._floor import (
     joint_floor,
     junction_speeds,
     rest_to_rest_jerk,
     segment_floor,
 )
+from rt_drake.retiming._jerk_timed_path import JerkTimedPath
 from rt_drake.retiming._joint_path import (
     PathLike,
     WaypointPath,
