@@ -29,6 +29,7 @@ PRINTS = {
     ],
     "docs/guides/cycle-floor.md": ["whetstone_box 1.190 s of motion at least"],
     "docs/reference/cli.md": ["True", ", 6) scene"],
+    "docs/guides/jerk-limits.md": ["s with jerk limits", "jerk:", "holds: True"],
     "docs/guides/export.md": ["points to", "joints shoulder_pan_joint", "end: True"],
 }
 

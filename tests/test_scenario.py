@@ -198,7 +198,7 @@ REFUSED = [
         "cup:\n",
         "cup:\n  radius: 0.02\ncup:\n",
         "",
-        ["line 20", "duplicate key 'cup' (first on line 18)"],
+        ["line 26", "duplicate key 'cup' (first on line 24)"],  # after jerk_limits
     ),
     ("attach_s: 1.0", "attach_s: &t 1.0", "", []),  # an anchor alone is fine
     ("detach_s: 1.0", "detach_s: *t", "t: &t 1\n", ["line", "aliases (*t)"]),
@@ -223,6 +223,18 @@ REFUSED = [
         "home: [0.0, 0.35, 1.75, 0.0, 1.04, 0.0]\n  velocity_limits: [1, 2]",
         "",
         ["robot.velocity_limits", "2 values", "6 joints"],
+    ),
+    (
+        "jerk_limits: [394.67, 336.89,",
+        "jerk_limits: [394.67,",
+        "",
+        ["robot.jerk_limits", "5 values", "6 joints"],
+    ),
+    (
+        "jerk_limits: [394.67,",
+        "jerk_limits: [-1.0,",
+        "",
+        ["robot.jerk_limits", "must be > 0", "-1.0"],
     ),
     ("lower: [0.38,", "lower: [.nan,", "", ["random_transport.start_region.lower[0]"]),
 ]

@@ -28,7 +28,12 @@ import argparse
 from pathlib import Path
 
 from rt_drake.cli import _campaign_command as campaign
-from rt_drake.cli._args import add_optimize_flag, int_in, nonnegative_int
+from rt_drake.cli._args import (
+    add_jerk_flag,
+    add_optimize_flag,
+    int_in,
+    nonnegative_int,
+)
 
 #: Most random paths (each is planned, retimed twice and simulated ~12 times).
 MAX_TRIALS = 1000
@@ -81,6 +86,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "uncertainty set",
     )
     add_optimize_flag(transport, "also optimise each MOVE and play it")
+    add_jerk_flag(transport)
     transport.add_argument("--out", type=Path, required=True, help="output directory")
     transport.set_defaults(run=run_transport)
 
@@ -92,6 +98,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         default="stack_four_objects",
         help="scenario (default stack_four_objects)",
     )
+    add_jerk_flag(cycle)
     cycle.add_argument("--out", type=Path, required=True, help="output directory")
     cycle.set_defaults(run=run_cycle_experiment)
 
@@ -201,6 +208,7 @@ def run_transport(args: argparse.Namespace) -> int:
             optimize=args.optimize,
             out_dir=args.out,
             progress=lambda done, n: progress.step(done, "trials done"),
+            jerk_limits=not args.no_jerk_limits,
         )
     finally:
         progress.close()
@@ -278,5 +286,7 @@ def run_cycle_experiment(args: argparse.Namespace) -> int:
         seed=0,
         time_step=1e-3,
         optimize=None,
+        no_jerk_limits=args.no_jerk_limits,
+        export=None,  # rt-drake run's --export: nothing exported here
     )
     return run_command.run(namespace)

@@ -20,7 +20,12 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from rt_drake.cli._args import add_optimize_flag, float_in, nonnegative_int
+from rt_drake.cli._args import (
+    add_jerk_flag,
+    add_optimize_flag,
+    float_in,
+    nonnegative_int,
+)
 
 #: The file written beside the report.
 REPLAY_FILE = "replay.html"
@@ -69,6 +74,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "of during the motion and wait before it (the arm waits for all of it)",
     )
     add_optimize_flag(parser, "shape each MOVE for speed")
+    add_jerk_flag(parser)
     parser.add_argument(
         "--time-step",
         type=float_in(1e-4, 0.01),
@@ -136,6 +142,7 @@ def run(args: argparse.Namespace) -> int:
         move_speed=args.speed,
         seed=args.seed,
         optimize=args.optimize,
+        jerk_limits=not args.no_jerk_limits,
     )
     recorder = None if export is None else RecordingMotions(motions)
     optimize = (

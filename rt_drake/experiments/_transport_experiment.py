@@ -102,15 +102,21 @@ def transport_trial(
     seed: int,
     optimize: bool = False,
     replay_path: Path | None = None,
+    jerk_limits: bool = False,
 ) -> dict[str, Any]:
     """Plan, retime (with and without the constraint) and simulate one transport.
 
     With ``optimize``, also the optimised MOVE (:func:`.optimized_trial`),
-    its Meshcat replay written to ``replay_path`` if given.
+    its Meshcat replay written to ``replay_path`` if given. With
+    ``jerk_limits``, both retimes keep the scenario's ``robot.jerk_limits``.
     """
     planner_scenario = transport_scenario(scenario, object_name, X_WO_start, X_WO_goal)
     constrained = OnlineMotions(
-        planner_scenario, grasp_constraint=True, seed=seed + index, optimize=False
+        planner_scenario,
+        grasp_constraint=True,
+        seed=seed + index,
+        optimize=False,
+        jerk_limits=jerk_limits,
     )
     planned_obj = planner_scenario.objects[0]
     transport = scenario.random_transport
@@ -247,7 +253,7 @@ def _profiles(
 
 def _trial_job(args: tuple) -> dict[str, Any]:
     """One trial in a worker: scenarios do not pickle, so it is loaded again."""
-    path, object_name, index, X_start, X_goal, seed, optimize, replay = args
+    path, object_name, index, X_start, X_goal, seed, optimize, replay, jerk = args
     scenario = load_scenario(path)
     return transport_trial(
         scenario,
@@ -258,6 +264,7 @@ def _trial_job(args: tuple) -> dict[str, Any]:
         seed,
         optimize,
         replay,
+        jerk,
     )
 
 
@@ -270,8 +277,11 @@ def run_transport_experiment(
     optimize: bool | None = None,
     out_dir: Path | None = None,
     progress: Callable[[int, int], None] | None = None,
+    jerk_limits: bool = False,
 ) -> dict[str, Any]:
     """Run n trials (in ``workers`` processes); return results and a summary.
+
+    With ``jerk_limits``, every retime keeps the scenario's ``robot.jerk_limits``.
 
     With ``optimize`` (None: the scenario's ``planning.optimize_move``),
     each trial also optimises its MOVE and plays it; the
@@ -299,6 +309,7 @@ def run_transport_experiment(
             seed,
             optimize,
             replay if i == 0 else None,
+            jerk_limits,
         )  # fmt: skip
         for i, (X_s, X_g) in enumerate(pairs)
     ]
@@ -308,6 +319,7 @@ def run_transport_experiment(
         "seed": seed,
         "n": n,
         "optimize": optimize,
+        "jerk_limits": jerk_limits,
         "trials": trials,
         "summary": summarize(trials),
     }

@@ -29,7 +29,12 @@ from scipy.interpolate import CubicSpline
 
 from rt_drake import arguments
 from rt_drake.errors import InputError, TooLargeError
-from rt_drake.retiming import SavedTrajectory, TimedPath
+from rt_drake.retiming import (
+    JerkTimedPath,
+    RetimeInputError,
+    SavedTrajectory,
+    TimedPath,
+)
 
 #: Most samples an export holds (1000 s at 1 kHz).
 MAX_SAMPLES = 1_000_000
@@ -89,7 +94,7 @@ def as_trajectory(trajectory: Sampleable, where: str) -> Trajectory:
     return trajectory
 
 
-def _saved_motion(saved: SavedTrajectory, where: str) -> TimedPath:
+def _saved_motion(saved: SavedTrajectory, where: str) -> TimedPath | JerkTimedPath:
     """The motion of a file's path and profile, every key checked first.
 
     ``waypoints`` (K, n) finite; ``knots`` (K,) and ``gridpoints`` (N+1,)
@@ -125,6 +130,17 @@ def _saved_motion(saved: SavedTrajectory, where: str) -> TimedPath:
             f"segment, got min {sd.min()!r}"
         )
     spline = CubicSpline(saved.knots, waypoints, bc_type="clamped")
+    if len(saved.path_acceleration):  # retimed with jerk limits: s'' continuous
+        u = arguments.array(
+            saved.path_acceleration,
+            "key 'path_acceleration'",
+            (len(gridpoints),),
+            where=where,
+        )
+        try:
+            return JerkTimedPath(spline, gridpoints, sd**2, u)
+        except RetimeInputError as error:
+            raise InputError(f"{where}: key 'path_acceleration': {error}") from None
     return TimedPath(spline, gridpoints, sd**2)
 
 
@@ -178,8 +194,8 @@ def sample_on_grid(trajectory: Sampleable, period: float, where: str) -> GridSam
 
 
 def _evaluate(motion: Trajectory, times: np.ndarray) -> list[np.ndarray]:
-    """``[q, q', q'']`` at ``times``, each (M, n): vectorised for a TimedPath."""
-    if isinstance(motion, TimedPath):
+    """``[q, q', q'']`` at ``times``, each (M, n): vectorised for the retimer's."""
+    if isinstance(motion, (TimedPath, JerkTimedPath)):
         return motion.sample(times, order=2)
     return [
         np.array([motion.EvalDerivative(ti, order).ravel() for ti in times]).reshape(

@@ -64,7 +64,8 @@ class RobotConfig:
     possibly scoped (``"suction_tool::suction_cup"``).
 
     Empty limit lists mean "take them from the model" (URDF ``velocity``,
-    ``drake:acceleration`` and ``effort``). Units: rad, rad/s, rad/s^2, N m.
+    ``drake:acceleration`` and ``effort``). Units: rad, rad/s, rad/s^2, N m,
+    rad/s^3. ``jerk_limits`` empty: the jerk is not limited (a URDF has none).
     ``limit_torques``: retime under the torque limits too (inverse dynamics,
     held object included), for an arm whose maker publishes torque limits
     rather than acceleration limits (e.g. the UR5e).
@@ -82,6 +83,7 @@ class RobotConfig:
     acceleration_limits: list[float] = dataclasses.field(default_factory=list)
     torque_limits: list[float] = dataclasses.field(default_factory=list)
     limit_torques: bool = False
+    jerk_limits: list[float] = dataclasses.field(default_factory=list)
 
 
 @dataclasses.dataclass
@@ -546,7 +548,12 @@ def check_tool(path: Path, tool: ToolConfig, key: str = "tool") -> None:
 def _check_robot(path: Path, robot: RobotConfig) -> None:
     """Limit lists are empty or as long as ``home``, and > 0."""
     joints = len(robot.home)
-    for field in ("velocity_limits", "acceleration_limits", "torque_limits"):
+    for field in (
+        "velocity_limits",
+        "acceleration_limits",
+        "torque_limits",
+        "jerk_limits",
+    ):
         values = getattr(robot, field)
         key = f"{path}: key 'robot.{field}'"
         if values and len(values) != joints:

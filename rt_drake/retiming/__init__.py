@@ -22,9 +22,10 @@ objects), ``_between`` (limits held between grid points), ``_samples``,
 kernels before anything is timed), ``_timed_path``, ``_time_scaled``,
 ``_check`` (dense 1 kHz verification), ``_floor`` (the least time the
 joint limits allow between two configurations, :func:`segment_floor`),
-``_stop`` and ``_stop_pass`` (protective stops along the path),
-``_trajectory_file`` (the ``.npz`` format) and ``_retime_errors`` (typed
-errors and statuses).
+``_stop`` and ``_stop_pass`` (protective stops along the path), ``_jerk``,
+``_jerk_rows``, ``_jerk_points`` and ``_jerk_timed_path`` (jerk limits: LPs
+after TOPP-RA, and the motion they give), ``_trajectory_file`` (the ``.npz``
+format) and ``_retime_errors`` (typed errors and statuses).
 """
 
 from rt_drake.retiming._check import (
@@ -41,6 +42,7 @@ from rt_drake.retiming._floor import (
     rest_to_rest_jerk,
     segment_floor,
 )
+from rt_drake.retiming._jerk_timed_path import JerkTimedPath
 from rt_drake.retiming._joint_path import (
     PathLike,
     WaypointPath,
@@ -93,6 +95,7 @@ __all__ = [
     "Excess",
     "GraspConstraint",
     "GraspUnstableAtRestError",
+    "JerkTimedPath",
     "JointLimits",
     "LimitsBetweenGridPointsError",
     "Margin",

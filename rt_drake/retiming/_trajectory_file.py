@@ -13,7 +13,11 @@ A file holds (SI units; C the cup frame, W the world):
   the tool frame T as ``cups[i].R_TC[r][c]``, ``cups[i].p_TC[r]``; C is
   then T);
 - ``waypoints``, ``knots``, ``gridpoints``, ``sd``: the path and the s'(s)
-  profile; ``format_version``.
+  profile; ``format_version``;
+- ``path_acceleration``: with jerk limits, s'' at the grid points (its
+  motion is :class:`~._jerk_timed_path.JerkTimedPath`'s); empty without
+  (s'' constant per segment, :class:`~._timed_path.TimedPath`). Optional:
+  a file without the key reads as empty.
 
 :func:`sample_trajectory` builds one from a :class:`~._solve.RetimeResult`,
 :func:`save_trajectory` writes it (atomically, never over an input of the
@@ -73,6 +77,9 @@ class SavedTrajectory:
     knots: np.ndarray
     gridpoints: np.ndarray
     sd: np.ndarray
+    path_acceleration: np.ndarray = dataclasses.field(
+        default_factory=lambda: np.zeros(0)
+    )
 
 
 def sample_trajectory(
@@ -166,6 +173,11 @@ def sample_trajectory(
         knots=np.asarray(knots, dtype=float),
         gridpoints=result.gridpoints,
         sd=result.sd,
+        path_acceleration=(
+            np.zeros(0)
+            if result.path_acceleration is None
+            else np.asarray(result.path_acceleration, dtype=float)
+        ),
     )
 
 
@@ -233,6 +245,8 @@ def load_trajectory(path: str | Path) -> SavedTrajectory:
             )
         values = {}
         for field in dataclasses.fields(SavedTrajectory):
+            if field.name == "path_acceleration" and field.name not in data:
+                continue  # optional: files without jerk limits may lack it
             if field.name not in data:
                 raise InputError(f"{path}: key '{field.name}' is missing")
             values[field.name] = data[field.name]

@@ -55,6 +55,7 @@ def test_summary_gives_the_median_ratios_against_both_spline_durations():
 @pytest.mark.slow
 def test_optimized_move_holds_in_physics_and_is_reported(tmp_path):
     argv = ["experiment", "transport", "--n", "1", "--seed", "2", "--optimize"]
+    argv.append("--no-jerk-limits")  # the optimiser's MOVE is acceleration-limited
     assert main([*argv, "--out", str(tmp_path)]) == 0
     results = json.loads((tmp_path / "results.json").read_text())
     (t,) = results["trials"]

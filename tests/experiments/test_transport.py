@@ -117,11 +117,14 @@ def test_bad_input_exits_2_with_one_line(tmp_path, capsys, argv, words):
 def test_cycle_experiment_writes_the_breakdown(tmp_path):
     # The one-object scenario keeps the test short; the default is the
     # four-object stack of Table II.
+    # Without jerk limits: the breakdown is the subject here, and the
+    # jerk-limited retimes cost CPU (the transport fixture above has them).
     argv = [
         "experiment",
         "cycle",
         "--scenario",
         "random_transport",
+        "--no-jerk-limits",
         "--out",
         str(tmp_path),
     ]

@@ -1,0 +1,284 @@
+"""The points where the jerk-limited retimer evaluates its limits.
+
+:class:`DensePoints`: :data:`DENSE` fractions of every segment, with the
+path's coefficients (velocity cap, torques, object wrench) from the
+retimer's ``sample_path``; there the velocity, acceleration, torque and
+grasp are evaluated exactly after each sequence of LPs, and the points over
+a limit join the LPs. :class:`JerkPoints`: :data:`JERK_DENSE` fractions,
+for the jerk alone. :func:`rest_bounds`: the jerk of the start and stop
+pieces as a bound on their path acceleration (:mod:`._jerk_rows`).
+:class:`Keep`: which joint rows enter the LPs.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+
+import numpy as np
+
+from rt_drake.retiming._check import Margin
+from rt_drake.retiming._jerk_rows import (
+    PointMaps,
+    jerk_values,
+    point_maps,
+    rest_bound,
+)
+from rt_drake.retiming._jerk_timed_path import Piece
+from rt_drake.retiming._joint_path import JointPath
+from rt_drake.retiming._samples import PathSamples
+from rt_drake.retiming.limits import JointLimits
+
+#: Fractions of each segment where every limit but the jerk is evaluated.
+DENSE = np.linspace(0.0, 1.0, 9)
+#: Fractions of each segment where the jerk is evaluated.
+JERK_DENSE = np.linspace(0.0, 1.0, 33)
+#: Fractions of a start or stop piece where its jerk bound is evaluated.
+REST = np.linspace(0.0, 1.0, 65)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class GraspRows:
+    """The grasp's rows ``F w <= g`` (or None)."""
+
+    F: np.ndarray
+    g: np.ndarray
+
+
+def rest_bounds(
+    spline: JointPath, s: np.ndarray, kinds: np.ndarray, jerk: np.ndarray
+) -> dict[int, tuple[int, float]]:
+    """By start or stop piece: its far end's u (variable index) and largest |u|."""
+    bounds = {}
+    for i in np.flatnonzero(kinds != Piece.INTERIOR):
+        ds = s[i + 1] - s[i]
+        start = kinds[i] == Piece.START
+        at = s[i] + ds * (REST if start else 1.0 - REST)
+        at = np.clip(at, s[i] + 1e-9 * ds, s[i + 1] - 1e-9 * ds)
+        sign = 1.0 if start else -1.0  # derivatives pointing away from rest
+        variable = len(s) + int(i) + (1 if start else 0)
+        bounds[int(i)] = (
+            variable,
+            rest_bound(
+                ds,
+                sign * spline(at, 1),
+                spline(at, 2),
+                sign * spline(at, 3),
+                REST,
+                jerk,
+            ),
+        )
+    return bounds
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Keep:
+    """Which joint rows enter the LPs: ratios, or booleans after :meth:`at_least`.
+
+    ``full``: points where a limit was exceeded, which get every row.
+    """
+
+    acceleration: np.ndarray
+    torque: np.ndarray | None
+    full: np.ndarray
+
+    def at_least(self, threshold: float) -> Keep:
+        """Rows whose ratio is at least ``threshold`` (every row of a full point)."""
+        full = self.full[:, None]
+        return Keep(
+            (self.acceleration >= threshold) | full,
+            None if self.torque is None else (self.torque >= threshold) | full,
+            self.full,
+        )
+
+    def with_full(self, over: np.ndarray) -> Keep:
+        """Every row at the points ``over`` too."""
+        full = (self.full | over)[:, None]
+        return Keep(
+            self.acceleration | full,
+            None if self.torque is None else self.torque | full,
+            self.full | over,
+        )
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class DensePoints:
+    """The path at :data:`DENSE` of every segment, and the maps of x, u, k there."""
+
+    s: np.ndarray
+    k: np.ndarray
+    samples: PathSamples
+    maps: PointMaps
+    grasp: GraspRows | None
+
+    @staticmethod
+    def of(
+        sample: Callable[[np.ndarray], PathSamples],
+        s: np.ndarray,
+        kinds: np.ndarray,
+        grasp: GraspRows | None,
+    ) -> DensePoints:
+        """The points of every segment and the path's coefficients there."""
+        segments = np.repeat(np.arange(len(s) - 1), len(DENSE))
+        k = np.tile(np.arange(len(DENSE)), len(s) - 1)
+        sigma = DENSE[k]
+        ds = np.diff(s)[segments]
+        at = s[segments] + sigma * ds
+        at[k == len(DENSE) - 1] = s[segments + 1][k == len(DENSE) - 1]
+        return DensePoints(
+            s=at,
+            k=k,
+            samples=sample(at),
+            maps=point_maps(s, kinds, segments, sigma),
+            grasp=grasp,
+        )
+
+    def joint_ratios(self, x: np.ndarray, u: np.ndarray, limits: JointLimits) -> Keep:
+        """Acceleration and torque ratios per joint at (x, u), (P, n) each."""
+        smp = self.samples
+        acc = np.abs(smp.dq * u[:, None] + smp.ddq * x[:, None]) / limits.acceleration
+        torque = None
+        if smp.torque is not None and limits.torque is not None:
+            a, b, c = smp.torque
+            torque = np.abs(a * u[:, None] + b * x[:, None] + c) / limits.torque
+        return Keep(acc, torque, np.zeros(len(x), dtype=bool))
+
+    def grasp_ratio(self, x: np.ndarray, u: np.ndarray) -> np.ndarray:
+        """``F_r w / g_r`` at every point and row, (P, R)."""
+        assert self.grasp is not None and self.samples.wrench is not None
+        a, b, c = self.samples.wrench
+        w = a * u[:, None] + b * x[:, None] + c
+        return (w @ self.grasp.F.T) / self.grasp.g
+
+    def grasp_excess(self, z: np.ndarray) -> np.ndarray:
+        """Relative excess of every grasp row at every point, (P, R)."""
+        return self.grasp_ratio(self.maps.X @ z, self.maps.U @ z) - 1.0
+
+    def ratios(self, z: np.ndarray, limits: JointLimits) -> dict[Margin, np.ndarray]:
+        """Each limit's largest ratio ``value / limit`` at every point, (P,)."""
+        x, u = self.maps.X @ z, self.maps.U @ z
+        smp = self.samples
+        x_cap = np.where(np.isfinite(smp.x_cap), smp.x_cap, np.inf)
+        out = {
+            Margin.VELOCITY: np.where(
+                np.isfinite(x_cap), np.sqrt(np.maximum(x, 0.0) / x_cap), 0.0
+            ),
+            Margin.ACCELERATION: np.max(
+                np.abs(smp.dq * u[:, None] + smp.ddq * x[:, None])
+                / limits.acceleration,
+                axis=1,
+            ),
+        }
+        if smp.torque is not None and limits.torque is not None:
+            a, b, c = smp.torque
+            tau = a * u[:, None] + b * x[:, None] + c
+            out[Margin.TORQUE] = np.max(np.abs(tau) / limits.torque, axis=1)
+        if self.grasp is not None:
+            out[Margin.GRASP] = np.max(self.grasp_excess(z), axis=1) + 1.0
+        return out
+
+    def excess(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
+        """Largest relative excess over a limit at every point, (P,)."""
+        return (
+            np.max(np.column_stack(list(self.ratios(z, limits).values())), axis=1) - 1.0
+        )
+
+    def margins(self, z: np.ndarray, limits: JointLimits) -> dict[Margin, np.ndarray]:
+        """``1 - ratio`` at the grid points (segment starts, and the end)."""
+        grid = np.append(np.flatnonzero(self.k == 0), len(self.s) - 1)
+        return {m: 1.0 - r[grid] for m, r in self.ratios(z, limits).items()}
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class JerkPoints:
+    """The path at :data:`JERK_DENSE` of every segment, for the jerk rows.
+
+    The jerk varies most inside a segment (it holds ``k = du/ds``), so it is
+    evaluated at more points than the other limits; it needs only the
+    spline's derivatives, not Drake. So do the velocity and acceleration,
+    checked here too (on a coarse grid they can peak between the 9 points of
+    :class:`DensePoints`).
+    """
+
+    s: np.ndarray
+    k: np.ndarray
+    inner: np.ndarray
+    x_cap: np.ndarray
+    dq: np.ndarray
+    ddq: np.ndarray
+    dddq: np.ndarray
+    maps: PointMaps
+    segment: np.ndarray
+
+    @staticmethod
+    def of(
+        spline: JointPath, s: np.ndarray, kinds: np.ndarray, velocity: np.ndarray
+    ) -> JerkPoints:
+        """The points of every segment (q''' on the segment side of a knot)."""
+        count = len(JERK_DENSE)
+        segments = np.repeat(np.arange(len(s) - 1), count)
+        k = np.tile(np.arange(count), len(s) - 1)
+        sigma = JERK_DENSE[k]
+        ds = np.diff(s)[segments]
+        at = s[segments] + sigma * ds
+        at[k == count - 1] = s[segments + 1][k == count - 1]
+        own = np.clip(at, s[segments] + 1e-9 * ds, s[segments + 1] - 1e-9 * ds)
+        dq = spline(at, 1)
+        with np.errstate(divide="ignore", over="ignore"):  # q' = 0: no cap
+            x_cap = np.min(velocity**2 / dq**2, axis=1)
+        return JerkPoints(
+            s=at,
+            k=k,
+            inner=kinds[segments] == Piece.INTERIOR,
+            x_cap=x_cap,
+            dq=dq,
+            ddq=spline(at, 2),
+            dddq=spline(own, 3),
+            maps=point_maps(s, kinds, segments, sigma),
+            segment=segments,
+        )
+
+    def per_joint(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
+        """``|jerk_j| / J_j`` at the interior points, (P, n) (0 elsewhere)."""
+        assert limits.jerk is not None
+        x, u, k = self.maps.X @ z, self.maps.U @ z, self.maps.K @ z
+        jerk = jerk_values(x, u, k, self.dq, self.ddq, self.dddq) / limits.jerk
+        return np.where(self.inner[:, None], np.abs(jerk), 0.0)
+
+    def ratio(
+        self, z: np.ndarray, limits: JointLimits, bounds: dict[int, tuple[int, float]]
+    ) -> np.ndarray:
+        """The largest jerk ratio at every point, (P,).
+
+        Start and stop pieces in closed form, ``(|u| / bound)^1.5``.
+        """
+        out = np.max(self.per_joint(z, limits), axis=1)
+        for segment, (variable, bound) in bounds.items():
+            out[self.segment == segment] = (abs(z[variable]) / bound) ** 1.5
+        return out
+
+    def joint_ratio(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
+        """The largest velocity or acceleration ratio at every point, (P,)."""
+        x, u = np.maximum(self.maps.X @ z, 0.0), self.maps.U @ z
+        velocity = np.sqrt(x / self.x_cap)
+        acceleration = np.abs(self.dq * u[:, None] + self.ddq * x[:, None])
+        return np.maximum(velocity, np.max(acceleration / limits.acceleration, axis=1))
+
+    def margins(
+        self, z: np.ndarray, limits: JointLimits, bounds: dict[int, tuple[int, float]]
+    ) -> np.ndarray:
+        """``1 - ratio`` at the grid points (segment starts, and the end)."""
+        grid = np.append(np.flatnonzero(self.k == 0), len(self.s) - 1)
+        return 1.0 - self.ratio(z, limits, bounds)[grid]
+
+
+__all__ = [
+    "DENSE",
+    "JERK_DENSE",
+    "REST",
+    "DensePoints",
+    "GraspRows",
+    "JerkPoints",
+    "Keep",
+    "rest_bounds",
+]
