@@ -247,8 +247,8 @@ def _profiles(
 
 def _trial_job(args: tuple) -> dict[str, Any]:
     """One trial in a worker: scenarios do not pickle, so it is loaded again."""
-    path, object_name, index, X_start, X_goal, seed, optimize, replay = args
-    scenario = load_scenario(path)
+    path, object_name, index, X_start, X_goal, seed, optimize, replay, cup = args
+    scenario = load_scenario(path).with_cup_physics(cup)
     return transport_trial(
         scenario,
         object_name,
@@ -270,8 +270,13 @@ def run_transport_experiment(
     optimize: bool | None = None,
     out_dir: Path | None = None,
     progress: Callable[[int, int], None] | None = None,
+    cup_physics: str | None = None,
 ) -> dict[str, Any]:
     """Run n trials (in ``workers`` processes); return results and a summary.
+
+    ``cup_physics``: simulate the rollouts with this cup (``rim`` or
+    ``bellows``; None: the scenario's ``cup_physics.kind``); the results
+    name it.
 
     With ``optimize`` (None: the scenario's ``planning.optimize_move``),
     each trial also optimises its MOVE and plays it; the
@@ -285,6 +290,7 @@ def run_transport_experiment(
             no such object.
     """
     scenario, name = transport_inputs(scenario_path, n, workers, object_name)
+    scenario = scenario.with_cup_physics(cup_physics)
     if optimize is None:
         optimize = scenario.planning.optimize_move
     pairs = sample_transports(scenario, n, seed)
@@ -299,6 +305,7 @@ def run_transport_experiment(
             seed,
             optimize,
             replay if i == 0 else None,
+            scenario.cup_physics.kind,
         )  # fmt: skip
         for i, (X_s, X_g) in enumerate(pairs)
     ]
@@ -308,6 +315,7 @@ def run_transport_experiment(
         "seed": seed,
         "n": n,
         "optimize": optimize,
+        "cup_physics": scenario.cup_physics.kind,
         "trials": trials,
         "summary": summarize(trials),
     }
