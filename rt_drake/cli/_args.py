@@ -91,7 +91,20 @@ def add_optimize_flag(parser: argparse.ArgumentParser, what: str) -> None:
     )
 
 
+def add_cup_physics_flag(parser: argparse.ArgumentParser) -> None:
+    """``--cup-physics rim|bellows`` (default: the scenario's ``cup_physics``)."""
+    parser.add_argument(
+        "--cup-physics",
+        choices=("rim", "bellows"),
+        default=None,
+        help="the simulated cup: rim (rigid points at the planner's model) or "
+        "bellows (a compliant cup from models/cups, independent of the planner; "
+        "default: the scenario's cup_physics.kind)",
+    )
+
+
 __all__ = [
+    "add_cup_physics_flag",
     "add_optimize_flag",
     "finite_float",
     "float_in",

@@ -23,7 +23,12 @@ import argparse
 from pathlib import Path
 
 from rt_drake.cli import _campaign_command as campaign
-from rt_drake.cli._args import add_optimize_flag, int_in, nonnegative_int
+from rt_drake.cli._args import (
+    add_cup_physics_flag,
+    add_optimize_flag,
+    int_in,
+    nonnegative_int,
+)
 
 #: Most random paths (each is planned, retimed twice and simulated ~12 times).
 MAX_TRIALS = 1000
@@ -76,6 +81,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "uncertainty set",
     )
     add_optimize_flag(transport, "also optimise each MOVE and play it")
+    add_cup_physics_flag(transport)
     transport.add_argument("--out", type=Path, required=True, help="output directory")
     transport.set_defaults(run=run_transport)
 
@@ -124,6 +130,7 @@ def run_transport(args: argparse.Namespace) -> int:
             optimize=args.optimize,
             out_dir=args.out,
             progress=lambda done, n: progress.step(done, "trials done"),
+            cup_physics=args.cup_physics,
         )
     finally:
         progress.close()
@@ -161,6 +168,11 @@ def run_robust_transport(args: argparse.Namespace) -> int:
     if args.optimize:
         raise InputError(
             "--robust plays the planner's spline MOVEs: it does not take --optimize"
+        )
+    if args.cup_physics is not None:
+        raise InputError(
+            "--robust does not take --cup-physics yet: give the scenario's "
+            "cup_physics key instead"
         )
     path = resolve_scenario_path(args.scenario)
     output_directory(args.out, "--out", ROBUST_FILES, {"scenario file": path})
@@ -201,5 +213,6 @@ def run_cycle_experiment(args: argparse.Namespace) -> int:
         seed=0,
         time_step=1e-3,
         optimize=None,
+        cup_physics=None,
     )
     return run_command.run(namespace)

@@ -13,7 +13,12 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from rt_drake.cli._args import add_optimize_flag, float_in, nonnegative_int
+from rt_drake.cli._args import (
+    add_cup_physics_flag,
+    add_optimize_flag,
+    float_in,
+    nonnegative_int,
+)
 
 #: The file written beside the report.
 REPLAY_FILE = "replay.html"
@@ -62,6 +67,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "of during the motion and wait before it (the arm waits for all of it)",
     )
     add_optimize_flag(parser, "shape each MOVE for speed")
+    add_cup_physics_flag(parser)
     parser.add_argument(
         "--time-step",
         type=float_in(1e-4, 0.01),
@@ -99,7 +105,7 @@ def run(args: argparse.Namespace) -> int:
     output_directory(
         args.out, "--out", (*REPORT_FILES, REPLAY_FILE), {"scenario file": path}
     )
-    scenario = load_scenario(path)
+    scenario = load_scenario(path).with_cup_physics(args.cup_physics)
     meshcat = StartMeshcat()
     motions = OnlineMotions(
         scenario,
@@ -142,6 +148,7 @@ def run(args: argparse.Namespace) -> int:
         sim_time_s=result.sim_time,
         max_tracking_error_rad=result.max_tracking_error,
         simulation_wall_s=wall_s,
+        cup_physics=scenario.cup_physics.kind,
     )
     report = cycle_report(result.records, settings)
     json_path, md_path = write_report(report, args.out)

@@ -98,6 +98,7 @@ def build_cycle(
             q_home=home_configuration(plant, scenario),
             vacuum=scenario.vacuum,
             pipelined=pipelined,
+            command_period=scenario.robot.command_period_s,
         ),
     )
     for name in ("body_poses", "body_spatial_velocities"):
