@@ -13,10 +13,11 @@ received, so the command lags one period). For t in [t_k, t_k + T) with
             acceleration over the last two periods, held)
 
 with ``q_j = q(clamp(jT, 0, t_end))``; before the motion and after its end
-the samples are its end points, so the command comes to rest one period
-after the motion ends. Linear interpolation is what a position-streaming
-interface does between set-points; its velocity steps every period are far
-above the bellows' and arm's modes (125 Hz against 5-10 Hz).
+the samples are its end points, so the command's velocity is zero from one
+period after the motion's end and its acceleration from two. Linear
+interpolation is what a position-streaming interface does between
+set-points; its velocity steps every period are far above the bellows' and
+arm's modes (125 Hz against 5-10 Hz).
 """
 
 from __future__ import annotations
