@@ -39,7 +39,7 @@ from pydrake.multibody.plant import ExternallyAppliedSpatialForce
 from pydrake.systems.framework import Context, DiscreteValues
 
 from rt_drake.model.cup_physics import BellowsCup
-from rt_drake.model.vacuum import Vacuum
+from rt_drake.model.vacuum import Vacuum, next_level
 from rt_drake.simulation._bellows import Lip, lip_points
 from rt_drake.simulation._suction import (
     CupOnTool,
@@ -162,6 +162,11 @@ class BellowsSuction(SuctionCup):
         self._lips = tuple(lips)
         self._cup = cup
         self._p_LP = lip_points(cup)
+        # m: a lip within the vacuum's range of a face of target i has its
+        # centre within this distance of the target's origin.
+        self._reach = [
+            float(np.linalg.norm(t.half_extents)) + cup.vacuum_range for t in targets
+        ]
         self._seal_index = self.DeclareDiscreteState(len(lips))
         self.DeclarePeriodicDiscreteUpdateEvent(time_step, 0.0, self._UpdateSeal)
 
@@ -185,11 +190,13 @@ class BellowsSuction(SuctionCup):
         found = []
         for lip in self._lips:
             X_WL = poses[int(lip.body_index)]
+            p_WL = X_WL.translation()
             best: tuple[int, LipGaps] | None = None
             for i, target in enumerate(self._targets):
-                gaps = lip_gaps(
-                    X_WL, poses[int(target.body_index)], target.half_extents, self._p_LP
-                )
+                X_WO = poses[int(target.body_index)]
+                if np.linalg.norm(X_WO.translation() - p_WL) > self._reach[i]:
+                    continue
+                gaps = lip_gaps(X_WL, X_WO, target.half_extents, self._p_LP)
                 if gaps is None or gaps.centre >= self._cup.vacuum_range:
                     continue
                 if best is None or gaps.centre < best[1].centre:
@@ -218,6 +225,17 @@ class BellowsSuction(SuctionCup):
             if state is SealState.SEALED and found is not None:
                 sealed[found[0]] = 1.0
         output.SetFromVector(sealed)
+
+    def _levels(self, context: Context) -> np.ndarray:
+        """Each lip's vacuum level (fixed: the valve and a face drawn or held)."""
+        if self._level_index is not None:
+            return context.get_discrete_state(self._level_index).CopyToVector()
+        valve = self._valve_on(context)
+        states = self.seal_states(context)
+        pulls = (SealState.DRAWING, SealState.SEALED)
+        return np.array(
+            [next_level(self._vacuum, 0.0, valve and s in pulls, 0.0) for s in states]
+        )
 
     def _held(self, context: Context) -> list[tuple[int, int, Seal, float]]:
         held = []
