@@ -190,6 +190,10 @@ CASES = [
      ["acceleration must be a (joints,) array", "got ndarray of shape (2, 3)"]),
     ("JointLimits", lambda e: JointLimits(np.ones(6), np.ones(6), [1.0] * 5 + [0]),
      ["JointLimits: torque limits must be > 0"]),
+    ("JointLimits", lambda e: JointLimits(np.ones(6), np.ones(6), jerk=[np.nan] * 6),
+     ["JointLimits: jerk must be a (joints,) array of finite numbers"]),
+    ("JointLimits", lambda e: JointLimits(np.ones(6), np.ones(6), jerk=np.ones(5)),
+     ["limits differ in length", "jerk 5"]),
     ("JointLimits", lambda e: JointLimits.from_plant(None),
      ["JointLimits.from_plant: plant must be a MultibodyPlant", "got None"]),
     ("GraspConstraint", lambda e: GraspConstraint(None, e.W.F, e.W.g),
@@ -330,6 +334,7 @@ NOT_CALLED = {
     "SavedTrajectory",
     "Scenario",  # built by load_scenario, which checks every key
     "TimedPath",  # built by retime
+    "JerkTimedPath",  # built by retime with jerk limits
     "TrajectoryCheck",
     "default_cache_dir",
     "models_dir",

@@ -162,7 +162,7 @@ REFUSED = [
         "cup:\n",
         "cup:\n  radius: 0.02\ncup:\n",
         "",
-        ["line 20", "duplicate key 'cup' (first on line 18)"],
+        ["line 26", "duplicate key 'cup' (first on line 24)"],
     ),
     ("attach_s: 1.0", "attach_s: &t 1.0", "", []),  # an anchor alone is fine
     ("detach_s: 1.0", "detach_s: *t", "t: &t 1\n", ["line", "aliases (*t)"]),

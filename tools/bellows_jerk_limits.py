@@ -10,11 +10,12 @@ oscillator driven by a ramp of duration T_r keeps an amplitude factor
 joint's jerk is limited to ``a_max / T_n``: going from rest to its
 acceleration limit takes at least T_n.
 
-T_n is the longest period of the bellows' axial and lateral modes with the
-heaviest object of the scenario plus the lip: ``T = 2 pi sqrt((m + m_lip) /
-k)``. Prints the periods and the ``robot.jerk_limits`` line (rad/s^3) for
-the scenario's acceleration limits (the URDF's when the scenario gives
-none).
+T_n is the longest period of the bellows' modes with each object of the
+scenario: axial and lateral ``T = 2 pi sqrt((m + m_lip) / k)``, tilt and
+torsion ``T = 2 pi sqrt(I / k)`` with I the object's moment of inertia about
+the lip's axes (its centre of mass moved to the cup origin). Prints the
+periods and the ``robot.jerk_limits`` line (rad/s^3) for the scenario's
+acceleration limits (the URDF's when the scenario gives none).
 """
 
 from __future__ import annotations
@@ -41,24 +42,27 @@ def main() -> None:
     scenario = load_scenario(resolve_scenario_path(args.scenario))
     cup = load_bellows_cup(args.cup)
     plant = make_arm_plant(scenario)
-    mass = max(held_object_of(obj).mass for obj in scenario.objects)
-    total = mass + cup.lip_mass
-    periods = {
-        axis: 2 * math.pi * math.sqrt(total / k)
-        for axis, k in (
-            ("axial", cup.axial_stiffness),
-            ("lateral", cup.lateral_stiffness),
-        )
-    }
+    periods: dict[str, float] = {}
+    for obj in scenario.objects:
+        held = held_object_of(obj)
+        p = held.p_CoScm_C
+        I_Co = held.I_Scm_C + held.mass * (p @ p * np.eye(3) - np.outer(p, p))
+        total = held.mass + cup.lip_mass
+        for axis, inertia, k in (
+            ("axial", total, cup.axial_stiffness),
+            ("lateral", total, cup.lateral_stiffness),
+            ("tilt", max(I_Co[0, 0], I_Co[1, 1]), cup.tilt_stiffness),
+            ("torsion", I_Co[2, 2], cup.torsion_stiffness),
+        ):
+            T = 2 * math.pi * math.sqrt(inertia / k)
+            periods[f"{axis} ({obj.name})"] = T
     period = max(periods.values())
     limits = JointLimits.from_plant(plant, scenario.robot)
     robot = plant.GetModelInstanceByName(scenario.robot.model_instance)
     assert len(robot_position_indices(plant, robot)) == len(limits.acceleration)
     jerk = np.asarray(limits.acceleration) / period
-    print(
-        f"heaviest object {mass:.3f} kg; periods "
-        + ", ".join(f"{k} {v * 1e3:.0f} ms" for k, v in periods.items())
-    )
+    print("periods: " + ", ".join(f"{k} {v * 1e3:.0f} ms" for k, v in periods.items()))
+    print(f"longest: {period * 1e3:.0f} ms")
     print("  jerk_limits: [" + ", ".join(f"{j:.1f}" for j in jerk) + "]")
 
 

@@ -103,8 +103,18 @@ def add_cup_physics_flag(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def add_jerk_flag(parser: argparse.ArgumentParser) -> None:
+    """``--no-jerk-limits``: ignore the scenario's ``robot.jerk_limits``."""
+    parser.add_argument(
+        "--no-jerk-limits",
+        action="store_true",
+        help="ignore the scenario's robot.jerk_limits (the acceleration may jump)",
+    )
+
+
 __all__ = [
     "add_cup_physics_flag",
+    "add_jerk_flag",
     "add_optimize_flag",
     "finite_float",
     "float_in",

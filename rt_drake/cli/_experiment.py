@@ -25,6 +25,7 @@ from pathlib import Path
 from rt_drake.cli import _campaign_command as campaign
 from rt_drake.cli._args import (
     add_cup_physics_flag,
+    add_jerk_flag,
     add_optimize_flag,
     int_in,
     nonnegative_int,
@@ -82,6 +83,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     add_optimize_flag(transport, "also optimise each MOVE and play it")
     add_cup_physics_flag(transport)
+    add_jerk_flag(transport)
     transport.add_argument("--out", type=Path, required=True, help="output directory")
     transport.set_defaults(run=run_transport)
 
@@ -93,6 +95,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         default="stack_four_objects",
         help="scenario (default stack_four_objects)",
     )
+    add_jerk_flag(cycle)
     cycle.add_argument("--out", type=Path, required=True, help="output directory")
     cycle.set_defaults(run=run_cycle_experiment)
 
@@ -131,6 +134,7 @@ def run_transport(args: argparse.Namespace) -> int:
             out_dir=args.out,
             progress=lambda done, n: progress.step(done, "trials done"),
             cup_physics=args.cup_physics,
+            jerk_limits=not args.no_jerk_limits,
         )
     finally:
         progress.close()
@@ -214,5 +218,6 @@ def run_cycle_experiment(args: argparse.Namespace) -> int:
         time_step=1e-3,
         optimize=None,
         cup_physics=None,
+        no_jerk_limits=args.no_jerk_limits,
     )
     return run_command.run(namespace)

@@ -12,7 +12,9 @@ if the scenario gives one or the flags --mass-uncertainty,
 from which anyone can re-check the result (the trajectory file format:
 samples every 1 ms of t, q, qd, qdd and the cup's pose X_WC, the object's
 inertia, the grasp constraint F, g, the cup, the path and its s'(s)
-profile). --out is checked before any work (a .npz, never an input) and
+profile). The scenario's robot.jerk_limits, when it gives them, limit the
+joint jerk too (the path acceleration is then continuous); --no-jerk-limits
+drops them. --out is checked before any work (a .npz, never an input) and
 written atomically.
 """
 
@@ -24,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from rt_drake.cli._args import add_jerk_flag
 from rt_drake.cli._output import output_file
 from rt_drake.errors import InputError
 from rt_drake.model.held import held_object_of
@@ -73,6 +76,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument(
         "--gridpoints", type=int, default=100, help="TOPP-RA grid points (default 100)"
     )
+    add_jerk_flag(parser)
     parser.add_argument("--out", type=Path, required=True, help="output .npz file")
     parser.set_defaults(run=run)
 
@@ -220,7 +224,7 @@ def run(args: argparse.Namespace) -> int:
             grasp = GraspConstraint.for_tool(
                 held, cup_model, load_sharing=scenario.tool.load_sharing
             )
-    limits = JointLimits.from_plant(plant, scenario.robot)
+    limits = JointLimits.from_plant(plant, scenario.robot, jerk=not args.no_jerk_limits)
     cup = CupFrame.of(plant, scenario.robot.cup_frame)
     result = retime(plant, waypoints, limits, grasp, args.gridpoints, cup=cup)
     saved = sample_trajectory(
@@ -237,6 +241,8 @@ def run(args: argparse.Namespace) -> int:
             f"robust grasp constraint: {grasp.guarantee()}; "
             f"{result.grasp_rows} rows of {result.grasp_objects} vertex objects"
         )
+    if limits.jerk is not None:
+        constraint += ", jerk limits"
     # A binding constraint is at 0 to the LP's tolerance (about -1e-12): no "-0.000".
     margin = round(float(result.margin.min()), 3) + 0.0
     print(

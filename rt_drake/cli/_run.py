@@ -15,6 +15,7 @@ from pathlib import Path
 
 from rt_drake.cli._args import (
     add_cup_physics_flag,
+    add_jerk_flag,
     add_optimize_flag,
     float_in,
     nonnegative_int,
@@ -68,6 +69,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     )
     add_optimize_flag(parser, "shape each MOVE for speed")
     add_cup_physics_flag(parser)
+    add_jerk_flag(parser)
     parser.add_argument(
         "--time-step",
         type=float_in(1e-4, 0.01),
@@ -113,6 +115,7 @@ def run(args: argparse.Namespace) -> int:
         move_speed=args.speed,
         seed=args.seed,
         optimize=args.optimize,
+        jerk_limits=not args.no_jerk_limits,
     )
     phases = [p for p in Phase if p is not Phase.DONE]
     names = [o.name for o in scenario.objects]

@@ -102,15 +102,21 @@ def transport_trial(
     seed: int,
     optimize: bool = False,
     replay_path: Path | None = None,
+    jerk_limits: bool = False,
 ) -> dict[str, Any]:
     """Plan, retime (with and without the constraint) and simulate one transport.
 
     With ``optimize``, also the optimised MOVE (:func:`.optimized_trial`),
-    its Meshcat replay written to ``replay_path`` if given.
+    its Meshcat replay written to ``replay_path`` if given. With
+    ``jerk_limits``, both retimes keep the scenario's ``robot.jerk_limits``.
     """
     planner_scenario = transport_scenario(scenario, object_name, X_WO_start, X_WO_goal)
     constrained = OnlineMotions(
-        planner_scenario, grasp_constraint=True, seed=seed + index, optimize=False
+        planner_scenario,
+        grasp_constraint=True,
+        seed=seed + index,
+        optimize=False,
+        jerk_limits=jerk_limits,
     )
     planned_obj = planner_scenario.objects[0]
     transport = scenario.random_transport
@@ -247,7 +253,7 @@ def _profiles(
 
 def _trial_job(args: tuple) -> dict[str, Any]:
     """One trial in a worker: scenarios do not pickle, so it is loaded again."""
-    path, object_name, index, X_start, X_goal, seed, optimize, replay, cup = args
+    path, object_name, index, X_start, X_goal, seed, optimize, replay, cup, jerk = args
     scenario = load_scenario(path).with_cup_physics(cup)
     return transport_trial(
         scenario,
@@ -258,6 +264,7 @@ def _trial_job(args: tuple) -> dict[str, Any]:
         seed,
         optimize,
         replay,
+        jerk,
     )
 
 
@@ -271,12 +278,14 @@ def run_transport_experiment(
     out_dir: Path | None = None,
     progress: Callable[[int, int], None] | None = None,
     cup_physics: str | None = None,
+    jerk_limits: bool = False,
 ) -> dict[str, Any]:
     """Run n trials (in ``workers`` processes); return results and a summary.
 
     ``cup_physics``: simulate the rollouts with this cup (``rim`` or
     ``bellows``; None: the scenario's ``cup_physics.kind``); the results
-    name it.
+    name it. With ``jerk_limits``, every retime keeps the scenario's
+    ``robot.jerk_limits``.
 
     With ``optimize`` (None: the scenario's ``planning.optimize_move``),
     each trial also optimises its MOVE and plays it; the
@@ -306,6 +315,7 @@ def run_transport_experiment(
             optimize,
             replay if i == 0 else None,
             scenario.cup_physics.kind,
+            jerk_limits,
         )  # fmt: skip
         for i, (X_s, X_g) in enumerate(pairs)
     ]
@@ -316,6 +326,7 @@ def run_transport_experiment(
         "n": n,
         "optimize": optimize,
         "cup_physics": scenario.cup_physics.kind,
+        "jerk_limits": jerk_limits,
         "trials": trials,
         "summary": summarize(trials),
     }

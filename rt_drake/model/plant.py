@@ -288,7 +288,8 @@ def _check_robot_lengths(
         plant.get_joint(index).num_positions() for index in plant.GetJointIndices(robot)
     )
     config = scenario.robot
-    for field in ("home", "velocity_limits", "acceleration_limits", "torque_limits"):
+    fields = ("home", "velocity_limits", "acceleration_limits", "torque_limits")
+    for field in (*fields, "jerk_limits"):
         values = getattr(config, field)
         if (values or field == "home") and len(values) != joints:
             raise ScenarioError(

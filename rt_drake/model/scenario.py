@@ -65,7 +65,8 @@ class RobotConfig:
     possibly scoped (``"suction_tool::suction_cup"``).
 
     Empty limit lists mean "take them from the model" (URDF ``velocity``,
-    ``drake:acceleration`` and ``effort``). Units: rad, rad/s, rad/s^2, N m.
+    ``drake:acceleration`` and ``effort``). Units: rad, rad/s, rad/s^2, N m,
+    rad/s^3. ``jerk_limits`` empty: the jerk is not limited (a URDF has none).
     ``limit_torques``: retime under the torque limits too (inverse dynamics,
     held object included), for an arm whose maker publishes torque limits
     rather than acceleration limits (e.g. the UR5e).
@@ -83,6 +84,7 @@ class RobotConfig:
     torque_limits: list[float] = dataclasses.field(default_factory=list)
     limit_torques: bool = False
     command_period_s: float | None = None
+    jerk_limits: list[float] = dataclasses.field(default_factory=list)
 
 
 @dataclasses.dataclass
@@ -514,7 +516,12 @@ def _check_robot(path: Path, robot: RobotConfig) -> None:
         raise ScenarioError(
             f"{path}: key 'robot.command_period_s': must be in (0, 0.1] s, got {period}"
         )
-    for field in ("velocity_limits", "acceleration_limits", "torque_limits"):
+    for field in (
+        "velocity_limits",
+        "acceleration_limits",
+        "torque_limits",
+        "jerk_limits",
+    ):
         values = getattr(robot, field)
         key = f"{path}: key 'robot.{field}'"
         if values and len(values) != joints:

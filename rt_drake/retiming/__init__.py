@@ -20,7 +20,9 @@ objects), ``_between`` (limits held between grid points), ``_samples``,
 ``_joint_path`` (any path as ``q(s)``; the path type itself is
 :class:`rt_drake.types.path.GeometricPath`), ``_precompile`` (compiles the
 kernels before anything is timed), ``_timed_path``, ``_time_scaled``,
-``_check`` (dense 1 kHz verification), ``_trajectory_file`` (the ``.npz``
+``_check`` (dense 1 kHz verification), ``_jerk``, ``_jerk_rows`` and
+``_jerk_timed_path`` (jerk limits: LPs after TOPP-RA, and the motion they
+give), ``_trajectory_file`` (the ``.npz``
 format) and ``_retime_errors`` (typed errors and statuses).
 """
 
@@ -32,6 +34,7 @@ from rt_drake.retiming._check import (
     WorstMargin,
     check_trajectory,
 )
+from rt_drake.retiming._jerk_timed_path import JerkTimedPath
 from rt_drake.retiming._joint_path import (
     PathLike,
     WaypointPath,
@@ -78,6 +81,7 @@ __all__ = [
     "Excess",
     "GraspConstraint",
     "GraspUnstableAtRestError",
+    "JerkTimedPath",
     "JointLimits",
     "LimitsBetweenGridPointsError",
     "Margin",

@@ -4,6 +4,13 @@
 independently of the retimer's path coefficients, evaluates at each sample:
 
 - velocity and acceleration ratios ``|v_j| / v_max_j``, ``|vdot_j| / a_max_j``;
+- the plant's joint position limits, as the ratio ``|q_j - m_j| / h_j`` of
+  the distance from the middle ``m_j`` of joint j's range to half its width
+  ``h_j`` (1 on a limit; joints without finite limits are not checked);
+- with jerk limits, the jerk over each sampling step, ``|vdot_j(t_k+1) -
+  vdot_j(t_k)| / dt``, against ``jerk_j``: by the mean value theorem it is at
+  most the largest jerk in the step, and a jump of the acceleration (TOPP-RA's
+  bang-bang profile) shows as ``jump / dt``;
 - the object wrench by another route than the retimer's: the cup body's
   spatial acceleration from Drake's ``CalcSpatialAccelerationsFromVdot`` and
   Newton-Euler (:func:`rt_drake.dynamics.newton_euler.reference_object_wrench`; no
@@ -57,6 +64,10 @@ class Margin(enum.Enum):
     TORQUE = "torque"
     #: The grasp, ``F w <= g`` (with a held object).
     GRASP = "grasp"
+    #: Joint position, inside the plant's limits (checked by the checker only).
+    POSITION = "position"
+    #: Joint jerk, ``|vddot_j| <= jerk_j`` (when limited).
+    JERK = "jerk"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -68,11 +79,15 @@ class WorstMargin:
             the limit by that fraction (the sign of ``RetimeResult.margins``).
         time: When it occurs, s.
         index: The joint (0-based) or grasp row it occurs at.
+        detail: For a joint quantity, what it is there and its limit, e.g.
+            ``joint 1 (vs060_joint1): 4.9671 rad, limit 2.9671 rad``; else
+            empty.
     """
 
     value: float
     time: float
     index: int
+    detail: str = ""
 
     def words(self, tolerance: float = DEFAULT_TOLERANCE) -> str:
         """``room 0.006 %`` or ``over by 0.010 %`` (no sign to misread).
@@ -130,7 +145,8 @@ class TrajectoryCheck:
         by 0.200 % at t = 1.2000 s (#2)`` (:meth:`WorstMargin.words`).
         """
         return "\n".join(
-            f"{kind.value}: {m.words(tolerance)} at t = {m.time:.4f} s (#{m.index})"
+            f"{kind.value}: {m.words(tolerance)} at t = {m.time:.4f} s "
+            + (f"({m.detail})" if m.detail else f"(#{m.index})")
             for kind, m in self.margins.items()
         )
 
@@ -173,7 +189,9 @@ def check_trajectory(
     Args:
         plant: The retimer's plant (arm and tool; objects welded or absent).
         trajectory: q(t) with derivatives (any Drake ``Trajectory``).
-        limits: Joint limits; torques checked if ``limits.torque``.
+        limits: Joint limits; torques checked if ``limits.torque``, jerk if
+            ``limits.jerk``. The positions are checked against the plant's
+            position limits.
         grasp: Held object and grasp polytope; None: not checked.
         rate_hz: Sampling rate, Hz.
         context: Scratch context of ``plant``.
@@ -196,10 +214,23 @@ def check_trajectory(
     times = np.append(np.arange(t0, t1, 1.0 / rate_hz), t1)
     q, v, vdot = _sample(trajectory, times)
     context = context or plant.CreateDefaultContext()
+    names = _joint_names(plant)
     margins = {
         Margin.VELOCITY: _worst(np.abs(v) / limits.velocity, times),
         Margin.ACCELERATION: _worst(np.abs(vdot) / limits.acceleration, times),
+        Margin.POSITION: _position_margin(plant, q, times, names),
     }
+    if limits.jerk is not None and len(times) > 1:
+        dt = np.diff(times)[:, None]
+        jerk = np.diff(vdot, axis=0) / dt
+        worst = _worst(np.abs(jerk) / limits.jerk, times[:-1])
+        sample, j = int(np.searchsorted(times, worst.time)), worst.index
+        detail = (
+            f"joint {j + 1} ({names[j]}): {jerk[sample, j]:.4g} rad/s^3 from "
+            f"t = {times[sample]:.4f} to {times[sample + 1]:.4f} s, limit "
+            f"{limits.jerk[j]:.4g} rad/s^3"
+        )
+        margins[Margin.JERK] = dataclasses.replace(worst, detail=detail)
     cup = cup or CupFrame.of(plant)
     w = None
     if grasp is not None:
@@ -234,6 +265,40 @@ def _torques(
             )
             tau[i] += J_Co.T @ w[i]
     return tau
+
+
+def _position_margin(
+    plant: MultibodyPlant, q: np.ndarray, times: np.ndarray, names: list[str]
+) -> WorstMargin:
+    """Margin ``1 - |q_j - m_j| / h_j`` of the plant's position limits.
+
+    ``m_j``, ``h_j``: the middle and half width of joint j's range; joints
+    without two finite limits have ratio 0. The detail names the joint, its
+    value and the limit it is nearest to.
+    """
+    lower = plant.GetPositionLowerLimits()
+    upper = plant.GetPositionUpperLimits()
+    finite = np.isfinite(lower) & np.isfinite(upper) & (upper > lower)
+    middle = np.where(finite, 0.5 * (lower + upper), 0.0)
+    half = np.where(finite, 0.5 * (upper - lower), 1.0)
+    ratio = np.where(finite, np.abs(q - middle) / half, 0.0)
+    worst = _worst(ratio, times)
+    sample = int(np.searchsorted(times, worst.time))
+    j = worst.index
+    value = float(q[sample, j])
+    limit = lower[j] if value < middle[j] else upper[j]
+    detail = f"joint {j + 1} ({names[j]}): {value:.4f} rad, limit {limit:.4f} rad"
+    return dataclasses.replace(worst, detail=detail)
+
+
+def _joint_names(plant: MultibodyPlant) -> list[str]:
+    """The name of the joint of each position (``position k`` if none)."""
+    names = [f"position {k}" for k in range(plant.num_positions())]
+    for index in plant.GetJointIndices():
+        joint = plant.get_joint(index)
+        for k in range(joint.num_positions()):
+            names[joint.position_start() + k] = joint.name()
+    return names
 
 
 def _sample(trajectory: Trajectory, times: np.ndarray) -> list[np.ndarray]:

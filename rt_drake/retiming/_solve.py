@@ -78,6 +78,8 @@ from rt_drake.retiming._grasp_rows import (
     ROW_TOLERANCE,
     ObjectRows,
 )
+from rt_drake.retiming._jerk import jerk_limited
+from rt_drake.retiming._jerk_timed_path import JerkTimedPath
 from rt_drake.retiming._joint_path import (
     JointPath,
     PathLike,
@@ -133,11 +135,13 @@ class RetimeResult:
     """A retimed path.
 
     Attributes:
-        trajectory: q(t) (Drake ``Trajectory``; q', q'' by ``EvalDerivative``).
+        trajectory: q(t) (Drake ``Trajectory``; q', q'' by ``EvalDerivative``);
+            with jerk limits a :class:`~._jerk_timed_path.JerkTimedPath`.
         duration: s.
         gridpoints: (N+1,) grid s_i.
         sd: (N+1,) path velocity ``s'(s_i)``, 1/s (the s'(s) profile).
-        sdd: (N,) constant path acceleration ``s''`` on each segment, 1/s^2.
+        sdd: (N,) constant path acceleration ``s''`` on each segment, 1/s^2;
+            with jerk limits its mean over s, ``(x_{i+1} - x_i) / (2 ds_i)``.
         margin: (N+1,) smallest relative slack of all constraints at each grid
             point (1 - |value| / limit; for the grasp ``min (g - F w) / g``),
             taking the acceleration of the segment that starts there:
@@ -157,9 +161,13 @@ class RetimeResult:
             object, the vertex objects of a set (0 without a grasp).
         cuts: Rounds of cuts between grid points (joint limits; for a set of
             objects also its grasp and torques).
+        path_acceleration: With jerk limits, (N+1,) ``s''(s_i)`` (continuous,
+            linear in s between grid points; :mod:`._jerk_timed_path`);
+            else None.
+        jerk_lps: With jerk limits, the LPs solved after TOPP-RA (0 without).
     """
 
-    trajectory: TimedPath
+    trajectory: TimedPath | JerkTimedPath
     duration: float
     gridpoints: np.ndarray
     sd: np.ndarray
@@ -172,6 +180,8 @@ class RetimeResult:
     refinements: int = 0
     grasp_objects: int = 1
     cuts: int = 0
+    path_acceleration: np.ndarray | None = None
+    jerk_lps: int = 0
 
 
 def retime(
@@ -197,7 +207,9 @@ def retime(
             (``.waypoints``, ``.knots``), joined by the clamped cubic spline;
             or a Drake ``Trajectory`` or toppra interpolator (see
             :data:`~._joint_path.PathLike`).
-        limits: Joint limits (torques limited if ``limits.torque``).
+        limits: Joint limits (torques limited if ``limits.torque``; with
+            ``limits.jerk``, the TOPP-RA profile is then refined by LPs into
+            one whose joint jerk is limited, :mod:`._jerk`).
         grasp: Held object and grasp polytope; None: no object.
         gridpoints: Number of uniform grid points in s (>= 2), to which the
             path's knots are added, points so that no step is longer than
@@ -233,6 +245,11 @@ def retime(
     if n != plant.num_positions() or n != limits.num_joints:
         raise RetimeInputError(
             f"path has {n} joints but {plant.num_positions()=} and {limits.num_joints=}"
+        )
+    if limits.jerk is not None and grasp is not None and grasp.is_robust:
+        raise RetimeInputError(
+            "jerk limits with the grasp of a set of objects are not supported: "
+            "retime without them (limits.jerk None, --no-jerk-limits)"
         )
     context = context or plant.CreateDefaultContext()
     cup = cup or CupFrame.of(plant)
@@ -315,6 +332,30 @@ def retime(
         cuts = None  # made for the old segments
         cut_rounds = set_cut_rounds = 0
     s = samples.s
+    if limits.jerk is not None:
+        jerk = jerk_limited(
+            spline, sample, s, profile.x, limits,
+            None if grasp is None else grasp.F, None if grasp is None else grasp.g,
+            sd_start, sd_end, start_time, BETWEEN_TOLERANCE,
+        )  # fmt: skip
+        margins = jerk.margins
+        return RetimeResult(
+            trajectory=jerk.trajectory,
+            duration=jerk.trajectory.duration,
+            gridpoints=jerk.s,
+            sd=np.sqrt(jerk.x),
+            sdd=np.diff(jerk.x) / (2.0 * np.diff(jerk.s)),
+            margin=np.min(np.vstack(list(margins.values())), axis=0),
+            margins=margins,
+            status=RetimeStatus.OK,
+            grasp_rows=jerk.grasp_rows,
+            repairs=0 if family is None else family.repairs,
+            refinements=refinements,
+            grasp_objects=0 if family is None else family.object_count,
+            cuts=total_cuts,
+            path_acceleration=jerk.u,
+            jerk_lps=jerk.lps,
+        )
     trajectory = TimedPath(spline, s, profile.x, start_time)
     u = (profile.x[1:] - profile.x[:-1]) / (2.0 * np.diff(s))
     robust = isinstance(family, SetRows)

@@ -60,18 +60,21 @@ from rt_drake.uncertainty.inertial_set import (
 class JointLimits:
     """Symmetric joint limits, one entry per joint.
 
-    ``|v| <= velocity`` (rad/s), ``|vdot| <= acceleration`` (rad/s^2) and
-    ``|tau| <= torque`` (N m); ``torque`` None leaves torques unconstrained.
+    ``|v| <= velocity`` (rad/s), ``|vdot| <= acceleration`` (rad/s^2),
+    ``|tau| <= torque`` (N m) and ``|vddot| <= jerk`` (rad/s^3); ``torque``
+    None leaves torques unconstrained, ``jerk`` None leaves the jerk free
+    (the acceleration may then jump, as TOPP-RA's bang-bang profile does).
     """
 
     velocity: np.ndarray
     acceleration: np.ndarray
     torque: np.ndarray | None = None
+    jerk: np.ndarray | None = None
 
     def __post_init__(self) -> None:
-        for name in ("velocity", "acceleration", "torque"):
+        for name in ("velocity", "acceleration", "torque", "jerk"):
             value = getattr(self, name)
-            if value is None and name == "torque":
+            if value is None and name in ("torque", "jerk"):
                 continue
             value = np.array(
                 arguments.array(
@@ -90,15 +93,20 @@ class JointLimits:
             object.__setattr__(self, name, value)
         sizes = {
             v.size
-            for v in (self.velocity, self.acceleration, self.torque)
+            for v in (self.velocity, self.acceleration, self.torque, self.jerk)
             if v is not None
         }
         if len(sizes) != 1:
             torque = None if self.torque is None else self.torque.size
+            jerk = None if self.jerk is None else self.jerk.size
             raise RetimeInputError(
                 f"limits differ in length: {self.velocity.size=}, "
-                f"{self.acceleration.size=}, torque {torque}"
+                f"{self.acceleration.size=}, torque {torque}, jerk {jerk}"
             )
+
+    def without_jerk(self) -> JointLimits:
+        """The same limits with the jerk left free (``jerk`` None)."""
+        return dataclasses.replace(self, jerk=None)
 
     @property
     def num_joints(self) -> int:
@@ -111,12 +119,17 @@ class JointLimits:
         plant: MultibodyPlant,
         robot: RobotConfig | None = None,
         torque: bool = False,
+        jerk: bool = False,
     ) -> JointLimits:
         """Limits from the plant's model, overridden by the scenario's.
 
         The model's upper limits (URDF velocity, ``drake:acceleration``,
         effort of the joints' actuators) are replaced by ``robot.*_limits``
-        where those are not empty. A model without some of them (no
+        where those are not empty. A URDF has no jerk limit: the jerk is
+        limited only by a non-empty ``robot.jerk_limits`` (rad/s^3), and
+        only when asked (``jerk=True``, as the command line does unless
+        ``--no-jerk-limits``), so that every acceleration-limited caller
+        keeps today's trajectories. A model without some of them (no
         ``drake:acceleration``, no transmissions) needs them by hand:
         ``JointLimits(velocity, acceleration)`` (rad/s, rad/s^2, one per
         joint), or the scenario's ``robot.acceleration_limits`` etc.
@@ -126,6 +139,7 @@ class JointLimits:
             robot: Scenario robot section with optional overrides.
             torque: Whether to include the torque (effort) limits; they are
                 also included when ``robot.limit_torques`` is set.
+            jerk: Whether to include the scenario's ``robot.jerk_limits``.
 
         Raises:
             RetimeInputError: a limit the model lacks and nobody gave,
@@ -176,7 +190,20 @@ class JointLimits:
                     f"JointLimits({by_hand}), or the scenario's robot.{name}_limits"
                 )
             chosen[name] = value
-        return cls(chosen["velocity"], chosen["acceleration"], chosen.get("torque"))
+        jerk_limits = None
+        if jerk and robot is not None and len(robot.jerk_limits):
+            jerk_limits = np.asarray(robot.jerk_limits, dtype=float)
+            if jerk_limits.size != n:
+                raise RetimeInputError(
+                    f"key 'robot.jerk_limits': {jerk_limits.size} values but the "
+                    f"plant has {n} joints"
+                )
+        return cls(
+            chosen["velocity"],
+            chosen["acceleration"],
+            chosen.get("torque"),
+            jerk_limits,
+        )
 
 
 def _check_single_cup(cup: object, method: str) -> None:

@@ -60,6 +60,7 @@ from rt_drake.model.scenario import (
 from rt_drake.planning import CyclePlanner, GeometricPath, PlannedPath
 from rt_drake.retiming import (
     GraspConstraint,
+    JerkTimedPath,
     JointLimits,
     ObjectSetGrasp,
     RetimeResult,
@@ -139,6 +140,8 @@ class OnlineMotions:
             nominal object and cup only.
         optimize: shape each MOVE for speed (None: the scenario's
             ``planning.optimize_move``); needs the grasp constraint.
+        jerk_limits: retime every motion under the scenario's
+            ``robot.jerk_limits`` too (when it gives them).
     """
 
     def __init__(
@@ -150,6 +153,7 @@ class OnlineMotions:
         seed: int = 0,
         robust: bool = True,
         optimize: bool | None = None,
+        jerk_limits: bool = False,
     ) -> None:
         arguments.instance(scenario, "scenario", Scenario, where="OnlineMotions")
         arguments.number(move_speed, "move_speed", where="OnlineMotions", above=0.0)
@@ -158,7 +162,9 @@ class OnlineMotions:
         self._plant = make_arm_plant(scenario)
         self._cup = CupFrame.of(self._plant, scenario.robot.cup_frame)
         self._context = self._plant.CreateDefaultContext()
-        self._limits = JointLimits.from_plant(self._plant, scenario.robot)
+        self._limits = JointLimits.from_plant(
+            self._plant, scenario.robot, jerk=jerk_limits
+        )
         self._speed = move_speed
         self._gridpoints = gridpoints
         self._polytope = None
@@ -264,6 +270,8 @@ class OnlineMotions:
             self._cup,
         )
         u = np.append(result.sdd, result.sdd[-1])[:, None]
+        if result.path_acceleration is not None:  # jerk-limited: s'' at s_i
+            u = result.path_acceleration[:, None]
         x = (result.sd**2)[:, None]
         w = a * u + b * x + c
         return np.min((grasp.g - w @ grasp.F.T) / grasp.g, axis=1)
@@ -402,6 +410,8 @@ def time_at(result: RetimeResult, s: float) -> float:
     constant, so with ``d = s - s_i``: ``tau = 2 d / (s'_i + sqrt(s'_i^2 +
     2 u_i d))``, after ``t_i = sum_{k<i} 2 ds_k / (s'_k + s'_{k+1})``.
     """
+    if isinstance(result.trajectory, JerkTimedPath):  # u continuous, not constant
+        return result.trajectory.time_at(s)
     grid, sd, sdd = result.gridpoints, result.sd, result.sdd
     i = int(np.clip(np.searchsorted(grid, s, side="right") - 1, 0, len(grid) - 2))
     dt = 2.0 * np.diff(grid) / (sd[:-1] + sd[1:])
