@@ -2,7 +2,7 @@
 
     python tools/bellows_trial.py SCENARIO [--trials 0 1] [--seed 0]
         [--scale NAME=FACTOR ...] [--cup-physics bellows] [--no-jerk-limits]
-        [--constrained-only]
+        [--constrained-only] [--sweep]
 
 For each trial of ``experiment transport`` (same sampling and planner seed):
 plan the MOVE, retime it under the grasp constraint and under the joint
@@ -19,7 +19,11 @@ import argparse
 import dataclasses
 import time
 
-from rt_drake.experiments._rollout import rollout_scenario, simulate_move
+from rt_drake.experiments._rollout import (
+    critical_speed,
+    rollout_scenario,
+    simulate_move,
+)
 from rt_drake.experiments._transport_experiment import (
     move_from_the_cup,
     transport_inputs,
@@ -44,6 +48,11 @@ def main() -> None:
     parser.add_argument(
         "--constrained-only", action="store_true", help="skip the joint-limits MOVE"
     )
+    parser.add_argument(
+        "--sweep",
+        action="store_true",
+        help="also play the constrained MOVE faster until it slips (critical speed)",
+    )
     args = parser.parse_args()
     path = resolve_scenario_path(args.scenario)
     scenario, name = transport_inputs(path, max(args.trials) + 1, 1, None)
@@ -64,9 +73,14 @@ def main() -> None:
             optimize=False,
             jerk_limits=jerk,
         )
-        move = move_from_the_cup(motions, planned.objects[0], X_start)
+        try:
+            move = move_from_the_cup(motions, planned.objects[0], X_start)
+            free = motions.retime_path(move.planned.path, grasp=None)
+        except Exception as error:  # noqa: BLE001 (a study: report and go on)
+            message = " ".join(str(error).split())[:150]
+            print(f"trial {i}: no MOVE: {type(error).__name__}: {message}", flush=True)
+            continue
         q_grasp = move.planned.q_start
-        free = motions.retime_path(move.planned.path, grasp=None)
         world = rollout_scenario(dataclasses.replace(planned), q_grasp)
         plays = [("constrained", move.trajectory)]
         if not args.constrained_only:
@@ -82,6 +96,9 @@ def main() -> None:
                 f"({time.perf_counter() - start:.1f} s wall) {factors or ''}",
                 flush=True,
             )
+        if args.sweep:
+            critical, _ = critical_speed(world, q_grasp, move.trajectory)
+            print(f"trial {i} critical speed factor: {critical}", flush=True)
 
 
 if __name__ == "__main__":
