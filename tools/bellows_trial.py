@@ -82,23 +82,29 @@ def main() -> None:
             continue
         q_grasp = move.planned.q_start
         world = rollout_scenario(dataclasses.replace(planned), q_grasp)
-        plays = [("constrained", move.trajectory)]
+        plays = [] if args.sweep else [("constrained", move.trajectory)]
         if not args.constrained_only:
             plays.append(("joint limits only", free.trajectory))
+        if args.sweep:  # its first rollout, at speed 1, is the constrained one
+            start = time.perf_counter()
+            critical, sweep = critical_speed(world, q_grasp, move.trajectory)
+            _print(i, "constrained", move.trajectory, sweep[0][1], start, factors)
+            print(f"trial {i} critical speed factor: {critical}", flush=True)
         for label, trajectory in plays:
             start = time.perf_counter()
             rollout = simulate_move(world, q_grasp, trajectory)
-            slip = rollout.as_dict()
-            print(
-                f"trial {i} {label}: {trajectory.end_time():.3f} s, slip "
-                f"{slip['max_translation_mm']:.2f} mm {slip['max_rotation_deg']:.2f} "
-                f"deg, {'held' if rollout.success else 'SLIP'} "
-                f"({time.perf_counter() - start:.1f} s wall) {factors or ''}",
-                flush=True,
-            )
-        if args.sweep:
-            critical, _ = critical_speed(world, q_grasp, move.trajectory)
-            print(f"trial {i} critical speed factor: {critical}", flush=True)
+            _print(i, label, trajectory, rollout, start, factors)
+
+
+def _print(i, label, trajectory, rollout, start, factors) -> None:
+    slip = rollout.as_dict()
+    print(
+        f"trial {i} {label}: {trajectory.end_time():.3f} s, slip "
+        f"{slip['max_translation_mm']:.2f} mm {slip['max_rotation_deg']:.2f} "
+        f"deg, {'held' if rollout.success else 'SLIP'} "
+        f"({time.perf_counter() - start:.1f} s wall) {factors or ''}",
+        flush=True,
+    )
 
 
 if __name__ == "__main__":
