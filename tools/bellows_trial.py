@@ -4,13 +4,15 @@
         [--scale NAME=FACTOR ...] [--cup-physics bellows] [--no-jerk-limits]
         [--constrained-only] [--sweep]
 
-For each trial of ``experiment transport`` (same sampling and planner seed):
-plan the MOVE, retime it under the grasp constraint and under the joint
-limits only (both with the scenario's jerk limits, if it gives any), and
-play both in the simulated cell. ``--scale`` multiplies catalogue
-parameters of the bellows cup (a sensitivity sweep: ``--scale
-lateral_stiffness=0.5``); ``--scale pressure=1.358`` makes its pull 20 N.
-Prints one line per trial and retiming: duration, slip (mm, deg), held.
+For each trial of ``experiment transport`` (same sampling and planner seed,
+the same grasp: from the cup, or APPROACH and REACH from home): plan the
+MOVE, retime it under the grasp constraint and under the joint limits only
+(both with the scenario's jerk limits, if it gives any), and play both in
+the simulated cell; ``--sweep`` also plays the constrained MOVE faster until
+it slips. ``--scale`` multiplies catalogue parameters of the bellows cup (a
+sensitivity sweep: ``--scale lateral_stiffness=0.5``); ``--scale
+pressure=1.358`` makes its pull 20 N. Prints one line per rollout: duration,
+slip (mm, deg), held.
 """
 
 from __future__ import annotations
@@ -73,8 +75,14 @@ def main() -> None:
             optimize=False,
             jerk_limits=jerk,
         )
+        obj = planned.objects[0]
         try:
-            move = move_from_the_cup(motions, planned.objects[0], X_start)
+            if scenario.random_transport.start_on_cup:
+                move = move_from_the_cup(motions, obj, X_start)
+            else:  # as the experiment: APPROACH and REACH give the grasp
+                approach = motions.approach(motions.q_home, obj)
+                reach = motions.reach(approach.q_end, obj)
+                move = motions.move(reach.q_end, obj, reach)
             free = motions.retime_path(move.planned.path, grasp=None)
         except Exception as error:  # noqa: BLE001 (a study: report and go on)
             message = " ".join(str(error).split())[:150]
