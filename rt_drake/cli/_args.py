@@ -91,6 +91,18 @@ def add_optimize_flag(parser: argparse.ArgumentParser, what: str) -> None:
     )
 
 
+def add_cup_physics_flag(parser: argparse.ArgumentParser) -> None:
+    """``--cup-physics rim|bellows`` (default: the scenario's ``cup_physics``)."""
+    parser.add_argument(
+        "--cup-physics",
+        choices=("rim", "bellows"),
+        default=None,
+        help="the simulated cup: rim (rigid points at the planner's model) or "
+        "bellows (a compliant cup from models/cups, independent of the planner; "
+        "default: the scenario's cup_physics.kind)",
+    )
+
+
 def add_jerk_flag(parser: argparse.ArgumentParser) -> None:
     """``--no-jerk-limits``: ignore the scenario's ``robot.jerk_limits``."""
     parser.add_argument(
@@ -101,6 +113,7 @@ def add_jerk_flag(parser: argparse.ArgumentParser) -> None:
 
 
 __all__ = [
+    "add_cup_physics_flag",
     "add_jerk_flag",
     "add_optimize_flag",
     "finite_float",

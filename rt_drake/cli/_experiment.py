@@ -29,6 +29,7 @@ from pathlib import Path
 
 from rt_drake.cli import _campaign_command as campaign
 from rt_drake.cli._args import (
+    add_cup_physics_flag,
     add_jerk_flag,
     add_optimize_flag,
     int_in,
@@ -86,6 +87,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "uncertainty set",
     )
     add_optimize_flag(transport, "also optimise each MOVE and play it")
+    add_cup_physics_flag(transport)
     add_jerk_flag(transport)
     transport.add_argument("--out", type=Path, required=True, help="output directory")
     transport.set_defaults(run=run_transport)
@@ -208,6 +210,7 @@ def run_transport(args: argparse.Namespace) -> int:
             optimize=args.optimize,
             out_dir=args.out,
             progress=lambda done, n: progress.step(done, "trials done"),
+            cup_physics=args.cup_physics,
             jerk_limits=not args.no_jerk_limits,
         )
     finally:
@@ -246,6 +249,11 @@ def run_robust_transport(args: argparse.Namespace) -> int:
     if args.optimize:
         raise InputError(
             "--robust plays the planner's spline MOVEs: it does not take --optimize"
+        )
+    if args.cup_physics is not None:
+        raise InputError(
+            "--robust does not take --cup-physics yet: give the scenario's "
+            "cup_physics key instead"
         )
     path = resolve_scenario_path(args.scenario)
     output_directory(args.out, "--out", ROBUST_FILES, {"scenario file": path})
@@ -286,6 +294,7 @@ def run_cycle_experiment(args: argparse.Namespace) -> int:
         seed=0,
         time_step=1e-3,
         optimize=None,
+        cup_physics=None,
         no_jerk_limits=args.no_jerk_limits,
         export=None,  # rt-drake run's --export: nothing exported here
     )

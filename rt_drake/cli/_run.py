@@ -21,6 +21,7 @@ import argparse
 from pathlib import Path
 
 from rt_drake.cli._args import (
+    add_cup_physics_flag,
     add_jerk_flag,
     add_optimize_flag,
     float_in,
@@ -74,6 +75,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "of during the motion and wait before it (the arm waits for all of it)",
     )
     add_optimize_flag(parser, "shape each MOVE for speed")
+    add_cup_physics_flag(parser)
     add_jerk_flag(parser)
     parser.add_argument(
         "--time-step",
@@ -133,7 +135,7 @@ def run(args: argparse.Namespace) -> int:
     output_directory(
         args.out, "--out", (*REPORT_FILES, REPLAY_FILE), {"scenario file": path}
     )
-    scenario = load_scenario(path)
+    scenario = load_scenario(path).with_cup_physics(args.cup_physics)
     export = _export_plan(args, scenario, path)
     meshcat = StartMeshcat()
     motions = OnlineMotions(
@@ -187,6 +189,7 @@ def run(args: argparse.Namespace) -> int:
         sim_time_s=result.sim_time,
         max_tracking_error_rad=result.max_tracking_error,
         simulation_wall_s=wall_s,
+        cup_physics=scenario.cup_physics.kind,
     )
     # jerk: the scenario's robot.jerk_limits once they exist (robot-ready issue)
     floors = cycle_floors(scenario, args.seed, jerk=None)

@@ -253,8 +253,8 @@ def _profiles(
 
 def _trial_job(args: tuple) -> dict[str, Any]:
     """One trial in a worker: scenarios do not pickle, so it is loaded again."""
-    path, object_name, index, X_start, X_goal, seed, optimize, replay, jerk = args
-    scenario = load_scenario(path)
+    path, object_name, index, X_start, X_goal, seed, optimize, replay, cup, jerk = args
+    scenario = load_scenario(path).with_cup_physics(cup)
     return transport_trial(
         scenario,
         object_name,
@@ -277,11 +277,15 @@ def run_transport_experiment(
     optimize: bool | None = None,
     out_dir: Path | None = None,
     progress: Callable[[int, int], None] | None = None,
+    cup_physics: str | None = None,
     jerk_limits: bool = False,
 ) -> dict[str, Any]:
     """Run n trials (in ``workers`` processes); return results and a summary.
 
-    With ``jerk_limits``, every retime keeps the scenario's ``robot.jerk_limits``.
+    ``cup_physics``: simulate the rollouts with this cup (``rim`` or
+    ``bellows``; None: the scenario's ``cup_physics.kind``); the results
+    name it. With ``jerk_limits``, every retime keeps the scenario's
+    ``robot.jerk_limits``.
 
     With ``optimize`` (None: the scenario's ``planning.optimize_move``),
     each trial also optimises its MOVE and plays it; the
@@ -295,6 +299,7 @@ def run_transport_experiment(
             no such object.
     """
     scenario, name = transport_inputs(scenario_path, n, workers, object_name)
+    scenario = scenario.with_cup_physics(cup_physics)
     if optimize is None:
         optimize = scenario.planning.optimize_move
     pairs = sample_transports(scenario, n, seed)
@@ -309,6 +314,7 @@ def run_transport_experiment(
             seed,
             optimize,
             replay if i == 0 else None,
+            scenario.cup_physics.kind,
             jerk_limits,
         )  # fmt: skip
         for i, (X_s, X_g) in enumerate(pairs)
@@ -319,6 +325,7 @@ def run_transport_experiment(
         "seed": seed,
         "n": n,
         "optimize": optimize,
+        "cup_physics": scenario.cup_physics.kind,
         "jerk_limits": jerk_limits,
         "trials": trials,
         "summary": summarize(trials),

@@ -167,6 +167,7 @@ class RunSettings:
         sim_time_s: Simulated time of the whole cycle, s.
         max_tracking_error_rad: The arm's largest tracking error, rad.
         simulation_wall_s: Wall time of the simulation, s.
+        cup_physics: The simulated cup (``rim``, ``bellows``).
     """
 
     scenario: str
@@ -178,6 +179,7 @@ class RunSettings:
     sim_time_s: float
     max_tracking_error_rad: float
     simulation_wall_s: float
+    cup_physics: str = "rim"
 
 
 @dataclasses.dataclass(frozen=True)

@@ -76,11 +76,14 @@ def add_scenario_models(
     scenario: Scenario,
     objects: ObjectMode = ObjectMode.FREE,
     parser: Parser | None = None,
+    rims: bool = True,
 ) -> ScenarioModels:
     """Add the scenario's directives and objects to an unfinalized ``plant``.
 
     Free objects get their start pose X_WO as default free-body pose; welded
     objects are welded to W at X_WO. The caller finalizes the plant.
+    ``rims``: register the cup's rim spheres (and a multi-cup tool's
+    holders); the bellows simulation models its own lip instead.
 
     Raises:
         ScenarioError: the directives cannot be loaded, do not contain
@@ -107,7 +110,7 @@ def add_scenario_models(
     _check_robot_lengths(plant, by_name[robot_name], scenario)
     cup_frame = scenario_cup_frame(plant, scenario)
     tool = cup_frame.model_instance()
-    if plant.geometry_source_is_registered():
+    if plant.geometry_source_is_registered() and rims:
         if scenario.tool is None:
             add_cup_rim(plant, cup_frame, scenario.cup)
         else:

@@ -32,6 +32,7 @@ from rt_drake.contact import CupMount, CupParameters, LoadSharing, ToolParameter
 from rt_drake.contact.load_sharing import rim_springs
 from rt_drake.contact.tool import is_identity_pose
 from rt_drake.errors import InputError, ScenarioError
+from rt_drake.model.cup_physics import CupPhysics, CupPhysicsConfig, load_bellows_cup
 from rt_drake.model.frames import DEFAULT_CUP_FRAME
 from rt_drake.model.object_geometry import object_box
 from rt_drake.model.object_model import (
@@ -73,6 +74,10 @@ class RobotConfig:
     (plant name -> controller name), for exports; the others keep the
     plant's name. Every key must be a joint of the plant (checked when a
     plant is at hand, by :mod:`rt_drake.export`); the names are distinct.
+    ``command_period_s``: s, the simulated controller receives the motion
+    sampled at this period and interpolates between the samples
+    (:mod:`rt_drake.simulation`; e.g. 0.008 for Denso b-CAP slave mode);
+    None: the command is continuous.
     """
 
     model_instance: str = "vs060"
@@ -83,6 +88,7 @@ class RobotConfig:
     acceleration_limits: list[float] = dataclasses.field(default_factory=list)
     torque_limits: list[float] = dataclasses.field(default_factory=list)
     limit_torques: bool = False
+    command_period_s: float | None = None
     jerk_limits: list[float] = dataclasses.field(default_factory=list)
 
 
@@ -265,6 +271,9 @@ class Scenario:
     vacuum: Vacuum = dataclasses.field(default_factory=Vacuum)
     random_transport: RandomTransport | None = None
     planning: PlanningConfig = dataclasses.field(default_factory=PlanningConfig)
+    #: The simulation's cup model (``rim`` or ``bellows``), independent of
+    #: the planner's ``cup`` (:mod:`rt_drake.model.cup_physics`).
+    cup_physics: CupPhysicsConfig = dataclasses.field(default_factory=CupPhysicsConfig)
     #: The file it was loaded from, for messages (set by load_scenario; not
     #: a YAML key).
     source: str = dataclasses.field(default="", metadata={"yaml": False})
@@ -307,6 +316,18 @@ class Scenario:
         if value is None:
             value = self.planning.approach_offset
         return None if value == AUTO else float(value)
+
+    def with_cup_physics(self, kind: str | None) -> "Scenario":
+        """This scenario simulated with ``kind`` of cup (None: unchanged).
+
+        Raises:
+            ScenarioError: ``kind`` is not rim or bellows.
+        """
+        if kind is None:
+            return self
+        config = dataclasses.replace(self.cup_physics, kind=kind)
+        check_cup_physics(self.source or "cup physics", config)
+        return dataclasses.replace(self, cup_physics=config)
 
     def object(self, name: str) -> ObjectConfig:
         """Return the object called ``name``; ScenarioError if there is none."""
@@ -449,6 +470,24 @@ def _check_semantics(path: Path, scenario: Scenario) -> None:
         check_tool(path, scenario.tool)
     check_vacuum(path, scenario.vacuum)
     _check_planning(path, scenario.planning)
+    check_cup_physics(path, scenario.cup_physics)
+
+
+def check_cup_physics(path: Path | str, config: CupPhysicsConfig) -> None:
+    """A known ``cup_physics.kind``; for bellows, a loadable catalogue cup.
+
+    Raises:
+        ScenarioError: ``<path>: key 'cup_physics.<field>': ...``.
+    """
+    try:
+        physics = config.physics
+    except ScenarioError as error:
+        raise ScenarioError(f"{path}: {error}") from None
+    if physics is CupPhysics.BELLOWS:
+        try:
+            load_bellows_cup(config.cup)
+        except ScenarioError as error:
+            raise ScenarioError(f"{path}: key 'cup_physics.cup': {error}") from None
 
 
 def _check_grip(
@@ -548,6 +587,11 @@ def check_tool(path: Path, tool: ToolConfig, key: str = "tool") -> None:
 def _check_robot(path: Path, robot: RobotConfig) -> None:
     """Limit lists are empty or as long as ``home``, and > 0."""
     joints = len(robot.home)
+    period = robot.command_period_s
+    if period is not None and not 0.0 < period <= 0.1:
+        raise ScenarioError(
+            f"{path}: key 'robot.command_period_s': must be in (0, 0.1] s, got {period}"
+        )
     for field in (
         "velocity_limits",
         "acceleration_limits",
@@ -586,6 +630,7 @@ __all__ = [
     "ToolCupConfig",
     "Vacuum",
     "VacuumModel",
+    "check_cup_physics",
     "check_tool",
     "load_scenario",
 ]

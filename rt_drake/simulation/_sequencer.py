@@ -52,6 +52,7 @@ from rt_drake.model.vacuum import (
     time_to_part_present,
     wait_over,
 )
+from rt_drake.simulation._command import sampled_command
 from rt_drake.simulation.motion import Motion, MotionSource, PendingMotion
 from rt_drake.simulation.records import (
     ObjectRecord,
@@ -120,6 +121,7 @@ class Sequencer(LeafSystem):
         q_home: np.ndarray,
         vacuum: Vacuum,
         pipelined: bool = True,
+        command_period: float | None = None,
     ) -> None:
         """Make the sequencer.
 
@@ -133,6 +135,9 @@ class Sequencer(LeafSystem):
             q_home: rad, the arm's configuration at t = 0.
             vacuum: the waits (fixed) or the signals and time-outs.
             pipelined: plan each motion ahead (else when its phase starts).
+            command_period: s, send the motion sampled at this period and
+                interpolated between samples (:mod:`._command`); None:
+                continuous.
         """
         super().__init__()
         self._motions = motions
@@ -143,6 +148,7 @@ class Sequencer(LeafSystem):
         self._X_TC = X_TC
         self._vacuum = vacuum
         self._pipelined = pipelined
+        self._command_period = command_period
         self._n = len(q_home)
         initial = SequencerState(Phase.APPROACH, 0, 0.0, np.array(q_home))
         self._state_index = self.DeclareAbstractState(AbstractValue.Make(initial))
@@ -180,6 +186,8 @@ class Sequencer(LeafSystem):
             return state.q_hold if order == 0 else np.zeros(self._n)
         traj = state.motion.trajectory
         t = context.get_time() - state.t_motion_start
+        if self._command_period is not None:
+            return sampled_command(traj, t, self._command_period)[order]
         if order > 0 and not 0.0 <= t <= traj.end_time():
             return np.zeros(self._n)
         t = min(max(t, 0.0), traj.end_time())

@@ -1,16 +1,20 @@
 """The simulated cell as a Drake Diagram: ``MakeStation(scenario) -> Diagram``.
 
-A discrete MultibodyPlant (SAP solver) holds the arm, the suction tool (its
-rims: spheres at the contact points of each of the scenario's cups), the cell and the
-objects as free bodies. Objects are compliant hydroelastic boxes against the
-rigid cell and each other (area contact, so they rest and stack flat); the
-rim spheres touch them through point contact. The arm tracks a commanded
-state through the plant's implicit PD actuators, with an inverse-dynamics
-feedforward (gravity, Coriolis and the commanded acceleration, for the arm
-and tool without payload) computed on a separate controller plant. The
-vacuum is a :class:`~rt_drake.simulation._suction.SuctionCup` with the
-scenario's :class:`~rt_drake.model.vacuum.Vacuum` model: one vacuum force and
-one seal per cup of the scenario's ``cup`` or ``tool``.
+A discrete MultibodyPlant (SAP solver) holds the arm, the suction tool, the
+cell and the objects as free bodies. The scenario's ``cup_physics`` picks how
+the tool holds an object: ``rim`` (rims: spheres at the contact points of each
+of the scenario's cups, with the planner's friction) or ``bellows`` (a
+compliant bellows cup from the catalogue, :mod:`._bellows` and
+:mod:`._bellows_suction`, independent of the planner's cup model). Objects are
+compliant hydroelastic boxes against the rigid cell and each other (area
+contact, so they rest and stack flat); the rim spheres touch them through point
+contact. The arm tracks a commanded state through the plant's implicit PD
+actuators, with an inverse-dynamics feedforward (gravity, Coriolis and the
+commanded acceleration, for the arm and tool without payload) computed on a
+separate controller plant. The vacuum is a
+:class:`~rt_drake.simulation._suction.SuctionCup` with the scenario's
+:class:`~rt_drake.model.vacuum.Vacuum` model: one vacuum force and one seal per
+cup of the scenario's ``cup`` or ``tool``.
 
 Exported ports of the Diagram:
 
@@ -47,16 +51,20 @@ from pydrake.systems.framework import Diagram, DiagramBuilder
 
 from rt_drake import arguments
 from rt_drake.errors import InputError
+from rt_drake.model.cup_physics import CupPhysics, load_bellows_cup
 from rt_drake.model.object_model import OBJECT_BODY
 from rt_drake.model.plant import (
     ObjectMode,
     ScenarioModels,
     add_scenario_models,
     cup_poses_in_body,
+    home_configuration,
     make_arm_plant,
     scenario_cup_frame,
 )
 from rt_drake.model.scenario import Scenario
+from rt_drake.simulation._bellows import Lip, add_bellows_lips, place_lips
+from rt_drake.simulation._bellows_suction import BellowsSuction
 from rt_drake.simulation._suction import (
     CupOnTool,
     SuctionCup,
@@ -92,6 +100,9 @@ class Station:
     #: The arm-and-tool plant of the feedforward; InverseDynamics keeps only
     #: a pointer to it, so the Station keeps it alive.
     controller_plant: MultibodyPlant
+    #: The bellows cup's lips (``cup_physics: bellows``), one per cup; empty
+    #: for the rim cup.
+    lips: tuple[Lip, ...] = ()
 
 
 def MakeStation(
@@ -112,9 +123,26 @@ def MakeStation(
         builder,
     )
     plant.set_name("plant")
-    models = add_scenario_models(plant, scenario, ObjectMode.FREE)
+    physics = scenario.cup_physics.physics
+    models = add_scenario_models(
+        plant, scenario, ObjectMode.FREE, rims=physics is CupPhysics.RIM
+    )
+    cup_frame = scenario_cup_frame(plant, scenario)
+    tool = scenario.tool_parameters()
+    lips: list[Lip] = []
+    if physics is CupPhysics.BELLOWS:
+        bellows = load_bellows_cup(scenario.cup_physics.cup)
+        lips = add_bellows_lips(
+            plant,
+            scene_graph,
+            cup_frame.body(),
+            cup_poses_in_body(cup_frame, tool),
+            bellows,
+        )
     _set_pd_gains(plant, models, options)
     plant.Finalize()
+    if lips:
+        place_lips(plant, lips, models.robot, home_configuration(plant, scenario))
 
     controller_plant = make_arm_plant(scenario)
     feedforward = builder.AddNamedSystem(
@@ -135,28 +163,29 @@ def MakeStation(
         plant.get_desired_state_input_port(models.robot), "robot.desired_state"
     )
 
-    cup_frame = scenario_cup_frame(plant, scenario)
-    tool = scenario.tool_parameters()
-    cups = [
-        CupOnTool(X_TC=X_BC, suction_force=mount.cup.suction_force)
-        for mount, X_BC in zip(
-            tool.cups, cup_poses_in_body(cup_frame, tool), strict=True
-        )
+    targets = [
+        _suction_target(plant, scene_graph, models, o.name) for o in scenario.objects
     ]
-    suction = builder.AddNamedSystem(
-        "suction",
-        SuctionCup(
+    if lips:
+        system: SuctionCup = BellowsSuction(
+            lips, bellows, targets, scenario.vacuum, options.time_step
+        )
+    else:
+        cups = [
+            CupOnTool(X_TC=X_BC, suction_force=mount.cup.suction_force)
+            for mount, X_BC in zip(
+                tool.cups, cup_poses_in_body(cup_frame, tool), strict=True
+            )
+        ]
+        system = SuctionCup(
             tool_body_index=cup_frame.body().index(),
             cups=cups,
-            targets=[
-                _suction_target(plant, scene_graph, models, o.name)
-                for o in scenario.objects
-            ],
+            targets=targets,
             seal_distance=options.seal_distance,
             vacuum=scenario.vacuum,
             time_step=options.time_step,
-        ),
-    )
+        )
+    suction = builder.AddNamedSystem("suction", system)
     builder.Connect(plant.get_body_poses_output_port(), suction.body_poses_input_port())
     builder.Connect(
         suction.GetOutputPort("spatial_forces"),
@@ -188,6 +217,7 @@ def MakeStation(
         models=models,
         object_names=tuple(o.name for o in scenario.objects),
         controller_plant=controller_plant,
+        lips=tuple(lips),
     )
 
 

@@ -158,6 +158,12 @@ def load_campaign(path: str | Path) -> Campaign:
     path = Path(path).resolve()
     spec = read_campaign_file(path)
     scenario_path, scenario = _base_scenario(path, spec.scenario)
+    if spec.cup_physics:
+        try:
+            scenario = scenario.with_cup_physics(spec.cup_physics)
+        except ScenarioError as error:
+            message = str(error).split("key ", 1)[-1]
+            raise CampaignError(f"{path}: key 'cup_physics': {message}") from None
     transport = scenario.random_transport
     if transport is None:
         raise CampaignError(
@@ -187,6 +193,8 @@ def load_campaign(path: str | Path) -> Campaign:
             "trials": spec.trials,
             "seed": spec.seed,
             "variants": [v.value for v in variants],
+            # Only when given: the hashes of earlier campaigns stay the same.
+            **({"cup_physics": spec.cup_physics} if spec.cup_physics else {}),
         },
         sort_keys=True,
     )

@@ -21,6 +21,7 @@ comparisons to run (see ``scenarios/campaigns/two_objects_two_cups.yaml``)::
     trials: 20
     seed: 0
     variants: [constrained, unconstrained, speed_sweep]
+    cup_physics: bellows         # the simulated cup (default: the scenario's)
 
 An entry of ``cups`` is a cup (its :class:`CupParameters` fields) or a tool
 of several cups (``tool``, the schema of a scenario's ``tool`` key, checked
@@ -118,6 +119,7 @@ class CampaignFile:
     trials: int = 1
     seed: int = 0
     variants: list[str] = dataclasses.field(default_factory=_default_variants)
+    cup_physics: str = ""
 
 
 def read_campaign_file(path: Path) -> CampaignFile:

@@ -1,0 +1,119 @@
+"""Play Table I trials under the bellows cup, with catalogue parameters scaled.
+
+    python tools/bellows_trial.py SCENARIO [--trials 0 1] [--seed 0]
+        [--scale NAME=FACTOR ...] [--cup-physics bellows] [--no-jerk-limits]
+        [--constrained-only] [--sweep]
+
+For each trial of ``experiment transport`` (same sampling and planner seed,
+the same grasp: from the cup, or APPROACH and REACH from home): plan the
+MOVE, retime it under the grasp constraint and under the joint limits only
+(both with the scenario's jerk limits, if it gives any), and play both in
+the simulated cell; ``--sweep`` also plays the constrained MOVE faster until
+it slips. ``--scale`` multiplies catalogue parameters of the bellows cup (a
+sensitivity sweep: ``--scale lateral_stiffness=0.5``); ``--scale
+pressure=1.358`` makes its pull 20 N. Prints one line per rollout: duration,
+slip (mm, deg), held.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import time
+
+from rt_drake.experiments._rollout import (
+    critical_speed,
+    rollout_scenario,
+    simulate_move,
+)
+from rt_drake.experiments._transport_experiment import (
+    move_from_the_cup,
+    transport_inputs,
+    transport_scenario,
+)
+from rt_drake.model.cup_physics import load_bellows_cup
+from rt_drake.model.resources import resolve_scenario_path
+from rt_drake.planning import sample_transports
+from rt_drake.simulation import OnlineMotions
+from rt_drake.simulation import _station as station_module
+
+
+def main() -> None:
+    """Run the trials and print one line per rollout."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("scenario")
+    parser.add_argument("--trials", type=int, nargs="+", default=[0])
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--scale", nargs="*", default=[])
+    parser.add_argument("--cup-physics", default="bellows")
+    parser.add_argument("--no-jerk-limits", action="store_true")
+    parser.add_argument(
+        "--constrained-only", action="store_true", help="skip the joint-limits MOVE"
+    )
+    parser.add_argument(
+        "--sweep",
+        action="store_true",
+        help="also play the constrained MOVE faster until it slips (critical speed)",
+    )
+    args = parser.parse_args()
+    path = resolve_scenario_path(args.scenario)
+    scenario, name = transport_inputs(path, max(args.trials) + 1, 1, None)
+    scenario = scenario.with_cup_physics(args.cup_physics)
+    factors = {k: float(v) for k, v in (s.split("=") for s in args.scale)}
+    cup = load_bellows_cup(scenario.cup_physics.cup).scaled(**factors)
+    # The station loads the catalogue cup by name: hand it the scaled one.
+    station_module.load_bellows_cup = lambda _name: cup  # type: ignore[attr-defined]
+    pairs = sample_transports(scenario, max(args.trials) + 1, args.seed)
+    jerk = bool(scenario.robot.jerk_limits) and not args.no_jerk_limits
+    for i in args.trials:
+        X_start, X_goal = pairs[i]
+        planned = transport_scenario(scenario, name, X_start, X_goal)
+        motions = OnlineMotions(
+            planned,
+            grasp_constraint=True,
+            seed=args.seed + i,
+            optimize=False,
+            jerk_limits=jerk,
+        )
+        obj = planned.objects[0]
+        try:
+            if scenario.random_transport.start_on_cup:
+                move = move_from_the_cup(motions, obj, X_start)
+            else:  # as the experiment: APPROACH and REACH give the grasp
+                approach = motions.approach(motions.q_home, obj)
+                reach = motions.reach(approach.q_end, obj)
+                move = motions.move(reach.q_end, obj, reach)
+            free = motions.retime_path(move.planned.path, grasp=None)
+        except Exception as error:  # noqa: BLE001 (a study: report and go on)
+            message = " ".join(str(error).split())[:150]
+            print(f"trial {i}: no MOVE: {type(error).__name__}: {message}", flush=True)
+            continue
+        q_grasp = move.planned.q_start
+        world = rollout_scenario(dataclasses.replace(planned), q_grasp)
+        plays = [] if args.sweep else [("constrained", move.trajectory)]
+        if not args.constrained_only:
+            plays.append(("joint limits only", free.trajectory))
+        if args.sweep:  # its first rollout, at speed 1, is the constrained one
+            start = time.perf_counter()
+            critical, sweep = critical_speed(world, q_grasp, move.trajectory)
+            _print(i, "constrained", move.trajectory, sweep[0][1], start, factors)
+            print(f"trial {i} critical speed factor: {critical}", flush=True)
+        for label, trajectory in plays:
+            start = time.perf_counter()
+            rollout = simulate_move(world, q_grasp, trajectory)
+            _print(i, label, trajectory, rollout, start, factors)
+
+
+def _print(i, label, trajectory, rollout, start, factors) -> None:
+    slip = rollout.as_dict()
+    print(
+        f"trial {i} {label}: {trajectory.end_time():.3f} s, slip "
+        f"{slip['max_translation_mm']:.2f} mm {slip['max_rotation_deg']:.2f} "
+        f"deg, {'held' if rollout.success else 'SLIP'} "
+        f"({time.perf_counter() - start:.1f} s wall) {factors or ''}",
+        flush=True,
+    )
+
+
+if __name__ == "__main__":
+    main()
