@@ -222,13 +222,13 @@ REFUSED = [
         "home: [0.0, 0.35, 1.75, 0.0, 1.04, 0.0]",
         "home: [0.0, 0.35, 1.75, 0.0, 1.04, 0.0]\n  velocity_limits: [1, 2]",
         "",
-        ["robot.velocity_limits", "2 values", "6 joints"],
+        ["robot.velocity_limits", "2 values", "robot.home", "6 values"],
     ),
     (
         "jerk_limits: [394.67, 336.89,",
         "jerk_limits: [394.67,",
         "",
-        ["robot.jerk_limits", "5 values", "6 joints"],
+        ["robot.jerk_limits", "5 values", "robot.home", "6 values"],
     ),
     (
         "jerk_limits: [394.67,",

@@ -602,7 +602,8 @@ def _check_robot(path: Path, robot: RobotConfig) -> None:
         key = f"{path}: key 'robot.{field}'"
         if values and len(values) != joints:
             raise ScenarioError(
-                f"{key}: {len(values)} values but robot.home has {joints} joints"
+                f"{key}: {len(values)} values but key 'robot.home' has "
+                f"{joints} values: give one per joint in each"
             )
         if any(v <= 0 for v in values):
             raise ScenarioError(f"{key}: limits must be > 0, got {values}")

@@ -279,8 +279,9 @@ def _position_margin(
     lower = plant.GetPositionLowerLimits()
     upper = plant.GetPositionUpperLimits()
     finite = np.isfinite(lower) & np.isfinite(upper) & (upper > lower)
-    middle = np.where(finite, 0.5 * (lower + upper), 0.0)
-    half = np.where(finite, 0.5 * (upper - lower), 1.0)
+    lower_f, upper_f = np.where(finite, lower, -1.0), np.where(finite, upper, 1.0)
+    middle = 0.5 * (lower_f + upper_f)  # 0 for an unlimited joint
+    half = 0.5 * (upper_f - lower_f)
     ratio = np.where(finite, np.abs(q - middle) / half, 0.0)
     worst = _worst(ratio, times)
     sample = int(np.searchsorted(times, worst.time))

@@ -338,7 +338,8 @@ def test_a_null_object_entry_is_refused(capsys, tmp_path):
         (
             "home: [0.0, 0.35, 1.75, 0.0, 1.04, 0.0]",
             "home: [0.0, 0.35]",
-            ["robot.home", "2 values", "6 joint"],
+            # the scenario's jerk_limits have 6: the two keys are named
+            ["robot.home", "robot.jerk_limits", "2 values"],
         ),
         (
             "home: [0.0, 0.35, 1.75, 0.0, 1.04, 0.0]",
