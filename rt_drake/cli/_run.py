@@ -111,6 +111,7 @@ def run(args: argparse.Namespace) -> int:
     """Simulate, print the table, write the report; return 0."""
     import time
 
+    import numpy as np
     from pydrake.geometry import StartMeshcat
 
     from rt_drake.atomic_file import write_text_atomically
@@ -191,8 +192,9 @@ def run(args: argparse.Namespace) -> int:
         simulation_wall_s=wall_s,
         cup_physics=scenario.cup_physics.kind,
     )
-    # jerk: the scenario's robot.jerk_limits once they exist (robot-ready issue)
-    floors = cycle_floors(scenario, args.seed, jerk=None)
+    # the floor under the same limits as the motions: the jerk's too if applied
+    jerk = [] if getattr(args, "no_jerk_limits", False) else scenario.robot.jerk_limits
+    floors = cycle_floors(scenario, args.seed, jerk=np.array(jerk) if jerk else None)
     report = cycle_report(result.records, settings, floors)
     json_path, md_path = write_report(report, args.out)
     replay = args.out / REPLAY_FILE
