@@ -71,3 +71,33 @@ def test_no_optimize_plays_the_planners_spline_move_bit_for_bit(scenario_paths):
     limits = JointLimits.from_plant(plant, scenario.robot)
     retimed = retime(plant, reference.path, limits, move.grasp, gridpoints=100)
     assert move.duration == retimed.duration
+
+
+@pytest.mark.slow
+def test_with_jerk_limits_the_kept_path_is_retimed_under_them(scenario_paths):
+    """The search compares paths under the acceleration limits; the MOVE
+    played is the kept path retimed under the jerk limits too, and holds
+    them at 1 kHz (checked by check_trajectory, not the retimer)."""
+    from rt_drake import check_trajectory
+
+    scenario = load_scenario(scenario_paths["random_transport"])
+    assert scenario.robot.jerk_limits  # the shipped scenario sets them
+    scenario = dataclasses.replace(
+        scenario, planning=PlanningConfig(optimize_move=True, max_evaluations=60)
+    )
+    obj = scenario.objects[0]
+    source = OnlineMotions(scenario, seed=3, jerk_limits=True)
+    approach = source.approach(source.q_home, obj)
+    reach = source.reach(approach.q_end, obj)
+    move = source.move(reach.q_end, obj, reach)
+    assert move.retimed is not None and move.grasp is not None
+    assert move.retimed.path_acceleration is not None  # the jerk-limited profile
+    plant = make_arm_plant(scenario)
+    limits = JointLimits.from_plant(plant, scenario.robot, jerk=True)
+    check = check_trajectory(plant, move.retimed.trajectory, limits, move.grasp)
+    assert check.passed(), check.summary()
+    # Without the jerk limits the same path is retimed faster (bang-bang).
+    free = retime(
+        plant, move.planned.path, dataclasses.replace(limits, jerk=None), move.grasp
+    )
+    assert free.duration < move.retimed.duration
