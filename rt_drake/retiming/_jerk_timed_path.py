@@ -40,6 +40,7 @@ from pydrake.trajectories import Trajectory
 
 from rt_drake.retiming._joint_path import JointPath
 from rt_drake.retiming._retime_errors import RetimeInputError
+from rt_drake.retiming._timed_path import PathTrajectory
 
 #: Highest derivative order the trajectory evaluates (q''').
 MAX_ORDER = 3
@@ -92,7 +93,7 @@ def piece_kinds(x: np.ndarray) -> np.ndarray:
     return kinds
 
 
-class JerkTimedPath(Trajectory):
+class JerkTimedPath(PathTrajectory):
     """Joint trajectory of a jerk-limited retime (see the module docstring).
 
     Args:
@@ -279,46 +280,6 @@ class JerkTimedPath(Trajectory):
         if total >= 3:
             series.append(p[1] * sddd + 3.0 * p[2] * sd * sdd + p[3] * sd**3)
         return series[self._order :]
-
-    # Drake Trajectory interface.
-    def do_value(self, t: float) -> np.ndarray:  # noqa: D102
-        return self.sample(t, order=0)[0].reshape(-1, 1)
-
-    def do_has_derivative(self) -> bool:  # noqa: D102
-        return True
-
-    def DoEvalDerivative(self, t: float, derivative_order: int) -> np.ndarray:  # noqa: D102
-        return self.sample(t, order=derivative_order)[-1].reshape(-1, 1)
-
-    def DoMakeDerivative(self, derivative_order: int) -> JerkTimedPath:  # noqa: D102
-        return self._copy(self._order + derivative_order)
-
-    def do_rows(self) -> int:  # noqa: D102
-        return int(np.asarray(self._spline(0.0)).size)
-
-    def do_cols(self) -> int:  # noqa: D102
-        return 1
-
-    def do_start_time(self) -> float:  # noqa: D102
-        return float(self._t[0])
-
-    def do_end_time(self) -> float:  # noqa: D102
-        return float(self._t[-1])
-
-    def Clone(self) -> JerkTimedPath:  # noqa: D102
-        return self._copy(self._order)
-
-    def __deepcopy__(self, memo: dict) -> JerkTimedPath:
-        return self._copy(self._order)
-
-    def _copy(self, order: int) -> JerkTimedPath:
-        copy = JerkTimedPath.__new__(JerkTimedPath)
-        Trajectory.__init__(copy)
-        copy.__dict__.update(self.__dict__)
-        if not 0 <= order <= MAX_ORDER:
-            raise RetimeInputError(f"derivatives above order {MAX_ORDER} not provided")
-        copy._order = order
-        return copy
 
 
 __all__ = ["JerkTimedPath", "Piece", "piece_kinds", "stumpff"]

@@ -27,7 +27,59 @@ from rt_drake.retiming._retime_errors import RetimeInputError
 MAX_ORDER = 3
 
 
-class TimedPath(Trajectory):
+class PathTrajectory(Trajectory):
+    """Drake's ``Trajectory`` interface of a retimed path q(s(t)).
+
+    A subclass gives ``sample(t, order)`` (the list of q(t) and its
+    derivatives from ``self._order`` to ``order``), ``self._spline`` (the
+    path p(s)), ``self._t`` (the times of its grid points) and
+    ``self._order`` (which derivative it is).
+    """
+
+    _order: int
+
+    def do_value(self, t: float) -> np.ndarray:  # noqa: D102
+        return self.sample(t, order=0)[0].reshape(-1, 1)
+
+    def do_has_derivative(self) -> bool:  # noqa: D102
+        return True
+
+    def DoEvalDerivative(self, t: float, derivative_order: int) -> np.ndarray:  # noqa: D102
+        return self.sample(t, order=derivative_order)[-1].reshape(-1, 1)
+
+    def DoMakeDerivative(self, derivative_order: int) -> PathTrajectory:  # noqa: D102
+        return self._copy(self._order + derivative_order)
+
+    def do_rows(self) -> int:  # noqa: D102
+        return int(np.asarray(self._spline(0.0)).size)
+
+    def do_cols(self) -> int:  # noqa: D102
+        return 1
+
+    def do_start_time(self) -> float:  # noqa: D102
+        return float(self._t[0])
+
+    def do_end_time(self) -> float:  # noqa: D102
+        return float(self._t[-1])
+
+    def Clone(self) -> PathTrajectory:  # noqa: D102
+        return self._copy(self._order)
+
+    def __deepcopy__(self, memo: dict) -> PathTrajectory:
+        return self._copy(self._order)
+
+    def _copy(self, order: int) -> PathTrajectory:
+        cls = type(self)
+        copy = cls.__new__(cls)
+        Trajectory.__init__(copy)
+        copy.__dict__.update(self.__dict__)
+        if not 0 <= order <= MAX_ORDER:
+            raise RetimeInputError(f"derivatives above order {MAX_ORDER} not provided")
+        copy._order = order
+        return copy
+
+
+class TimedPath(PathTrajectory):
     """Joint trajectory of a path retimed by TOPP-RA (see module docstring).
 
     Args:
@@ -106,45 +158,5 @@ class TimedPath(Trajectory):
             series.append(3.0 * p[2] * sd * sdd + p[3] * sd**3)
         return series[self._order :]
 
-    # Drake Trajectory interface.
-    def do_value(self, t: float) -> np.ndarray:  # noqa: D102
-        return self.sample(t, order=0)[0].reshape(-1, 1)
 
-    def do_has_derivative(self) -> bool:  # noqa: D102
-        return True
-
-    def DoEvalDerivative(self, t: float, derivative_order: int) -> np.ndarray:  # noqa: D102
-        return self.sample(t, order=derivative_order)[-1].reshape(-1, 1)
-
-    def DoMakeDerivative(self, derivative_order: int) -> TimedPath:  # noqa: D102
-        return self._copy(self._order + derivative_order)
-
-    def do_rows(self) -> int:  # noqa: D102
-        return int(np.asarray(self._spline(0.0)).size)
-
-    def do_cols(self) -> int:  # noqa: D102
-        return 1
-
-    def do_start_time(self) -> float:  # noqa: D102
-        return float(self._t[0])
-
-    def do_end_time(self) -> float:  # noqa: D102
-        return float(self._t[-1])
-
-    def Clone(self) -> TimedPath:  # noqa: D102
-        return self._copy(self._order)
-
-    def __deepcopy__(self, memo: dict) -> TimedPath:
-        return self._copy(self._order)
-
-    def _copy(self, order: int) -> TimedPath:
-        copy = TimedPath.__new__(TimedPath)
-        Trajectory.__init__(copy)
-        copy.__dict__.update(self.__dict__)
-        if not 0 <= order <= MAX_ORDER:
-            raise RetimeInputError(f"derivatives above order {MAX_ORDER} not provided")
-        copy._order = order
-        return copy
-
-
-__all__ = ["MAX_ORDER", "TimedPath"]
+__all__ = ["MAX_ORDER", "PathTrajectory", "TimedPath"]
