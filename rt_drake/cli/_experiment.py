@@ -54,31 +54,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     transport = which.add_parser(
         "transport", help="Table I: random transports, with and without the constraint"
     )
-    transport.add_argument(
-        "--scenario",
-        default="random_transport",
-        help="scenario with a random_transport section",
-    )
-    transport.add_argument(
-        "--n",
-        type=int_in(1, MAX_TRIALS),
-        default=20,
-        help=f"number of random paths (default 20, at most {MAX_TRIALS})",
-    )
-    transport.add_argument(
-        "--seed",
-        type=nonnegative_int,
-        default=0,
-        help="sampling and planning seed (default 0)",
-    )
-    transport.add_argument(
-        "--object", default=None, help="object to carry (default: the scenario's)"
-    )
-    transport.add_argument(
-        "--workers",
-        type=int_in(1, MAX_WORKERS),
-        default=1,
-        help=f"parallel processes (default 1, at most {MAX_WORKERS})",
+    _add_trial_arguments(
+        transport,
+        "random_transport",
+        "scenario with a random_transport section",
+        "number of random paths",
+        "sampling and planning seed (default 0)",
     )
     transport.add_argument(
         "--robust",
@@ -108,38 +89,48 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     campaign.register(which)  # ``campaign`` and ``report``
 
 
+def _add_trial_arguments(
+    parser: argparse.ArgumentParser,
+    scenario: str,
+    scenario_help: str,
+    n_help: str,
+    seed_help: str,
+) -> None:
+    """Add the arguments of an experiment over random transports.
+
+    ``--scenario``, ``--n``, ``--seed``, ``--object`` and ``--workers``.
+    """
+    parser.add_argument("--scenario", default=scenario, help=scenario_help)
+    parser.add_argument(
+        "--n",
+        type=int_in(1, MAX_TRIALS),
+        default=20,
+        help=f"{n_help} (default 20, at most {MAX_TRIALS})",
+    )
+    parser.add_argument("--seed", type=nonnegative_int, default=0, help=seed_help)
+    parser.add_argument(
+        "--object", default=None, help="object to carry (default: the scenario's)"
+    )
+    parser.add_argument(
+        "--workers",
+        type=int_in(1, MAX_WORKERS),
+        default=1,
+        help=f"parallel processes (default 1, at most {MAX_WORKERS})",
+    )
+
+
 def _register_stop(which: argparse._SubParsersAction) -> None:
     """Add ``experiment stop``: protective stops of Table I's MOVEs in physics."""
     stop = which.add_parser(
         "stop",
         help="protective stops mid-MOVE in physics: grasp-aware vs joint brake",
     )
-    stop.add_argument(
-        "--scenario",
-        default="random_transport_paper",
-        help="scenario with a random_transport section (default "
-        "random_transport_paper)",
-    )
-    stop.add_argument(
-        "--n",
-        type=int_in(1, MAX_TRIALS),
-        default=20,
-        help=f"number of stopped MOVEs (default 20, at most {MAX_TRIALS})",
-    )
-    stop.add_argument(
-        "--seed",
-        type=nonnegative_int,
-        default=0,
-        help="transports, planning and stop instants seed (default 0)",
-    )
-    stop.add_argument(
-        "--object", default=None, help="object to carry (default: the scenario's)"
-    )
-    stop.add_argument(
-        "--workers",
-        type=int_in(1, MAX_WORKERS),
-        default=1,
-        help=f"parallel processes (default 1, at most {MAX_WORKERS})",
+    _add_trial_arguments(
+        stop,
+        "random_transport_paper",
+        "scenario with a random_transport section (default random_transport_paper)",
+        "number of stopped MOVEs",
+        "transports, planning and stop instants seed (default 0)",
     )
     stop.add_argument("--out", type=Path, required=True, help="output directory")
     stop.set_defaults(run=run_stop)
