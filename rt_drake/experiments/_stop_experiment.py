@@ -30,7 +30,6 @@ import numpy as np
 from pydrake.math import RigidTransform
 from pydrake.multibody.plant import MultibodyPlant
 
-from rt_drake.errors import InputError
 from rt_drake.experiments._rollout import rollout_scenario, simulate_move
 from rt_drake.experiments._transport_experiment import (
     move_from_the_cup,
@@ -168,8 +167,6 @@ def run_stop_experiment(
         ScenarioError: the scenario has no ``random_transport`` section or
             no such object.
     """
-    if not isinstance(n, int) or isinstance(n, bool):
-        raise InputError(f"number of trials must be an integer, got {n!r}")
     scenario, name = transport_inputs(scenario_path, n, workers, object_name)
     pairs = sample_transports(scenario, n, seed)
     fractions = np.random.default_rng(seed).uniform(size=n)

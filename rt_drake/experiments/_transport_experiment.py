@@ -57,11 +57,17 @@ def transport_inputs(
     """The scenario and the carried object's name, after checking the arguments.
 
     Raises:
-        InputError: fewer than one trial or one worker.
+        InputError: n or workers not an integer, or below one.
         ScenarioError: the scenario has no ``random_transport`` section or
             no such object.
     """
     scenario = load_scenario(scenario_path)
+    for what, value in (
+        ("number of trials", n),
+        ("number of worker processes", workers),
+    ):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+            raise InputError(f"{what} must be an integer, got {value!r}")
     if n < 1:
         raise InputError(f"number of trials must be >= 1, got {n}")
     if workers < 1:

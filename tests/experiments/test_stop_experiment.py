@@ -8,7 +8,11 @@ import pytest
 from rt_drake import load_scenario
 from rt_drake.cli import main
 from rt_drake.errors import InputError, ScenarioError
-from rt_drake.experiments import run_stop_experiment, stop_trial
+from rt_drake.experiments import (
+    run_stop_experiment,
+    run_transport_experiment,
+    stop_trial,
+)
 from rt_drake.experiments._rollout import SLIP_ROTATION, SLIP_TRANSLATION
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.planning import sample_transports
@@ -51,6 +55,19 @@ def test_bad_arguments_are_refused_in_one_line():
         run_stop_experiment(path, n=1, workers=0)
     with pytest.raises(ScenarioError, match="no 'random_transport' section"):
         run_stop_experiment(resolve_scenario_path("stack_four_objects"), n=1)
+
+
+@pytest.mark.parametrize("run", [run_stop_experiment, run_transport_experiment])
+def test_a_count_that_is_not_an_integer_is_refused_by_every_experiment(run):
+    path = resolve_scenario_path("random_transport_paper")
+    with pytest.raises(
+        InputError, match="number of trials must be an integer, got 2.5"
+    ):
+        run(path, n=2.5)
+    with pytest.raises(
+        InputError, match="worker processes must be an integer, got 1.0"
+    ):
+        run(path, n=1, workers=1.0)
 
 
 @pytest.mark.parametrize(
