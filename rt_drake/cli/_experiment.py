@@ -25,7 +25,9 @@ transports, into SQLite (see rt-drake experiment campaign --help).
 from __future__ import annotations
 
 import argparse
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from rt_drake.cli import _campaign_command as campaign
 from rt_drake.cli._args import (
@@ -136,33 +138,52 @@ def _register_stop(which: argparse._SubParsersAction) -> None:
     stop.set_defaults(run=run_stop)
 
 
+def _timed_trials(
+    label: str,
+    args: argparse.Namespace,
+    run: Callable[[Callable[[int, int], None]], dict[str, Any]],
+) -> dict[str, Any]:
+    """``run(progress)``'s results, with a progress bar and their ``wall_s``.
+
+    ``progress(done, n)`` advances the bar of ``args.n`` trials.
+    """
+    import time
+
+    from rt_drake.cli._progress import Progress
+
+    bar = Progress(label, args.n, "trial", eta=True)
+    start = time.perf_counter()
+    try:
+        results = run(lambda done, n: bar.step(done, "trials done"))
+    finally:
+        bar.close()
+    results["wall_s"] = time.perf_counter() - start
+    return results
+
+
 def run_stop(args: argparse.Namespace) -> int:
     """Run the stop experiment, write DIR/results.json, print a table; return 0."""
     import json
-    import time
 
     from rt_drake.atomic_file import write_text_atomically
     from rt_drake.cli._output import output_directory
-    from rt_drake.cli._progress import Progress
     from rt_drake.experiments import STOP_FILES, run_stop_experiment, stop_table
     from rt_drake.model.resources import resolve_scenario_path
 
     path = resolve_scenario_path(args.scenario)
     output_directory(args.out, "--out", STOP_FILES, {"scenario file": path})
-    progress = Progress("rt-drake experiment stop", args.n, "trial", eta=True)
-    start = time.perf_counter()
-    try:
-        results = run_stop_experiment(
+    results = _timed_trials(
+        "rt-drake experiment stop",
+        args,
+        lambda progress: run_stop_experiment(
             path,
             n=args.n,
             seed=args.seed,
             object_name=args.object,
             workers=args.workers,
-            progress=lambda done, n: progress.step(done, "trials done"),
-        )
-    finally:
-        progress.close()
-    results["wall_s"] = time.perf_counter() - start
+            progress=progress,
+        ),
+    )
     written = args.out / STOP_FILES[0]
     write_text_atomically(written, json.dumps(results, indent=1) + "\n")
     print(stop_table(results))
@@ -172,10 +193,7 @@ def run_stop(args: argparse.Namespace) -> int:
 
 def run_transport(args: argparse.Namespace) -> int:
     """Run the transport experiment and write its outputs; return 0."""
-    import time
-
     from rt_drake.cli._output import output_directory
-    from rt_drake.cli._progress import Progress
     from rt_drake.experiments import (
         TRANSPORT_FILES,
         optimized_summary,
@@ -189,10 +207,10 @@ def run_transport(args: argparse.Namespace) -> int:
         return run_robust_transport(args)
     path = resolve_scenario_path(args.scenario)
     output_directory(args.out, "--out", TRANSPORT_FILES, {"scenario file": path})
-    progress = Progress("rt-drake experiment transport", args.n, "trial", eta=True)
-    start = time.perf_counter()
-    try:
-        results = run_transport_experiment(
+    results = _timed_trials(
+        "rt-drake experiment transport",
+        args,
+        lambda progress: run_transport_experiment(
             path,
             n=args.n,
             seed=args.seed,
@@ -200,13 +218,11 @@ def run_transport(args: argparse.Namespace) -> int:
             workers=args.workers,
             optimize=args.optimize,
             out_dir=args.out,
-            progress=lambda done, n: progress.step(done, "trials done"),
+            progress=progress,
             cup_physics=args.cup_physics,
             jerk_limits=not args.no_jerk_limits,
-        )
-    finally:
-        progress.close()
-    results["wall_s"] = time.perf_counter() - start
+        ),
+    )
     written = write_transport_report(results, args.out)
     s = results["summary"]
     print(transport_table(results))
@@ -223,10 +239,7 @@ def run_transport(args: argparse.Namespace) -> int:
 
 def run_robust_transport(args: argparse.Namespace) -> int:
     """The robust transport experiment: write its outputs; return 0."""
-    import time
-
     from rt_drake.cli._output import output_directory
-    from rt_drake.cli._progress import Progress
     from rt_drake.errors import InputError
     from rt_drake.experiments import (
         ROBUST_FILES,
@@ -248,22 +261,18 @@ def run_robust_transport(args: argparse.Namespace) -> int:
         )
     path = resolve_scenario_path(args.scenario)
     output_directory(args.out, "--out", ROBUST_FILES, {"scenario file": path})
-    progress = Progress(
-        "rt-drake experiment transport --robust", args.n, "trial", eta=True
-    )
-    start = time.perf_counter()
-    try:
-        results = run_robust_transport_experiment(
+    results = _timed_trials(
+        "rt-drake experiment transport --robust",
+        args,
+        lambda progress: run_robust_transport_experiment(
             path,
             n=args.n,
             seed=args.seed,
             object_name=args.object,
             workers=args.workers,
-            progress=lambda done, n: progress.step(done, "trials done"),
-        )
-    finally:
-        progress.close()
-    results["wall_s"] = time.perf_counter() - start
+            progress=progress,
+        ),
+    )
     written = write_robust_report(results, args.out)
     print(robust_table(results))
     print("\n".join(summary_lines(results)))
