@@ -193,7 +193,7 @@ def run(args: argparse.Namespace) -> int:
         cup_physics=scenario.cup_physics.kind,
     )
     # the floor under the same limits as the motions: the jerk's too if applied
-    jerk = [] if getattr(args, "no_jerk_limits", False) else scenario.robot.jerk_limits
+    jerk = [] if args.no_jerk_limits else scenario.robot.jerk_limits
     floors = cycle_floors(scenario, args.seed, jerk=np.array(jerk) if jerk else None)
     report = cycle_report(result.records, settings, floors)
     json_path, md_path = write_report(report, args.out)
@@ -222,7 +222,7 @@ def _export_plan(args: argparse.Namespace, scenario, path: Path):  # noqa: ANN00
 
     The directory and its files are checked before the simulation starts.
     """
-    if getattr(args, "export", None) is None:  # experiment cycle has no --export
+    if args.export is None:
         return None
     from rt_drake.cli._output import output_directory
     from rt_drake.cli._run_export import KINDS, export_file_name
