@@ -96,3 +96,16 @@ def test_numeric_offsets_keep_todays_lines(scenario):
         assert planner.line_height(obj.name, X_WO, Phase.APPROACH) == (
             obj.approach_offset
         )
+
+
+def test_no_clear_line_is_a_one_line_planning_error(scenario_paths, monkeypatch):
+    from rt_drake.planning import PlanningError, _line_heights
+
+    monkeypatch.setattr(_line_heights, "MAX_HEIGHT", 0.005)  # 5 mm: never clear
+    scenario = load_scenario(scenario_paths["stack_four_objects"])
+    with pytest.raises(PlanningError) as info:
+        CyclePlanner(scenario, seed=0)
+    message = str(info.value)
+    assert "\n" not in message
+    for words in ("whetstone_box", "approach_offset auto", "0.005 m", "0.02 m"):
+        assert words in message, message
