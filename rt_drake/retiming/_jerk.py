@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Callable
+from typing import NoReturn
 
 import numpy as np
 from scipy import sparse
@@ -155,7 +156,8 @@ def jerk_limited(
         tolerance: Relative excess that adds a point (``BETWEEN_TOLERANCE``).
 
     Raises:
-        PathNotControllableError: an LP has no solution.
+        PathNotControllableError: an LP has no solution, or every LP of a
+            round leaves ``s' = 0`` inside the path (naming where).
         LimitsBetweenGridPointsError: a limit still exceeded beyond the
             contract after :data:`MAX_ROUNDS` rounds.
     """
@@ -214,7 +216,8 @@ def jerk_limited(
             if abs(previous - duration) <= CONVERGED * duration:
                 break
             previous = duration
-        assert best is not None
+        if best is None:  # every LP of the round stops the motion somewhere
+            _refuse_stop(dense, z)
         z = best[1]
         over = dense.excess(z, limits) > tolerance
         jerk_over = _point_excess(problem, z) > tolerance
@@ -281,6 +284,29 @@ def _point_excess(problem: _Problem, z: np.ndarray) -> np.ndarray:
     points = problem.jerk
     ratio = points.ratio(z, problem.limits, problem.bounds)
     return np.maximum(ratio, points.joint_ratio(z, problem.limits)) - 1.0
+
+
+def _refuse_stop(dense: DensePoints, z: np.ndarray) -> NoReturn:
+    """Raise: the LPs keep ``s' = 0`` at a point inside the path.
+
+    Every LP of a round maximises the path speed; when each of them still
+    leaves ``x = s'^2 = 0`` at some point inside the path (where the limits,
+    linearised at the previous profile, allow no speed), the motion would
+    stop there for good: no finite-time profile was found.
+    """
+    x = dense.maps.X @ z
+    inside = np.zeros(len(x), dtype=bool)
+    inside[1:-1] = True
+    stopped = inside & (x <= 1e-9 * max(float(np.max(x)), 1e-12))
+    if not stopped.any():  # none exactly 0: the slowest point
+        stopped = inside & (x == np.min(x[inside]))
+    first, last = (float(v) for v in dense.s[stopped][[0, -1]])
+    raise PathNotControllableError(
+        f"jerk-limited retiming: every LP stops the motion (s' = 0) for s in "
+        f"[{first:.4f}, {last:.4f}]: the limits there, with a continuous s'', "
+        "leave no path speed",
+        s=first,
+    )
 
 
 def _refuse(problem: _Problem, z: np.ndarray) -> None:

@@ -161,7 +161,7 @@ class DensePoints:
         x_cap = np.where(np.isfinite(smp.x_cap), smp.x_cap, np.inf)
         out = {
             Margin.VELOCITY: np.where(
-                np.isfinite(x_cap), np.sqrt(np.maximum(x, 0.0) / x_cap), 0.0
+                np.isfinite(x_cap), np.sqrt(_divide(np.maximum(x, 0.0), x_cap)), 0.0
             ),
             Margin.ACCELERATION: np.max(
                 np.abs(smp.dq * u[:, None] + smp.ddq * x[:, None])
@@ -187,6 +187,12 @@ class DensePoints:
         """``1 - ratio`` at the grid points (segment starts, and the end)."""
         grid = np.append(np.flatnonzero(self.k == 0), len(self.s) - 1)
         return {m: 1.0 - r[grid] for m, r in self.ratios(z, limits).items()}
+
+
+def _divide(x: np.ndarray, cap: np.ndarray) -> np.ndarray:
+    """``x / cap``, with ``0 / 0 = 0`` and ``x / 0 = inf`` (a cap of 0: a stop)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(x > 0.0, x / cap, 0.0)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -260,7 +266,7 @@ class JerkPoints:
     def joint_ratio(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
         """The largest velocity or acceleration ratio at every point, (P,)."""
         x, u = np.maximum(self.maps.X @ z, 0.0), self.maps.U @ z
-        velocity = np.sqrt(x / self.x_cap)
+        velocity = np.sqrt(_divide(x, self.x_cap))
         acceleration = np.abs(self.dq * u[:, None] + self.ddq * x[:, None])
         return np.maximum(velocity, np.max(acceleration / limits.acceleration, axis=1))
 
