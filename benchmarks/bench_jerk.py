@@ -13,8 +13,8 @@ the grasp constraint of the notebook at 100 grid points. For each MOVE:
 (b) the CPU time of the retiming thread (``time.thread_time``; the machine
     is shared) of one acceleration-limited and one jerk-limited retime
     (shipped limits), interleaved, ``--repeats`` times, median per MOVE;
-    and the share of the jerk-limited retime spent in HiGHS
-    (``scipy.optimize.linprog``);
+    and the share of the jerk-limited retime spent in the LPs
+    (``WarmLP.solve``: HiGHS, warm-started, with its cutting planes);
 (c) every limit of the jerk-limited MOVE (shipped limits) at 1 kHz:
     ``check_trajectory`` (velocity, acceleration, position, jerk from
     differences of the 1 kHz accelerations, grasp by Newton-Euler) and the
@@ -43,7 +43,7 @@ from rt_drake.model.scenario import load_scenario  # noqa: E402
 from rt_drake.planning import PlanningError, sample_transports  # noqa: E402
 from rt_drake.retiming import (  # noqa: E402
     JointLimits,
-    _jerk,  # noqa: E402
+    _jerk_lp,  # noqa: E402
     check_trajectory,
     retime,
     warm_up,
@@ -52,18 +52,18 @@ from rt_drake.simulation import OnlineMotions  # noqa: E402
 
 #: Jerk limits of the curve, as multiples of the acceleration limits (1/s).
 FACTORS = (5.0, 10.0, 20.0)
-#: CPU ms spent in linprog, accumulated by :func:`timed_linprog`.
-IN_LINPROG = [0.0]
-_LINPROG = _jerk.linprog
+#: CPU ms spent in the LPs, accumulated by :func:`timed_solve`.
+IN_LPS = [0.0]
+_SOLVE = _jerk_lp.WarmLP.solve
 
 
-def timed_linprog(*args, **kwargs):  # noqa: ANN002, ANN003, ANN201
-    """``scipy.optimize.linprog``, adding its thread CPU time to IN_LINPROG."""
+def timed_solve(*args, **kwargs):  # noqa: ANN002, ANN003, ANN201
+    """``WarmLP.solve``, adding its thread CPU time to IN_LPS."""
     start = time.thread_time()
     try:
-        return _LINPROG(*args, **kwargs)
+        return _SOLVE(*args, **kwargs)
     finally:
-        IN_LINPROG[0] += 1e3 * (time.thread_time() - start)
+        IN_LPS[0] += 1e3 * (time.thread_time() - start)
 
 
 def planned_moves(n: int, seed: int) -> list[tuple[object, object]]:
@@ -116,7 +116,7 @@ def main() -> None:
     grid = args.gridpoints
     ratios: dict[str, list[float]] = {"shipped": [], **{f"{f:g}x": [] for f in FACTORS}}
     cpu_plain, cpu_jerk, lps, highs = [], [], [], []
-    _jerk.linprog = timed_linprog
+    _jerk_lp.WarmLP.solve = timed_solve  # type: ignore[method-assign]
     worst_check, worst_difference, passed = np.inf, 0.0, 0
     for index, (path, grasp) in enumerate(moves):
         base = retime(plant, path, plain, grasp, grid, context=context)
@@ -131,11 +131,11 @@ def main() -> None:
             ratios[f"{factor:g}x"].append(other.duration / base.duration)
         for _ in range(args.repeats):
             for limits, times in ((plain, cpu_plain), (shipped, cpu_jerk)):
-                IN_LINPROG[0] = 0.0
+                IN_LPS[0] = 0.0
                 start = time.thread_time()
                 retime(plant, path, limits, grasp, grid, context=context)
                 times.append(1e3 * (time.thread_time() - start))
-            highs.append(IN_LINPROG[0] / times[-1])
+            highs.append(IN_LPS[0] / times[-1])
         check = check_trajectory(plant, limited.trajectory, shipped, grasp)
         difference = float(
             np.max(third_difference_jerk(limited.trajectory) / shipped.jerk)
@@ -161,7 +161,7 @@ def main() -> None:
         f"jerk-limited median {statistics.median(cpu_jerk):.1f}, ratio "
         f"{statistics.median(cpu_jerk) / statistics.median(cpu_plain):.1f}; "
         f"LPs per jerk-limited retime median {statistics.median(lps):g}, max {max(lps)}"
-        f"; share of the jerk-limited retime in HiGHS (linprog) median "
+        f"; share of the jerk-limited retime in its LPs (HiGHS) median "
         f"{100 * statistics.median(highs):.0f} %"
     )
     print(

@@ -25,22 +25,30 @@ grasp rows exact at its points (:mod:`._jerk_rows`):
 Rows screened into the LPs: grasp rows where TOPP-RA's profile used at
 least :data:`SCREEN` of them (ratio ``F_r w / g_r``), acceleration and
 torque rows at :data:`JOINT_SCREEN` of their limit on TOPP-RA's profile,
-jerk rows at :data:`JOINT_SCREEN` on an LP's profile (kept once in), and
-every row where step 3 finds a limit exceeded. Units: s, rad, 1/s^2 for x
-and u.
+jerk rows at :data:`JOINT_SCREEN` on an LP's profile (kept once in), every
+row at a dense point where step 3 finds a limit exceeded, and at a jerk
+point where it does, the velocity row and the acceleration rows at
+:data:`JOINT_SCREEN` there. Units: s, rad, 1/s^2 for x and u.
+
+The LPs are HiGHS's dual simplex (:mod:`._jerk_lp`): the first starts from
+a basis read off TOPP-RA's profile, each next one from the last optimum's
+(rows matched by key), and each takes its rows as cutting planes (those
+tight at the start and those its optimum breaks). Same optima as solving
+each LP whole, at a fraction of the cost.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import enum
 from collections.abc import Callable
 from typing import NoReturn
 
 import numpy as np
 from scipy import sparse
-from scipy.optimize import linprog
 
 from rt_drake.retiming._check import DEFAULT_TOLERANCE, Margin
+from rt_drake.retiming._jerk_lp import WarmLP
 from rt_drake.retiming._jerk_points import (
     DENSE,
     JERK_DENSE,
@@ -48,9 +56,10 @@ from rt_drake.retiming._jerk_points import (
     GraspRows,
     JerkPoints,
     Keep,
+    largest_excess,
     rest_bounds,
 )
-from rt_drake.retiming._jerk_rows import PointMaps, affine_rows, jerk_rows
+from rt_drake.retiming._jerk_rows import Rows, affine_rows, jerk_rows, key, stacked
 from rt_drake.retiming._jerk_timed_path import JerkTimedPath, Piece
 from rt_drake.retiming._joint_path import JointPath
 from rt_drake.retiming._retime_errors import (
@@ -74,6 +83,21 @@ MAX_LPS = 12
 MAX_ROUNDS = 6
 #: Points halving towards each end at rest.
 END_POINTS = 6
+
+
+class _Kind(enum.IntEnum):
+    """The kinds of LP rows, for their keys (a sign's rows: kind and kind + 1)."""
+
+    VELOCITY = 0
+    POSITIVE = 1
+    ACCELERATION = 2
+    TORQUE = 4
+    GRASP = 6
+    JERK = 7
+    JERK_POINT_ACCELERATION = 9
+    JERK_POINT_VELOCITY = 11
+    MIDDLE = 12
+    BERNSTEIN = 13
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -112,8 +136,11 @@ class _Problem:
     jerk: JerkPoints
     limits: JointLimits
     bounds: dict[int, tuple[int, float]]
-    sd_start: float
-    sd_end: float
+    middle: np.ndarray
+    X_middle: sparse.csr_matrix
+    bernstein: Rows
+    equalities: tuple[sparse.csr_matrix, np.ndarray]
+    variable_bounds: np.ndarray
 
 
 @dataclasses.dataclass
@@ -125,6 +152,7 @@ class _Selection:
     keep: Keep
     jerk_active: np.ndarray
     jerk_keep: np.ndarray | None = None
+    jerk_acceleration: np.ndarray | None = None
 
 
 def jerk_limited(
@@ -171,10 +199,14 @@ def jerk_limited(
     grasp = None if F is None or g is None else GraspRows(F, g)
     dense = DensePoints.of(sample, s, kinds, grasp)
     points = JerkPoints.of(spline, s, kinds, limits.velocity)
+    rest = rest_bounds(spline, s, kinds, limits.jerk)
+    middle = np.flatnonzero(dense.k == len(DENSE) // 2)
     problem = _Problem(
-        s, kinds, dense, points, limits, rest_bounds(spline, s, kinds, limits.jerk),
-        sd_start, sd_end,
+        s, kinds, dense, points, limits, rest, middle, dense.maps.X[middle],
+        _bernstein(s, kinds), _continuity(s, kinds),
+        _bounds(s, kinds, rest, sd_start, sd_end),
     )  # fmt: skip
+    solver = WarmLP()
     x_ref = np.interp(dense.s, s_topp, x_topp)
     u_ref = _topp_u(s_topp, x_topp, dense.s)
     active = np.isin(dense.k, (0, len(DENSE) - 1))
@@ -190,13 +222,14 @@ def jerk_limited(
     x_bar = np.maximum(np.interp(s, s_topp, x_topp), 0.0)
     x_dense = np.interp(dense.s, s, x_bar)
     x_jerk = np.interp(points.s, s, x_bar)
+    solver.guess(_topp_start(s, x_bar, problem.variable_bounds))
     lps = rounds = 0
     best: tuple[float, np.ndarray] | None = None
     while True:
         rounds += 1
         previous = np.inf
         for _ in range(MAX_LPS):
-            z = _solve(problem, chosen, x_bar, x_dense, x_jerk)
+            z = _solve(problem, chosen, solver, x_bar, x_dense, x_jerk)
             lps += 1
             x, u = _split(z, len(s))
             try:
@@ -219,19 +252,28 @@ def jerk_limited(
         if best is None:  # every LP of the round stops the motion somewhere
             _refuse_stop(dense, z)
         z = best[1]
-        over = dense.excess(z, limits) > tolerance
-        jerk_over = _point_excess(problem, z) > tolerance
+        grasp_excess = None if grasp is None else dense.grasp_excess(z)
+        ratios = dense.ratios(z, limits, grasp_excess)
+        excess, jerk_excess = largest_excess(ratios), _point_excess(problem, z)
+        over, jerk_over = excess > tolerance, jerk_excess > tolerance
         if not (over.any() or jerk_over.any()) or rounds == MAX_ROUNDS:
             break
         chosen.active |= over
         chosen.keep = chosen.keep.with_full(over)
         chosen.jerk_active |= jerk_over
-        if chosen.rows is not None:
-            chosen.rows |= dense.grasp_excess(z) > tolerance
+        # There the acceleration rows near their limit (once in, kept).
+        near = points.acceleration_ratio(z, limits) >= JOINT_SCREEN
+        near &= jerk_over[:, None]
+        previous_near = chosen.jerk_acceleration
+        chosen.jerk_acceleration = (
+            near if previous_near is None else previous_near | near
+        )
+        if chosen.rows is not None and grasp_excess is not None:
+            chosen.rows |= grasp_excess > tolerance
         best = None  # the rows changed: the old optimum may break them
-    _refuse(problem, z)
+    _refuse(problem, excess, jerk_excess)
     x, u = _split(z, len(s))
-    margins = dense.margins(z, limits)
+    margins = dense.margins(ratios)
     margins[Margin.JERK] = points.margins(z, limits, problem.bounds)
     return JerkProfile(
         trajectory=JerkTimedPath(spline, s, x, u, start_time),
@@ -309,11 +351,13 @@ def _refuse_stop(dense: DensePoints, z: np.ndarray) -> NoReturn:
     )
 
 
-def _refuse(problem: _Problem, z: np.ndarray) -> None:
-    """Raise if a limit is exceeded beyond the contract at any point."""
+def _refuse(problem: _Problem, excess: np.ndarray, jerk: np.ndarray) -> None:
+    """Raise if a limit is exceeded beyond the contract at any point.
+
+    ``excess``: (P,) the largest relative excess at the dense points;
+    ``jerk``: at the jerk points (:func:`_point_excess`).
+    """
     dense, points = problem.dense, problem.jerk
-    excess = dense.excess(z, problem.limits)
-    jerk = _point_excess(problem, z)
     worst, at = float(excess.max()), float(dense.s[int(np.argmax(excess))])
     if float(jerk.max()) > worst:
         worst, at = float(jerk.max()), float(points.s[int(np.argmax(jerk))])
@@ -347,6 +391,15 @@ def _topp_u(s_topp: np.ndarray, x_topp: np.ndarray, at: np.ndarray) -> np.ndarra
     return u[i]
 
 
+def _topp_start(s: np.ndarray, x: np.ndarray, bounds: np.ndarray) -> np.ndarray:
+    """TOPP-RA's profile as z: x, and u at each point the mean of its segments'."""
+    u_segment = np.diff(x) / (2.0 * np.diff(s))
+    u = np.concatenate(
+        [[u_segment[0]], 0.5 * (u_segment[1:] + u_segment[:-1]), [u_segment[-1]]]
+    )
+    return np.clip(np.concatenate([x, u]), bounds[:, 0], bounds[:, 1])
+
+
 def _split(z: np.ndarray, size: int) -> tuple[np.ndarray, np.ndarray]:
     """X and u from the LP variables (x clipped at 0 against rounding)."""
     return np.maximum(z[:size], 0.0), z[size:].copy()
@@ -355,6 +408,7 @@ def _split(z: np.ndarray, size: int) -> tuple[np.ndarray, np.ndarray]:
 def _solve(
     problem: _Problem,
     chosen: _Selection,
+    solver: WarmLP,
     x_bar: np.ndarray,
     x_dense: np.ndarray,
     x_jerk: np.ndarray,
@@ -372,94 +426,99 @@ def _solve(
     last = len(DENSE) - 1
     repeated = (dense.k == last) & (np.arange(len(dense.s)) < len(dense.s) - 1)
     once = np.flatnonzero(chosen.active & (~repeated | chosen.keep.full))
-    maps = PointMaps(*(m[once] for m in dense.maps))
+    band = dense.band.take(once)
     smp = dense.samples
     dq, ddq = smp.dq[once], smp.ddq[once]
-    blocks, rhs = [], []
+    blocks: list[Rows] = []
 
-    def add(alpha: np.ndarray, beta: np.ndarray, bound: np.ndarray) -> None:
-        A, b = affine_rows(maps, alpha, beta, bound)
-        blocks.append(A)
-        rhs.append(b)
+    def add(kind: int, alpha: np.ndarray, beta: np.ndarray, bound: np.ndarray) -> None:
+        blocks.append(affine_rows(band, once, kind, alpha, beta, bound))
 
     zeros = np.zeros((len(once), 1))
-    add(zeros, np.ones_like(zeros), smp.x_cap[once][:, None])  # velocity
+    add(_Kind.VELOCITY, zeros, zeros + 1.0, smp.x_cap[once][:, None])
     inside = ((dense.k[once] > 0) & (dense.k[once] < last))[:, None]
-    add(zeros, -np.ones_like(zeros), np.where(inside, 0.0, np.inf))  # x >= 0
+    add(_Kind.POSITIVE, zeros, zeros - 1.0, np.where(inside, 0.0, np.inf))  # x >= 0
     keep = chosen.keep
     acceleration = np.where(keep.acceleration[once], limits.acceleration, np.inf)
-    for sign in (1.0, -1.0):
-        add(sign * dq, sign * ddq, acceleration)
+    for sign, offset in ((1.0, 0), (-1.0, 1)):
+        add(_Kind.ACCELERATION + offset, sign * dq, sign * ddq, acceleration)
         if smp.torque is not None and limits.torque is not None:
             assert keep.torque is not None
             a, b, c = (v[once] for v in smp.torque)
             bound = np.where(keep.torque[once], limits.torque - sign * c, np.inf)
-            add(sign * a, sign * b, bound)
+            add(_Kind.TORQUE + offset, sign * a, sign * b, bound)
     if chosen.rows is not None and dense.grasp is not None and smp.wrench is not None:
         mask = chosen.rows[once]
-        rows = np.flatnonzero(mask.any(axis=0))
         a, b, c = (v[once] for v in smp.wrench)
-        F, g = dense.grasp.F[rows], dense.grasp.g[rows]
-        bound = np.where(mask[:, rows], g - c @ F.T, np.inf)
-        add(a @ F.T, b @ F.T, bound)
-    index = np.flatnonzero(chosen.jerk_active)
+        F, g = dense.grasp.F, dense.grasp.g
+        bound = np.where(mask, g - c @ F.T, np.inf)
+        add(_Kind.GRASP, a @ F.T, b @ F.T, bound)
+    index = np.flatnonzero(chosen.jerk_active & points.inner)
     floor = 1e-6 * max(float(np.max(x_jerk)), 1e-12)
-    jerk_keep = chosen.jerk_keep
-    if jerk_keep is not None:  # rows near the limit, and wherever it was exceeded
-        jerk_keep = jerk_keep | ~np.isin(points.k, (0, len(JERK_DENSE) - 1))[:, None]
-    A, b = jerk_rows(
-        PointMaps(*(m[index] for m in points.maps)), points.inner[index],
-        points.dq[index], points.ddq[index], points.dddq[index],
-        np.maximum(x_jerk, floor)[index], limits.jerk,
-        None if jerk_keep is None else jerk_keep[index],
+    jerk_keep = np.ones((len(index), len(limits.jerk)), dtype=bool)
+    if chosen.jerk_keep is not None:  # rows near the limit (where exceeded too)
+        jerk_keep = chosen.jerk_keep[index]
+    blocks.append(
+        jerk_rows(
+            points.band.take(index), index, _Kind.JERK, points.dq[index],
+            points.ddq[index], points.dddq[index],
+            np.maximum(x_jerk, floor)[index], limits.jerk, jerk_keep,
+        )
     )  # fmt: skip
-    blocks.append(A)
-    rhs.append(b)
-    added = index[~np.isin(points.k[index], (0, len(JERK_DENSE) - 1))]
+    added = np.flatnonzero(chosen.jerk_active)
+    near = chosen.jerk_acceleration
+    if near is None:
+        near = np.zeros(points.dq.shape, dtype=bool)
+    added = added[~np.isin(points.k[added], (0, len(JERK_DENSE) - 1))]
     if added.size:  # where a limit was exceeded: velocity, acceleration too
-        extra = PointMaps(*(m[added] for m in points.maps))
-        for sign in (1.0, -1.0):
-            A, b = affine_rows(
-                extra, sign * points.dq[added], sign * points.ddq[added],
-                np.broadcast_to(limits.acceleration, points.dq[added].shape),
+        extra = points.band.take(added)
+        for sign, offset in ((1.0, 0), (-1.0, 1)):
+            blocks.append(
+                affine_rows(
+                    extra, added, _Kind.JERK_POINT_ACCELERATION + offset,
+                    sign * points.dq[added], sign * points.ddq[added],
+                    np.where(near[added], limits.acceleration, np.inf),
+                )
             )  # fmt: skip
-            blocks.append(A)
-            rhs.append(b)
         zeros = np.zeros((added.size, 1))
-        A, b = affine_rows(extra, zeros, zeros + 1.0, points.x_cap[added][:, None])
-        blocks.append(A)
-        rhs.append(b)
+        blocks.append(
+            affine_rows(
+                extra, added, _Kind.JERK_POINT_VELOCITY, zeros, zeros + 1.0,
+                points.x_cap[added][:, None],
+            )
+        )  # fmt: skip
     ds = np.diff(s)
     # Simpson's rule on each segment: T = sum ds / sqrt(x) at its ends and
     # middle, linearised at the previous profile (d/dx x^-1/2 = -x^-1.5 / 2).
-    middle = np.flatnonzero(dense.k == len(DENSE) // 2)
+    middle = problem.middle
     scale = max(float(np.max(x_bar)), 1e-12)
     x_middle = np.maximum(x_dense[middle], 1e-3 * scale)
     width = (np.append(ds, 0.0) + np.insert(ds, 0, 0.0)) / 6.0
-    weight = -dense.maps.X[middle].T @ (4.0 / 6.0 * ds / (2.0 * x_middle**1.5))
+    weight = -problem.X_middle.T @ (4.0 / 6.0 * ds / (2.0 * x_middle**1.5))
     weight[:size] -= width / (2.0 * np.maximum(x_bar, 1e-3 * scale) ** 1.5)
-    blocks.append(-dense.maps.X[middle])  # x >= 0 in the middle of each segment
-    rhs.append(np.zeros(len(middle)))
-    blocks.append(_bernstein(s, problem.kinds))  # x >= 0 all along each segment
-    rhs.append(np.zeros(int(np.sum(problem.kinds == Piece.INTERIOR))))
-    A_eq, b_eq = _continuity(s, problem.kinds)
-    result = linprog(
-        weight / np.max(np.abs(weight)),
-        A_ub=sparse.vstack(blocks).tocsr(),
-        b_ub=np.concatenate(rhs),
-        A_eq=A_eq,
-        b_eq=b_eq,
-        bounds=_bounds(problem),
-        method="highs",
-    )
-    if result.status != 0 or result.x is None:
-        raise PathNotControllableError(
-            f"jerk-limited retiming: no admissible profile ({result.message})", s=0.0
+    zeros = np.zeros((len(middle), 1))
+    blocks.append(  # x >= 0 in the middle of each segment
+        affine_rows(
+            dense.band.take(middle), middle, _Kind.MIDDLE, zeros, zeros - 1.0, zeros
         )
-    return np.asarray(result.x)
+    )
+    blocks.append(problem.bernstein)  # x >= 0 all along each segment
+    A_ub, b_ub, keys = stacked(blocks, 2 * size)
+    kind = keys >> 44
+    always = (kind == _Kind.VELOCITY) | (kind == _Kind.POSITIVE)
+    always |= (kind == _Kind.MIDDLE) | (kind == _Kind.BERNSTEIN)
+    z, status = solver.solve(
+        weight / np.max(np.abs(weight)), A_ub, b_ub, keys, *problem.equalities,
+        problem.variable_bounds, always,
+    )  # fmt: skip
+    if z is None:
+        raise PathNotControllableError(
+            f"jerk-limited retiming: no admissible profile ({status})", s=0.0
+        )
+    return z
 
 
-def _bernstein(s: np.ndarray, kinds: np.ndarray) -> sparse.csr_matrix:
+def _bernstein(s: np.ndarray, kinds: np.ndarray) -> Rows:
     """Rows ``-(x_i + ds_i u_i) <= 0`` of the interior segments.
 
     ``x(sigma)`` on segment i is the quadratic with Bernstein coefficients
@@ -469,22 +528,32 @@ def _bernstein(s: np.ndarray, kinds: np.ndarray) -> sparse.csr_matrix:
     """
     size = len(s)
     inner = np.flatnonzero(kinds == Piece.INTERIOR)
-    rows = np.repeat(np.arange(len(inner)), 2)
-    cols = np.column_stack([inner, size + inner]).ravel()
-    values = np.column_stack([-np.ones(len(inner)), -np.diff(s)[inner]]).ravel()
-    return sparse.csr_matrix((values, (rows, cols)), shape=(len(inner), 2 * size))
+    values = np.zeros((len(inner), 3))
+    values[:, 0], values[:, 1] = -1.0, -np.diff(s)[inner]
+    return Rows(
+        np.column_stack([inner, size + inner, size + inner + 1]),
+        values,
+        np.zeros(len(inner)),
+        key(_Kind.BERNSTEIN, inner, np.zeros(len(inner), dtype=int)),
+    )
 
 
-def _bounds(problem: _Problem) -> np.ndarray:
+def _bounds(
+    s: np.ndarray,
+    kinds: np.ndarray,
+    rest: dict[int, tuple[int, float]],
+    sd_start: float,
+    sd_end: float,
+) -> np.ndarray:
     """Bounds of z: x >= 0, the ends' x, and the start and stop pieces' u."""
-    size = len(problem.s)
+    size = len(s)
     lower = np.full(2 * size, -np.inf)
     upper = np.full(2 * size, np.inf)
     lower[:size] = 0.0
-    lower[0] = upper[0] = float(problem.sd_start) ** 2
-    lower[size - 1] = upper[size - 1] = float(problem.sd_end) ** 2
-    for segment, (variable, most) in problem.bounds.items():
-        if problem.kinds[segment] == Piece.START:  # u_0 = 0, 0 <= u_1 <= most
+    lower[0] = upper[0] = float(sd_start) ** 2
+    lower[size - 1] = upper[size - 1] = float(sd_end) ** 2
+    for segment, (variable, most) in rest.items():
+        if kinds[segment] == Piece.START:  # u_0 = 0, 0 <= u_1 <= most
             lower[size] = upper[size] = 0.0
             lower[variable], upper[variable] = 0.0, most
         else:  # u_N = 0, -most <= u_{N-1} <= 0

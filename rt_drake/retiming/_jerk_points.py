@@ -19,6 +19,7 @@ import numpy as np
 
 from rt_drake.retiming._check import Margin
 from rt_drake.retiming._jerk_rows import (
+    Band,
     PointMaps,
     jerk_values,
     point_maps,
@@ -43,6 +44,11 @@ class GraspRows:
 
     F: np.ndarray
     g: np.ndarray
+
+    @property
+    def scaled(self) -> np.ndarray:
+        """``F_r / g_r``, (R, 6): ``F_r w / g_r = scaled_r w``."""
+        return self.F / self.g[:, None]
 
 
 def rest_bounds(
@@ -109,6 +115,7 @@ class DensePoints:
     k: np.ndarray
     samples: PathSamples
     maps: PointMaps
+    band: Band
     grasp: GraspRows | None
 
     @staticmethod
@@ -125,11 +132,13 @@ class DensePoints:
         ds = np.diff(s)[segments]
         at = s[segments] + sigma * ds
         at[k == len(DENSE) - 1] = s[segments + 1][k == len(DENSE) - 1]
+        maps = point_maps(s, kinds, segments, sigma)
         return DensePoints(
             s=at,
             k=k,
             samples=sample(at),
-            maps=point_maps(s, kinds, segments, sigma),
+            maps=maps,
+            band=Band.of(maps, segments, len(s)),
             grasp=grasp,
         )
 
@@ -148,14 +157,19 @@ class DensePoints:
         assert self.grasp is not None and self.samples.wrench is not None
         a, b, c = self.samples.wrench
         w = a * u[:, None] + b * x[:, None] + c
-        return (w @ self.grasp.F.T) / self.grasp.g
+        return w @ self.grasp.scaled.T
 
     def grasp_excess(self, z: np.ndarray) -> np.ndarray:
         """Relative excess of every grasp row at every point, (P, R)."""
         return self.grasp_ratio(self.maps.X @ z, self.maps.U @ z) - 1.0
 
-    def ratios(self, z: np.ndarray, limits: JointLimits) -> dict[Margin, np.ndarray]:
-        """Each limit's largest ratio ``value / limit`` at every point, (P,)."""
+    def ratios(
+        self, z: np.ndarray, limits: JointLimits, grasp_excess: np.ndarray | None = None
+    ) -> dict[Margin, np.ndarray]:
+        """Each limit's largest ratio ``value / limit`` at every point, (P,).
+
+        ``grasp_excess``: :meth:`grasp_excess` at z, if already known.
+        """
         x, u = self.maps.X @ z, self.maps.U @ z
         smp = self.samples
         x_cap = np.where(np.isfinite(smp.x_cap), smp.x_cap, np.inf)
@@ -174,19 +188,20 @@ class DensePoints:
             tau = a * u[:, None] + b * x[:, None] + c
             out[Margin.TORQUE] = np.max(np.abs(tau) / limits.torque, axis=1)
         if self.grasp is not None:
-            out[Margin.GRASP] = np.max(self.grasp_excess(z), axis=1) + 1.0
+            if grasp_excess is None:
+                grasp_excess = self.grasp_excess(z)
+            out[Margin.GRASP] = np.max(grasp_excess, axis=1) + 1.0
         return out
 
-    def excess(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
-        """Largest relative excess over a limit at every point, (P,)."""
-        return (
-            np.max(np.column_stack(list(self.ratios(z, limits).values())), axis=1) - 1.0
-        )
-
-    def margins(self, z: np.ndarray, limits: JointLimits) -> dict[Margin, np.ndarray]:
+    def margins(self, ratios: dict[Margin, np.ndarray]) -> dict[Margin, np.ndarray]:
         """``1 - ratio`` at the grid points (segment starts, and the end)."""
         grid = np.append(np.flatnonzero(self.k == 0), len(self.s) - 1)
-        return {m: 1.0 - r[grid] for m, r in self.ratios(z, limits).items()}
+        return {m: 1.0 - r[grid] for m, r in ratios.items()}
+
+
+def largest_excess(ratios: dict[Margin, np.ndarray]) -> np.ndarray:
+    """Largest relative excess over a limit at every point, (P,)."""
+    return np.max(np.column_stack(list(ratios.values())), axis=1) - 1.0
 
 
 def _divide(x: np.ndarray, cap: np.ndarray) -> np.ndarray:
@@ -214,6 +229,7 @@ class JerkPoints:
     ddq: np.ndarray
     dddq: np.ndarray
     maps: PointMaps
+    band: Band
     segment: np.ndarray
 
     @staticmethod
@@ -230,6 +246,7 @@ class JerkPoints:
         at[k == count - 1] = s[segments + 1][k == count - 1]
         own = np.clip(at, s[segments] + 1e-9 * ds, s[segments + 1] - 1e-9 * ds)
         dq = spline(at, 1)
+        maps = point_maps(s, kinds, segments, sigma)
         with np.errstate(divide="ignore", over="ignore"):  # q' = 0: no cap
             x_cap = np.min(velocity**2 / dq**2, axis=1)
         return JerkPoints(
@@ -240,7 +257,8 @@ class JerkPoints:
             dq=dq,
             ddq=spline(at, 2),
             dddq=spline(own, 3),
-            maps=point_maps(s, kinds, segments, sigma),
+            maps=maps,
+            band=Band.of(maps, segments, len(s)),
             segment=segments,
         )
 
@@ -262,6 +280,12 @@ class JerkPoints:
         for segment, (variable, bound) in bounds.items():
             out[self.segment == segment] = (abs(z[variable]) / bound) ** 1.5
         return out
+
+    def acceleration_ratio(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
+        """``|q'_j u + q''_j x| / a_j`` at every point, (P, n)."""
+        x, u = np.maximum(self.maps.X @ z, 0.0), self.maps.U @ z
+        acceleration = np.abs(self.dq * u[:, None] + self.ddq * x[:, None])
+        return acceleration / limits.acceleration
 
     def joint_ratio(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
         """The largest velocity or acceleration ratio at every point, (P,)."""
@@ -286,5 +310,6 @@ __all__ = [
     "GraspRows",
     "JerkPoints",
     "Keep",
+    "largest_excess",
     "rest_bounds",
 ]

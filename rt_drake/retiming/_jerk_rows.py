@@ -94,54 +94,135 @@ def point_maps(
     return PointMaps(matrix(rows_x, cols_x, vals_x), matrix(rows_u, cols_u, vals_u), K)
 
 
+class Band(NamedTuple):
+    """``x``, ``u``, ``k`` at P points as three entries each (the rows of PointMaps).
+
+    Each point's x, u and k are linear in the three variables ``cols[p] =
+    (x_i, u_i, u_{i+1})`` of its segment i: ``x_p = X[p] . z[cols[p]]``, and
+    likewise U and K; all (P, 3).
+    """
+
+    cols: np.ndarray
+    X: np.ndarray
+    U: np.ndarray
+    K: np.ndarray
+
+    @staticmethod
+    def of(maps: PointMaps, segment: np.ndarray, size: int) -> Band:
+        """The band of ``maps`` at points of ``segment`` ((P,)), grid of ``size``."""
+        cols = np.column_stack([segment, size + segment, size + segment + 1])
+        out = []
+        for matrix in maps:
+            coo = matrix.tocoo()
+            where = coo.col[:, None] == cols[coo.row]
+            assert np.all(where.sum(axis=1) == 1), "an entry off the segment's band"
+            values = np.zeros(cols.shape)
+            np.add.at(values, (coo.row, np.argmax(where, axis=1)), coo.data)
+            out.append(values)
+        return Band(cols, *out)
+
+    def take(self, index: np.ndarray) -> Band:
+        """The band at the points ``index``."""
+        return Band(self.cols[index], self.X[index], self.U[index], self.K[index])
+
+
+class Rows(NamedTuple):
+    """LP rows ``values . z[cols] <= bound``, each named by a key.
+
+    ``cols``, ``values``: (R, 3); ``bound``, ``keys``: (R,). A key names one
+    row across the LPs of a retime (kind of row, point, joint or grasp row:
+    :func:`key`), so that one LP's basis can start the next.
+    """
+
+    cols: np.ndarray
+    values: np.ndarray
+    bound: np.ndarray
+    keys: np.ndarray
+
+
+def key(kind: int, point: np.ndarray, column: np.ndarray) -> np.ndarray:
+    """``kind * 2^44 + point * 2^14 + column`` (point < 2^30, column < 2^14)."""
+    return (int(kind) << 44) + (point.astype(np.int64) << 14) + column.astype(np.int64)
+
+
 def affine_rows(
-    maps: PointMaps, alpha: np.ndarray, beta: np.ndarray, bound: np.ndarray
-) -> tuple[sparse.csr_matrix, np.ndarray]:
+    band: Band,
+    points: np.ndarray,
+    kind: int,
+    alpha: np.ndarray,
+    beta: np.ndarray,
+    bound: np.ndarray,
+) -> Rows:
     """Rows ``alpha[p, m] u_p + beta[p, m] x_p <= bound[p, m]`` (finite bounds).
 
-    ``alpha``, ``beta``, ``bound``: (P, M). Returns (A, b).
+    ``band``: the P points; ``points``: (P,) their indices among all points
+    (for the keys); ``alpha``, ``beta``, ``bound``: (P, M).
     """
-    keep = np.isfinite(bound)
-    p, _ = np.nonzero(keep)
-    A = sparse.diags(alpha[keep]) @ maps.U[p] + sparse.diags(beta[keep]) @ maps.X[p]
-    return sparse.csr_matrix(A), bound[keep]
+    p, m = np.nonzero(np.isfinite(bound))
+    a, b = alpha[p, m][:, None], beta[p, m][:, None]
+    return Rows(
+        band.cols[p],
+        a * band.U[p] + b * band.X[p],
+        bound[p, m],
+        key(kind, points[p], m),
+    )
 
 
 def jerk_rows(
-    maps: PointMaps,
-    inner: np.ndarray,
+    band: Band,
+    points: np.ndarray,
+    kind: int,
     dq: np.ndarray,
     ddq: np.ndarray,
     dddq: np.ndarray,
     x_bar: np.ndarray,
     jerk: np.ndarray,
-    keep: np.ndarray | None = None,
-) -> tuple[sparse.csr_matrix, np.ndarray]:
+    keep: np.ndarray,
+) -> Rows:
     """``+-B_j + J_j x / (2 xbar^1.5) <= 1.5 J_j / sqrt(xbar)`` at interior points.
 
-    ``inner``: (P,) which points lie on interior pieces; ``dq``, ``ddq``,
-    ``dddq``: (P, n) the path's derivatives there (the third on the piece's
-    own side of a knot); ``x_bar``: (P,) > 0 the previous iterate; ``keep``:
-    (P, n) which joints' rows to make (None: all).
+    ``band``, ``points``: the P points (on interior pieces) and their
+    indices; ``dq``, ``ddq``, ``dddq``: (P, n) the path's derivatives there
+    (the third on the piece's own side of a knot); ``x_bar``: (P,) > 0 the
+    previous iterate; ``keep``: (P, n) which joints' rows to make. Rows of
+    the sign +1 have keys of ``kind``, those of -1 of ``kind + 1``.
     """
-    index = np.flatnonzero(inner)
-    X, U, K = (m[index] for m in maps)
-    slope = 0.5 * jerk[None, :] / x_bar[index, None] ** 1.5
-    bound = 1.5 * jerk[None, :] / np.sqrt(x_bar[index, None])
-    chosen = np.ones(bound.shape, dtype=bool) if keep is None else keep[index]
-    blocks, rhs = [], []
-    p, _ = np.nonzero(chosen)
-    for sign in (1.0, -1.0):
-        a_k = sign * dq[index][chosen]
-        a_u = sign * 3.0 * ddq[index][chosen]
-        a_x = (sign * dddq[index] + slope)[chosen]
-        blocks.append(
-            sparse.diags(a_k) @ K[p]
-            + sparse.diags(a_u) @ U[p]
-            + sparse.diags(a_x) @ X[p]
-        )
-        rhs.append(bound[chosen])
-    return sparse.csr_matrix(sparse.vstack(blocks)), np.concatenate(rhs)
+    p, j = np.nonzero(keep)
+    slope = (0.5 * jerk[j] / x_bar[p] ** 1.5)[:, None]
+    bound = 1.5 * jerk[j] / np.sqrt(x_bar[p])
+    B = (
+        dq[p, j][:, None] * band.K[p]
+        + 3.0 * ddq[p, j][:, None] * band.U[p]
+        + dddq[p, j][:, None] * band.X[p]
+    )
+    X = slope * band.X[p]
+    return Rows(
+        np.concatenate([band.cols[p]] * 2),
+        np.concatenate([B + X, X - B]),
+        np.concatenate([bound, bound]),
+        np.concatenate([key(kind, points[p], j), key(kind + 1, points[p], j)]),
+    )
+
+
+def stacked(
+    rows: list[Rows], size: int
+) -> tuple[sparse.csr_matrix, np.ndarray, np.ndarray]:
+    """The rows as one sparse (R, size) matrix, their bounds and keys.
+
+    Zero entries are dropped.
+    """
+    cols = np.concatenate([r.cols for r in rows])
+    values = np.concatenate([r.values for r in rows])
+    nonzero = values != 0.0
+    indptr = np.concatenate([[0], np.cumsum(nonzero.sum(axis=1))])
+    A = sparse.csr_matrix(
+        (values[nonzero], cols[nonzero], indptr), shape=(len(values), size)
+    )
+    return (
+        A,
+        np.concatenate([r.bound for r in rows]),
+        np.concatenate([r.keys for r in rows]),
+    )
 
 
 def jerk_values(
@@ -183,8 +264,12 @@ def rest_bound(
 
 
 __all__ = [
+    "Band",
     "PointMaps",
+    "Rows",
     "affine_rows",
+    "key",
+    "stacked",
     "jerk_rows",
     "jerk_values",
     "point_maps",

@@ -1,0 +1,180 @@
+"""The jerk-limited retimer's LPs, solved by HiGHS and started from the last basis.
+
+Consecutive LPs of a retime (:mod:`._jerk`) differ little: the jerk rows'
+coefficients move with the previous profile, and rows are added between
+rounds. Each row carries a key (:func:`._jerk_rows.key`); the next LP starts
+from the previous optimal basis, matched row by row through the keys (new
+rows basic, i.e. their slack in the basis; the columns keep their status).
+HiGHS takes such a basis as an "alien" one and repairs its count and rank,
+so a warm LP takes a few dual simplex iterations instead of several
+hundred. The LP is
+
+    minimise c z  subject to  A_ub z <= b_ub,  A_eq z = b_eq,  lower <= z <= upper.
+"""
+
+from __future__ import annotations
+
+import highspy
+import numpy as np
+from scipy import sparse
+
+_STATUS = np.array(
+    [highspy.HighsBasisStatus(v) for v in range(5)], dtype=object
+)  # kLower, kBasic, kUpper, kZero, kNonbasic
+_BASIC = 1
+#: Relative distance to a bound under which a crash start makes a row nonbasic.
+GUESS = 1e-2
+#: Relative excess (over ``max(1, |bound|)``) of a row that a sub-LP's
+#: optimum may leave before the row joins (HiGHS's primal tolerance).
+FEASIBLE = 1e-7
+
+
+class WarmLP:
+    """One retime's sequence of LPs on one HiGHS instance (not thread-safe)."""
+
+    def __init__(self) -> None:
+        self._highs = highspy.Highs()
+        self._highs.setOptionValue("output_flag", False)
+        self._highs.setOptionValue("presolve", "off")
+        self._highs.setOptionValue("solver", "simplex")
+        #: The last sub-LP's row keys and statuses, and its columns' statuses.
+        self._keys: np.ndarray | None = None
+        self._rows: np.ndarray | None = None
+        self._cols: np.ndarray | None = None
+        self._start: np.ndarray | None = None
+        #: Simplex iterations and sub-LPs so far.
+        self.iterations = 0
+        self.solves = 0
+
+    def guess(self, z: np.ndarray) -> None:
+        """Start the first LP near ``z`` (rows tight there in, and nonbasic)."""
+        self._start = np.asarray(z, dtype=float)
+
+    def solve(
+        self,
+        c: np.ndarray,
+        A_ub: sparse.csr_matrix,
+        b_ub: np.ndarray,
+        keys: np.ndarray,
+        A_eq: sparse.csr_matrix,
+        b_eq: np.ndarray,
+        bounds: np.ndarray,
+        always: np.ndarray,
+    ) -> tuple[np.ndarray | None, str]:
+        """The optimum z, or None and HiGHS's model status when there is none.
+
+        ``keys``: (R_ub,) distinct names of the rows of ``A_ub``; the
+        equality rows keep their order from one LP to the next. ``bounds``:
+        (n, 2) lower and upper bounds of z (inf for none). ``always``:
+        (R_ub,) rows every sub-LP takes (enough to bound it).
+
+        Cutting planes: a sub-LP takes ``always``, the rows tight at the
+        last optimum (or the guess) and those it breaks; the rows its
+        optimum breaks by more than :data:`FEASIBLE` join, and it is solved
+        again (warm), until none is broken: then its optimum is the LP's.
+        """
+        working = always.copy()
+        slack = np.maximum(1.0, np.abs(b_ub))
+        if self._start is not None:
+            working |= A_ub @ self._start >= b_ub - GUESS * slack
+        if self._keys is not None and self._rows is not None:
+            tight = self._keys[self._rows[: len(self._keys)] != _BASIC]
+            working |= np.isin(keys, tight)
+        while True:
+            z, status = self._solve(
+                c, A_ub[working], b_ub[working], keys[working], A_eq, b_eq, bounds
+            )
+            if z is None:
+                if working.all():
+                    return None, status
+                working[:] = True  # a sub-LP unbounded: take every row
+                continue
+            broken = ~working & (A_ub @ z > b_ub + FEASIBLE * slack)
+            if not broken.any():
+                self._start = z
+                return z, status
+            working |= broken
+
+    def _solve(
+        self,
+        c: np.ndarray,
+        A_ub: sparse.csr_matrix,
+        b_ub: np.ndarray,
+        keys: np.ndarray,
+        A_eq: sparse.csr_matrix,
+        b_eq: np.ndarray,
+        bounds: np.ndarray,
+    ) -> tuple[np.ndarray | None, str]:
+        """One sub-LP, from the last basis (matched by key) or the guess."""
+        A = sparse.vstack([A_ub, A_eq]).tocsr()
+        m, n = A.shape
+        lower = np.concatenate([np.full(len(b_ub), -np.inf), b_eq])
+        upper = np.concatenate([b_ub, b_eq])
+        highs = self._highs
+        highs.passModel(
+            n, m, A.nnz, int(highspy.MatrixFormat.kRowwise),
+            int(highspy.ObjSense.kMinimize), 0.0,
+            np.asarray(c, dtype=float), np.asarray(bounds[:, 0], dtype=float),
+            np.asarray(bounds[:, 1], dtype=float), lower, upper,
+            A.indptr[:-1].astype(np.int32), A.indices.astype(np.int32),
+            A.data.astype(float), np.zeros(n, dtype=np.int32),  # continuous
+        )  # fmt: skip
+        cols = rows = None
+        if self._keys is not None and self._cols is not None and self._rows is not None:
+            cols, rows = self._cols, self._row_status(keys, len(b_eq))
+        elif self._start is not None:  # crash: the rows within GUESS of a bound
+            cols = _at_bound(self._start, bounds[:, 0], bounds[:, 1], GUESS)
+            rows = _at_bound(A @ self._start, lower, upper, GUESS)
+        if cols is not None and rows is not None:
+            basis = highspy.HighsBasis()
+            basis.col_status = _STATUS[cols].tolist()
+            basis.row_status = _STATUS[rows].tolist()
+            basis.alien = True
+            highs.setBasis(basis)
+        highs.run()
+        status = highs.getModelStatus()
+        self.iterations += int(highs.getInfo().simplex_iteration_count)
+        self.solves += 1
+        if status != highspy.HighsModelStatus.kOptimal:
+            self._keys = None
+            return None, highs.modelStatusToString(status)
+        solution = highs.getSolution()
+        z = np.asarray(solution.col_value)
+        # The next basis from the optimum: a variable or row at a bound is
+        # nonbasic there (at a degenerate vertex too many are; HiGHS repairs
+        # an alien basis's count and rank).
+        self._cols = _at_bound(z, bounds[:, 0], bounds[:, 1])
+        self._rows = _at_bound(np.asarray(solution.row_value), lower, upper)
+        self._keys = keys.copy()
+        return z, "Optimal"
+
+    def _row_status(self, keys: np.ndarray, equalities: int) -> np.ndarray:
+        """The last sub-LP's status of each row with the same key; basic if new."""
+        assert self._keys is not None and self._rows is not None
+        order = np.argsort(self._keys)
+        sorted_keys = self._keys[order]
+        at = np.clip(np.searchsorted(sorted_keys, keys), 0, len(order) - 1)
+        found = sorted_keys[at] == keys
+        status = np.full(len(keys), _BASIC)
+        status[found] = self._rows[order[at[found]]]
+        previous_eq = self._rows[len(self._keys) :]
+        eq = np.full(equalities, _BASIC)
+        eq[: len(previous_eq)] = previous_eq[:equalities]
+        return np.concatenate([status, eq])
+
+
+def _at_bound(
+    value: np.ndarray, lower: np.ndarray, upper: np.ndarray, tolerance: float = 1e-9
+) -> np.ndarray:
+    """Basis status codes: 0 at the lower bound, 2 at (or over) the upper, 1 else.
+
+    Within ``tolerance`` relative to ``max(1, |bound|)``.
+    """
+    status = np.full(len(value), _BASIC)
+    with np.errstate(invalid="ignore"):
+        status[value <= lower + tolerance * np.maximum(1.0, np.abs(lower))] = 0
+        status[value >= upper - tolerance * np.maximum(1.0, np.abs(upper))] = 2
+    return status
+
+
+__all__ = ["WarmLP"]
