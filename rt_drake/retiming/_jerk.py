@@ -60,7 +60,7 @@ from rt_drake.retiming._jerk_points import (
     rest_bounds,
 )
 from rt_drake.retiming._jerk_rows import Rows, affine_rows, jerk_rows, key, stacked
-from rt_drake.retiming._jerk_timed_path import JerkTimedPath, Piece
+from rt_drake.retiming._jerk_timed_path import JerkTimedPath, Piece, quadrature_duration
 from rt_drake.retiming._joint_path import JointPath
 from rt_drake.retiming._retime_errors import (
     LimitsBetweenGridPointsError,
@@ -232,10 +232,8 @@ def jerk_limited(
             z = _solve(problem, chosen, solver, x_bar, x_dense, x_jerk)
             lps += 1
             x, u = _split(z, len(s))
-            try:
-                duration = JerkTimedPath(spline, s, x, u).duration
-            except RetimeInputError:  # s' = 0 between the LP's points
-                duration = np.inf
+            duration = quadrature_duration(s, x, u)
+            if not np.isfinite(duration):  # s' = 0 between the LP's points
                 chosen.active |= dense.maps.X @ z <= 0.0
             if np.isfinite(duration) and (best is None or duration < best[0]):
                 best = (duration, z)

@@ -37,11 +37,15 @@ class WarmLP:
         self._highs.setOptionValue("output_flag", False)
         self._highs.setOptionValue("presolve", "off")
         self._highs.setOptionValue("solver", "simplex")
-        #: The last sub-LP's row keys and statuses, and its columns' statuses.
+        self._highs.setOptionValue("simplex_dual_edge_weight_strategy", 1)  # Devex
+        #: The last LP's inequality rows (keys, in the model's order) and
+        #: their basis statuses; its equality rows' and columns' statuses.
         self._keys: np.ndarray | None = None
-        self._rows: np.ndarray | None = None
-        self._cols: np.ndarray | None = None
+        self._rows = np.zeros(0, dtype=int)
+        self._eq = np.zeros(0, dtype=int)
+        self._cols = np.zeros(0, dtype=int)
         self._start: np.ndarray | None = None
+        self._head = 0  # inequality rows passed with the model
         #: Simplex iterations and sub-LPs so far.
         self.iterations = 0
         self.solves = 0
@@ -68,34 +72,60 @@ class WarmLP:
         (n, 2) lower and upper bounds of z (inf for none). ``always``:
         (R_ub,) rows every sub-LP takes (enough to bound it).
 
-        Cutting planes: a sub-LP takes ``always``, the rows tight at the
-        last optimum (or the guess) and those it breaks; the rows its
-        optimum breaks by more than :data:`FEASIBLE` join, and it is solved
-        again (warm), until none is broken: then its optimum is the LP's.
+        Cutting planes: the first sub-LP takes ``always``, the rows tight at
+        the last optimum (or the guess) and those that point breaks; the
+        rows its optimum breaks by more than :data:`FEASIBLE` are added
+        (HiGHS keeps its basis) and it is solved again, until none is
+        broken: then its optimum is the LP's.
         """
         working = always.copy()
         slack = np.maximum(1.0, np.abs(b_ub))
         if self._start is not None:
             working |= A_ub @ self._start >= b_ub - GUESS * slack
-        if self._keys is not None and self._rows is not None:
-            tight = self._keys[self._rows[: len(self._keys)] != _BASIC]
-            working |= np.isin(keys, tight)
+        if self._keys is not None:
+            working |= np.isin(keys, self._keys[self._rows != _BASIC])
+        order = np.flatnonzero(working)
+        z, status = self._load(
+            c, A_ub[order], b_ub[order], keys[order], A_eq, b_eq, bounds
+        )
         while True:
-            z, status = self._solve(
-                c, A_ub[working], b_ub[working], keys[working], A_eq, b_eq, bounds
-            )
             if z is None:
                 if working.all():
+                    self._keys = None
                     return None, status
                 working[:] = True  # a sub-LP unbounded: take every row
+                order = np.arange(len(b_ub))
+                z, status = self._load(c, A_ub, b_ub, keys, A_eq, b_eq, bounds)
                 continue
-            broken = ~working & (A_ub @ z > b_ub + FEASIBLE * slack)
-            if not broken.any():
-                self._start = z
-                return z, status
-            working |= broken
+            broken = np.flatnonzero(~working & (A_ub @ z > b_ub + FEASIBLE * slack))
+            if not broken.size:
+                break
+            working[broken] = True
+            order = np.concatenate([order, broken])
+            cut = A_ub[broken]
+            self._highs.addRows(
+                len(broken), np.full(len(broken), -np.inf), b_ub[broken], cut.nnz,
+                cut.indptr[:-1].astype(np.int32), cut.indices.astype(np.int32),
+                cut.data.astype(float),
+            )  # fmt: skip
+            z, status = self._run()
+        # The next LP's basis from this optimum: a variable or row at a
+        # bound is nonbasic there (at a degenerate vertex too many are;
+        # HiGHS repairs an alien basis's count and rank).
+        assert z is not None
+        # The model's rows: the first sub-LP's inequalities, the equalities,
+        # then the cuts added (``order`` lists the inequalities likewise).
+        row_value = np.asarray(self._highs.getSolution().row_value)
+        head, eq = self._head, len(b_eq)
+        ub_value = np.concatenate([row_value[:head], row_value[head + eq :]])
+        self._rows = _at_bound(ub_value, np.full(len(order), -np.inf), b_ub[order])
+        self._eq = _at_bound(row_value[head : head + eq], b_eq, b_eq)
+        self._cols = _at_bound(z, bounds[:, 0], bounds[:, 1])
+        self._keys = keys[order]
+        self._start = z
+        return z, status
 
-    def _solve(
+    def _load(
         self,
         c: np.ndarray,
         A_ub: sparse.csr_matrix,
@@ -105,13 +135,13 @@ class WarmLP:
         b_eq: np.ndarray,
         bounds: np.ndarray,
     ) -> tuple[np.ndarray | None, str]:
-        """One sub-LP, from the last basis (matched by key) or the guess."""
+        """Pass the sub-LP to HiGHS, start it from the last basis or the guess, run."""
         A = sparse.vstack([A_ub, A_eq]).tocsr()
         m, n = A.shape
         lower = np.concatenate([np.full(len(b_ub), -np.inf), b_eq])
         upper = np.concatenate([b_ub, b_eq])
-        highs = self._highs
-        highs.passModel(
+        self._head = len(b_ub)
+        self._highs.passModel(
             n, m, A.nnz, int(highspy.MatrixFormat.kRowwise),
             int(highspy.ObjSense.kMinimize), 0.0,
             np.asarray(c, dtype=float), np.asarray(bounds[:, 0], dtype=float),
@@ -120,8 +150,10 @@ class WarmLP:
             A.data.astype(float), np.zeros(n, dtype=np.int32),  # continuous
         )  # fmt: skip
         cols = rows = None
-        if self._keys is not None and self._cols is not None and self._rows is not None:
-            cols, rows = self._cols, self._row_status(keys, len(b_eq))
+        if self._keys is not None:
+            eq = np.full(len(b_eq), _BASIC)
+            eq[: len(self._eq)] = self._eq[: len(b_eq)]
+            cols, rows = self._cols, np.concatenate([self._row_status(keys), eq])
         elif self._start is not None:  # crash: the rows within GUESS of a bound
             cols = _at_bound(self._start, bounds[:, 0], bounds[:, 1], GUESS)
             rows = _at_bound(A @ self._start, lower, upper, GUESS)
@@ -130,37 +162,30 @@ class WarmLP:
             basis.col_status = _STATUS[cols].tolist()
             basis.row_status = _STATUS[rows].tolist()
             basis.alien = True
-            highs.setBasis(basis)
+            self._highs.setBasis(basis)
+        return self._run()
+
+    def _run(self) -> tuple[np.ndarray | None, str]:
+        """Run HiGHS on its model: the optimum, or None and the model status."""
+        highs = self._highs
         highs.run()
         status = highs.getModelStatus()
         self.iterations += int(highs.getInfo().simplex_iteration_count)
         self.solves += 1
         if status != highspy.HighsModelStatus.kOptimal:
-            self._keys = None
             return None, highs.modelStatusToString(status)
-        solution = highs.getSolution()
-        z = np.asarray(solution.col_value)
-        # The next basis from the optimum: a variable or row at a bound is
-        # nonbasic there (at a degenerate vertex too many are; HiGHS repairs
-        # an alien basis's count and rank).
-        self._cols = _at_bound(z, bounds[:, 0], bounds[:, 1])
-        self._rows = _at_bound(np.asarray(solution.row_value), lower, upper)
-        self._keys = keys.copy()
-        return z, "Optimal"
+        return np.asarray(highs.getSolution().col_value), "Optimal"
 
-    def _row_status(self, keys: np.ndarray, equalities: int) -> np.ndarray:
-        """The last sub-LP's status of each row with the same key; basic if new."""
-        assert self._keys is not None and self._rows is not None
+    def _row_status(self, keys: np.ndarray) -> np.ndarray:
+        """The last LP's status of each row with the same key; basic if new."""
+        assert self._keys is not None
         order = np.argsort(self._keys)
         sorted_keys = self._keys[order]
         at = np.clip(np.searchsorted(sorted_keys, keys), 0, len(order) - 1)
         found = sorted_keys[at] == keys
         status = np.full(len(keys), _BASIC)
         status[found] = self._rows[order[at[found]]]
-        previous_eq = self._rows[len(self._keys) :]
-        eq = np.full(equalities, _BASIC)
-        eq[: len(previous_eq)] = previous_eq[:equalities]
-        return np.concatenate([status, eq])
+        return status
 
 
 def _at_bound(

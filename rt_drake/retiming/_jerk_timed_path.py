@@ -83,6 +83,36 @@ def _lowest_x(x: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.where(inside, np.minimum(ends, at_vertex), ends)
 
 
+def quadrature_duration(s: np.ndarray, x: np.ndarray, u: np.ndarray) -> float:
+    """The motion's duration, ``sum ds / sqrt(x)``, by quadrature (inf if it stops).
+
+    Start and stop pieces in closed form (``T = sqrt(6 ds / |u|)``), the
+    interior segments by 16-point Gauss-Legendre quadrature of ``ds /
+    sqrt(x(sigma))`` (what :class:`JerkTimedPath` starts its Newton steps
+    from; close to its exact duration where x stays away from 0). Inf where
+    x reaches 0 inside a segment or a rest piece has ``u = 0``.
+    """
+    x = np.maximum(np.asarray(x, dtype=float), 0.0)
+    ds = np.diff(s)
+    kinds = piece_kinds(x)
+    total = 0.0
+    for i in np.flatnonzero(kinds != Piece.INTERIOR):
+        a = abs(u[i + 1] if kinds[i] == Piece.START else u[i])
+        if not a > 0.0:
+            return np.inf
+        total += float(np.sqrt(6.0 * ds[i] / a))
+    inner = np.flatnonzero(kinds == Piece.INTERIOR)
+    d, x0, u0, u1 = ds[inner], x[inner], u[inner], u[inner + 1]
+    if np.any(_lowest_x(x0, d * u0, d * u1) <= 0.0):
+        return np.inf
+    nodes, weights = np.polynomial.legendre.leggauss(16)
+    sigma = 0.5 * (nodes + 1.0)
+    xs = x0[:, None] + d[:, None] * (
+        (2.0 * sigma - sigma**2) * u0[:, None] + sigma**2 * u1[:, None]
+    )
+    return total + float(np.sum(0.5 * d * np.sum(weights / np.sqrt(xs), axis=1)))
+
+
 def piece_kinds(x: np.ndarray) -> np.ndarray:
     """START for the first segment if ``x_0 = 0``, STOP for the last if ``x_N = 0``."""
     kinds = np.full(len(x) - 1, Piece.INTERIOR, dtype=int)
@@ -282,4 +312,10 @@ class JerkTimedPath(PathTrajectory):
         return series[self._order :]
 
 
-__all__ = ["JerkTimedPath", "Piece", "piece_kinds", "stumpff"]
+__all__ = [
+    "JerkTimedPath",
+    "Piece",
+    "piece_kinds",
+    "quadrature_duration",
+    "stumpff",
+]
