@@ -566,20 +566,19 @@ def _continuity(
     """``x_{i+1} - x_i - ds_i (u_i + u_{i+1}) = 0`` (and the rest pieces' relations)."""
     size = len(s)
     ds = np.diff(s)
-    r, c, v = [], [], []
-    for i, kind in enumerate(kinds):
-        if kind == Piece.START:  # x_1 = 1.5 ds u_1
-            entries = [(i + 1, 1.0), (size + i + 1, -1.5 * ds[i])]
-        elif kind == Piece.STOP:  # x_{N-1} = -1.5 ds u_{N-1}
-            entries = [(i, 1.0), (size + i, 1.5 * ds[i])]
-        else:
-            entries = [
-                (i + 1, 1.0), (i, -1.0), (size + i, -ds[i]), (size + i + 1, -ds[i])
-            ]  # fmt: skip
-        for col, val in entries:
-            r.append(i)
-            c.append(col)
-            v.append(val)
+    i = np.arange(len(kinds))
+    # Interior: x_{i+1}, x_i, u_i, u_{i+1}; the rest pieces use two of them.
+    c = np.column_stack([i + 1, i, size + i, size + i + 1])
+    v = np.column_stack([np.ones_like(ds), -np.ones_like(ds), -ds, -ds])
+    start, stop = kinds == Piece.START, kinds == Piece.STOP
+    v[start] = np.column_stack(
+        [np.ones(start.sum()), 0 * ds[start], 0 * ds[start], -1.5 * ds[start]]
+    )  # x_1 = 1.5 ds u_1
+    v[stop] = np.column_stack(
+        [0 * ds[stop], np.ones(stop.sum()), 1.5 * ds[stop], 0 * ds[stop]]
+    )  # x_{N-1} = -1.5 ds u_{N-1}
+    r = np.repeat(i, 4)
+    c, v = c.ravel(), v.ravel()
     A = sparse.csr_matrix((v, (r, c)), shape=(len(kinds), 2 * size))
     return A, np.zeros(len(kinds))
 

@@ -113,11 +113,13 @@ class Band(NamedTuple):
         cols = np.column_stack([segment, size + segment, size + segment + 1])
         out = []
         for matrix in maps:
-            coo = matrix.tocoo()
-            where = coo.col[:, None] == cols[coo.row]
+            csr = sparse.csr_matrix(matrix)
+            csr.sum_duplicates()
+            row = np.repeat(np.arange(csr.shape[0]), np.diff(csr.indptr))
+            where = csr.indices[:, None] == cols[row]
             assert np.all(where.sum(axis=1) == 1), "an entry off the segment's band"
             values = np.zeros(cols.shape)
-            np.add.at(values, (coo.row, np.argmax(where, axis=1)), coo.data)
+            values[row, np.argmax(where, axis=1)] = csr.data
             out.append(values)
         return Band(cols, *out)
 

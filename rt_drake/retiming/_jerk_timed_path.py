@@ -46,6 +46,8 @@ from rt_drake.retiming._timed_path import PathTrajectory
 MAX_ORDER = 3
 #: |z| below which C0, C1, C2 are summed as series (error < 1e-16).
 _SERIES = 1e-3
+#: 16-point Gauss-Legendre nodes and weights on [-1, 1].
+_GAUSS = np.polynomial.legendre.leggauss(16)
 
 
 class Piece(enum.IntEnum):
@@ -105,7 +107,7 @@ def quadrature_duration(s: np.ndarray, x: np.ndarray, u: np.ndarray) -> float:
     d, x0, u0, u1 = ds[inner], x[inner], u[inner], u[inner + 1]
     if np.any(_lowest_x(x0, d * u0, d * u1) <= 0.0):
         return np.inf
-    nodes, weights = np.polynomial.legendre.leggauss(16)
+    nodes, weights = _GAUSS
     sigma = 0.5 * (nodes + 1.0)
     xs = x0[:, None] + d[:, None] * (
         (2.0 * sigma - sigma**2) * u0[:, None] + sigma**2 * u1[:, None]
@@ -193,7 +195,7 @@ class JerkTimedPath(PathTrajectory):
         if np.any(lowest <= 0.0):
             i = int(index[np.flatnonzero(lowest <= 0.0)[0]])
             raise RetimeInputError(f"s' reaches 0 inside segment {i}: never ends")
-        nodes, weights = np.polynomial.legendre.leggauss(16)
+        nodes, weights = _GAUSS
         sigma = 0.5 * (nodes + 1.0)
         xs = x[:, None] + ds[:, None] * (
             (2.0 * sigma - sigma**2) * u[:, None] + sigma**2 * u1[:, None]
