@@ -59,7 +59,15 @@ from rt_drake.retiming._jerk_points import (
     largest_excess,
     rest_bounds,
 )
-from rt_drake.retiming._jerk_rows import Rows, affine_rows, jerk_rows, key, stacked
+from rt_drake.retiming._jerk_rows import (
+    KIND_SHIFT,
+    Rows,
+    affine_rows,
+    jerk_rows,
+    key,
+    stacked,
+)
+from rt_drake.retiming._jerk_set import SetGrasp, SetPairs
 from rt_drake.retiming._jerk_timed_path import JerkTimedPath, Piece, quadrature_duration
 from rt_drake.retiming._joint_path import JointPath
 from rt_drake.retiming._retime_errors import (
@@ -153,6 +161,7 @@ class _Selection:
     jerk_active: np.ndarray
     jerk_keep: np.ndarray | None = None
     jerk_acceleration: np.ndarray | None = None
+    pairs: SetPairs | None = None
 
 
 def jerk_limited(
@@ -163,6 +172,7 @@ def jerk_limited(
     limits: JointLimits,
     F: np.ndarray | None,
     g: np.ndarray | None,
+    objects: SetGrasp | None,
     sd_start: float,
     sd_end: float,
     start_time: float,
@@ -178,6 +188,8 @@ def jerk_limited(
         limits: Joint limits with ``jerk`` set.
         F: The grasp rows' normals (R, 6), or None.
         g: Their offsets (R,), or None.
+        objects: The grasp of a set of objects (:mod:`._jerk_set`), or None
+            (then F and g are None).
         sd_start: Path velocity at the start, 1/s.
         sd_end: Path velocity at the end, 1/s.
         start_time: s.
@@ -213,11 +225,19 @@ def jerk_limited(
     rows = None
     if grasp is not None:
         rows = (dense.grasp_ratio(x_ref, u_ref) >= SCREEN) & active[:, None]
+    pairs = None
+    if objects is not None:
+        assert dense.samples.wrench_set is not None
+        pairs = SetPairs(dense.samples.wrench_set, objects.normals, objects.layout)
+        worst = pairs.worst(x_ref, u_ref)
+        assert worst.ranked is not None
+        pairs.add(worst, (worst.ranked[0] >= SCREEN) & active[:, None])
     chosen = _Selection(
         active=active,
         rows=rows,
         keep=dense.joint_ratios(x_ref, u_ref, limits).at_least(JOINT_SCREEN),
         jerk_active=np.isin(points.k, (0, len(JERK_DENSE) - 1)),
+        pairs=pairs,
     )
     x_bar = np.maximum(np.interp(s, s_topp, x_topp), 0.0)
     x_dense = np.interp(dense.s, s, x_bar)
@@ -251,7 +271,12 @@ def jerk_limited(
             _refuse_stop(dense, z)
         z = best[1]
         grasp_excess = None if grasp is None else dense.grasp_excess(z)
-        ratios = dense.ratios(z, limits, grasp_excess)
+        grasp_max = None if grasp_excess is None else grasp_excess.max(axis=1) + 1.0
+        set_worst = None
+        if pairs is not None:  # the set's worst object at every dense point
+            set_worst = pairs.worst(dense.maps.X @ z, dense.maps.U @ z)
+            grasp_max = set_worst.ratio
+        ratios = dense.ratios(z, limits, grasp_max)
         excess, jerk_excess = largest_excess(ratios), _point_excess(problem, z)
         over, jerk_over = excess > tolerance, jerk_excess > tolerance
         if not (over.any() or jerk_over.any()) or rounds == MAX_ROUNDS:
@@ -268,6 +293,9 @@ def jerk_limited(
         )
         if chosen.rows is not None and grasp_excess is not None:
             chosen.rows |= grasp_excess > tolerance
+        if pairs is not None and set_worst is not None:
+            assert set_worst.ranked is not None
+            pairs.add(set_worst, set_worst.ranked[0] - 1.0 > tolerance)
         best = None  # the rows changed: the old optimum may break them
     _refuse(problem, excess, jerk_excess)
     x, u = _split(z, len(s))
@@ -281,7 +309,7 @@ def jerk_limited(
         margins=margins,
         lps=lps,
         rounds=rounds,
-        grasp_rows=0 if chosen.rows is None else int(chosen.rows[chosen.active].sum()),
+        grasp_rows=_grasp_rows(chosen),
     )
 
 
@@ -324,6 +352,13 @@ def _point_excess(problem: _Problem, z: np.ndarray) -> np.ndarray:
     points = problem.jerk
     ratio = points.ratio(z, problem.limits, problem.bounds)
     return np.maximum(ratio, points.joint_ratio(z, problem.limits)) - 1.0
+
+
+def _grasp_rows(chosen: _Selection) -> int:
+    """(point, row) pairs of the grasp (or (point, row, vertex) of a set) in the LPs."""
+    if chosen.pairs is not None:
+        return len(chosen.pairs)
+    return 0 if chosen.rows is None else int(chosen.rows[chosen.active].sum())
 
 
 def _refuse_stop(dense: DensePoints, z: np.ndarray) -> NoReturn:
@@ -451,6 +486,8 @@ def _solve(
         F, g = dense.grasp.F, dense.grasp.g
         bound = np.where(mask, g - c @ F.T, np.inf)
         add(_Kind.GRASP, a @ F.T, b @ F.T, bound)
+    if chosen.pairs is not None and len(chosen.pairs):
+        blocks.append(chosen.pairs.rows(dense.band, once, _Kind.GRASP))
     index = np.flatnonzero(chosen.jerk_active & points.inner)
     floor = 1e-6 * max(float(np.max(x_jerk)), 1e-12)
     jerk_keep = np.ones((len(index), len(limits.jerk)), dtype=bool)
@@ -502,7 +539,7 @@ def _solve(
     )
     blocks.append(problem.bernstein)  # x >= 0 all along each segment
     A_ub, b_ub, keys = stacked(blocks, 2 * size)
-    kind = keys >> 44
+    kind = keys >> KIND_SHIFT
     always = (kind == _Kind.VELOCITY) | (kind == _Kind.POSITIVE)
     always |= (kind == _Kind.MIDDLE) | (kind == _Kind.BERNSTEIN)
     z, status = solver.solve(

@@ -164,11 +164,12 @@ class DensePoints:
         return self.grasp_ratio(self.maps.X @ z, self.maps.U @ z) - 1.0
 
     def ratios(
-        self, z: np.ndarray, limits: JointLimits, grasp_excess: np.ndarray | None = None
+        self, z: np.ndarray, limits: JointLimits, grasp: np.ndarray | None = None
     ) -> dict[Margin, np.ndarray]:
         """Each limit's largest ratio ``value / limit`` at every point, (P,).
 
-        ``grasp_excess``: :meth:`grasp_excess` at z, if already known.
+        ``grasp``: (P,) the grasp's largest ratio at z, if already known (a
+        set of objects: its worst object's); else the grasp rows' (if any).
         """
         x, u = self.maps.X @ z, self.maps.U @ z
         smp = self.samples
@@ -187,10 +188,10 @@ class DensePoints:
             a, b, c = smp.torque
             tau = a * u[:, None] + b * x[:, None] + c
             out[Margin.TORQUE] = np.max(np.abs(tau) / limits.torque, axis=1)
-        if self.grasp is not None:
-            if grasp_excess is None:
-                grasp_excess = self.grasp_excess(z)
-            out[Margin.GRASP] = np.max(grasp_excess, axis=1) + 1.0
+        if grasp is None and self.grasp is not None:
+            grasp = np.max(self.grasp_excess(z), axis=1) + 1.0
+        if grasp is not None:
+            out[Margin.GRASP] = grasp
         return out
 
     def margins(self, ratios: dict[Margin, np.ndarray]) -> dict[Margin, np.ndarray]:

@@ -143,8 +143,12 @@ class Rows(NamedTuple):
 
 
 def key(kind: int, point: np.ndarray, column: np.ndarray) -> np.ndarray:
-    """``kind * 2^44 + point * 2^14 + column`` (point < 2^30, column < 2^14)."""
-    return (int(kind) << 44) + (point.astype(np.int64) << 14) + column.astype(np.int64)
+    """``kind * 2^52 + point * 2^24 + column`` (point < 2^28, column < 2^24)."""
+    return (
+        (int(kind) << KIND_SHIFT)
+        + (point.astype(np.int64) << 24)
+        + column.astype(np.int64)
+    )
 
 
 def affine_rows(
@@ -265,7 +269,11 @@ def rest_bound(
         return float(np.min((jerk[None, :] / np.abs(K)) ** (2.0 / 3.0)))
 
 
+#: The key bits below a row's kind (:func:`key`).
+KIND_SHIFT = 52
+
 __all__ = [
+    "KIND_SHIFT",
     "Band",
     "PointMaps",
     "Rows",

@@ -79,6 +79,7 @@ from rt_drake.retiming._grasp_rows import (
     ObjectRows,
 )
 from rt_drake.retiming._jerk import check_smooth, jerk_limited
+from rt_drake.retiming._jerk_set import SetGrasp
 from rt_drake.retiming._jerk_timed_path import JerkTimedPath
 from rt_drake.retiming._joint_path import (
     JointPath,
@@ -246,10 +247,12 @@ def retime(
         raise RetimeInputError(
             f"path has {n} joints but {plant.num_positions()=} and {limits.num_joints=}"
         )
-    if limits.jerk is not None and grasp is not None and grasp.is_robust:
+    robust_jerk = limits.jerk is not None and grasp is not None and grasp.is_robust
+    if robust_jerk and limits.torque is not None:
         raise RetimeInputError(
-            "jerk limits with the grasp of a set of objects are not supported: "
-            "retime without them (limits.jerk None, --no-jerk-limits)"
+            "jerk limits with the grasp of a set of objects and torque limits are "
+            "not supported: retime without torque limits or without jerk limits "
+            "(limits.jerk None, --no-jerk-limits)"
         )
     if limits.jerk is not None:
         check_smooth(spline)
@@ -335,9 +338,13 @@ def retime(
         cut_rounds = set_cut_rounds = 0
     s = samples.s
     if limits.jerk is not None:
+        single = grasp is not None and not isinstance(family, SetRows)
         jerk = jerk_limited(
             spline, sample, s, profile.x, limits,
-            None if grasp is None else grasp.F, None if grasp is None else grasp.g,
+            grasp.F if single and grasp is not None else None,
+            grasp.g if single and grasp is not None else None,
+            SetGrasp(family.normals, family.layout)
+            if isinstance(family, SetRows) else None,
             sd_start, sd_end, start_time, BETWEEN_TOLERANCE,
         )  # fmt: skip
         margins = jerk.margins

@@ -168,19 +168,6 @@ def test_the_motion_is_what_the_profile_says(plant, limits):
     np.testing.assert_allclose(a[-1], 0.0, atol=1e-12)  # ... and stops there
 
 
-def test_jerk_limits_and_a_set_of_objects_are_refused(plant, limits, scenario):
-    from rt_drake.types.object_uncertainty import ObjectUncertainty
-
-    robust = GraspConstraint.robust(
-        held_object_of(scenario.object("carton_box")),
-        ObjectUncertainty(mass=0.1),
-        scenario.cup,
-    )
-    path = np.array([HOME, HOME + [0.5, 0, 0, 0, 0, 0]])
-    with pytest.raises(RetimeInputError, match="jerk limits with the grasp of a set"):
-        retime(plant, path, limits, robust)
-
-
 def test_the_file_and_its_export_keep_the_jerk_limited_motion(
     plant, limits, scenario, tmp_path
 ):
