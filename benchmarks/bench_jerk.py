@@ -14,7 +14,8 @@ the grasp constraint of the notebook at 100 grid points. For each MOVE:
     is shared) of one acceleration-limited and one jerk-limited retime
     (shipped limits), interleaved, ``--repeats`` times, median per MOVE;
     and the share of the jerk-limited retime spent in the LPs
-    (``WarmLP.solve``: HiGHS, warm-started, with its cutting planes);
+    (``WarmLP.solve``: HiGHS, warm-started, with its cutting planes), and
+    the CPU time of the first LP and of each later one;
 (c) every limit of the jerk-limited MOVE (shipped limits) at 1 kHz:
     ``check_trajectory`` (velocity, acceleration, position, jerk from
     differences of the 1 kHz accelerations, grasp by Newton-Euler) and the
@@ -52,18 +53,18 @@ from rt_drake.simulation import OnlineMotions  # noqa: E402
 
 #: Jerk limits of the curve, as multiples of the acceleration limits (1/s).
 FACTORS = (5.0, 10.0, 20.0)
-#: CPU ms spent in the LPs, accumulated by :func:`timed_solve`.
-IN_LPS = [0.0]
+#: CPU ms of each LP (``WarmLP.solve``) since the last reset, by :func:`timed_solve`.
+IN_LPS: list[float] = []
 _SOLVE = _jerk_lp.WarmLP.solve
 
 
 def timed_solve(*args, **kwargs):  # noqa: ANN002, ANN003, ANN201
-    """``WarmLP.solve``, adding its thread CPU time to IN_LPS."""
+    """``WarmLP.solve``, appending its thread CPU time (ms) to IN_LPS."""
     start = time.thread_time()
     try:
         return _SOLVE(*args, **kwargs)
     finally:
-        IN_LPS[0] += 1e3 * (time.thread_time() - start)
+        IN_LPS.append(1e3 * (time.thread_time() - start))
 
 
 def planned_moves(n: int, seed: int) -> list[tuple[object, object]]:
@@ -116,6 +117,7 @@ def main() -> None:
     grid = args.gridpoints
     ratios: dict[str, list[float]] = {"shipped": [], **{f"{f:g}x": [] for f in FACTORS}}
     cpu_plain, cpu_jerk, lps, highs = [], [], [], []
+    first_lp, warm_lp = [], []
     _jerk_lp.WarmLP.solve = timed_solve  # type: ignore[method-assign]
     worst_check, worst_difference, passed = np.inf, 0.0, 0
     for index, (path, grasp) in enumerate(moves):
@@ -131,11 +133,13 @@ def main() -> None:
             ratios[f"{factor:g}x"].append(other.duration / base.duration)
         for _ in range(args.repeats):
             for limits, times in ((plain, cpu_plain), (shipped, cpu_jerk)):
-                IN_LPS[0] = 0.0
+                IN_LPS.clear()
                 start = time.thread_time()
                 retime(plant, path, limits, grasp, grid, context=context)
                 times.append(1e3 * (time.thread_time() - start))
-            highs.append(IN_LPS[0] / times[-1])
+            highs.append(sum(IN_LPS) / times[-1])
+            first_lp.append(IN_LPS[0])
+            warm_lp.extend(IN_LPS[1:])
         check = check_trajectory(plant, limited.trajectory, shipped, grasp)
         difference = float(
             np.max(third_difference_jerk(limited.trajectory) / shipped.jerk)
@@ -162,7 +166,9 @@ def main() -> None:
         f"{statistics.median(cpu_jerk) / statistics.median(cpu_plain):.1f}; "
         f"LPs per jerk-limited retime median {statistics.median(lps):g}, max {max(lps)}"
         f"; share of the jerk-limited retime in its LPs (HiGHS) median "
-        f"{100 * statistics.median(highs):.0f} %"
+        f"{100 * statistics.median(highs):.0f} %; CPU ms of the first LP median "
+        f"{statistics.median(first_lp):.1f}, of each later (warm-started) LP "
+        f"median {statistics.median(warm_lp):.1f}"
     )
     print(
         f"\n(c) {passed}/{len(moves)} jerk-limited MOVEs hold every limit at 1 kHz "

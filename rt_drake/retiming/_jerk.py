@@ -245,9 +245,12 @@ def jerk_limited(
     solver.guess(_topp_start(s, x_bar, problem.variable_bounds))
     lps = rounds = 0
     best: tuple[float, np.ndarray] | None = None
+    # The duration of the profile the next LP is linearised at (a new round
+    # starts from the last LP's: if its first LP changes it by less than
+    # CONVERGED, the round is done).
+    previous = np.inf
     while True:
         rounds += 1
-        previous = np.inf
         for _ in range(MAX_LPS):
             z = _solve(problem, chosen, solver, x_bar, x_dense, x_jerk)
             lps += 1
