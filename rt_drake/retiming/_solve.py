@@ -230,11 +230,13 @@ def retime(
     Raises:
         RetimeInputError: malformed path, limits or grid, a path that
             leaves the joint position limits, ``sd_start``, ``sd_end``
-            not finite and >= 0, ``start_time`` not finite, or an unknown
-            ``engine``.
+            not finite and >= 0, ``start_time`` not finite, an unknown
+            ``engine``, or jerk and torque limits with the grasp of a set of
+            objects.
         GraspUnstableAtRestError: gravity alone breaks the grasp somewhere.
         TorqueLimitAtRestError: holding the arm still exceeds a torque limit.
-        PathNotControllableError: no admissible speed reaches the end.
+        PathNotControllableError: no admissible speed reaches the end (with
+            jerk limits also: the LPs keep the speed 0 inside the path).
         LimitsBetweenGridPointsError: a limit is still exceeded between grid
             points, beyond the 1e-3 contract, after the last refinement.
     """
