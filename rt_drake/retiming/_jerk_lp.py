@@ -7,7 +7,8 @@ from the previous optimal basis, matched row by row through the keys (new
 rows basic, i.e. their slack in the basis; the columns keep their status).
 HiGHS takes such a basis as an "alien" one and repairs its count and rank,
 so a warm LP takes a few dual simplex iterations instead of several
-hundred. The LP is
+hundred. Rows enter as cutting planes (:meth:`WarmLP.solve`): an LP first
+takes those tight at its start, then those its optimum breaks. The LP is
 
     minimise c z  subject to  A_ub z <= b_ub,  A_eq z = b_eq,  lower <= z <= upper.
 """
