@@ -13,6 +13,11 @@ MOVE up to t, then its stop, is played in the cycle's physics
   braking at their acceleration limits along the path, grasp ignored (what
   robots do today).
 
+With the scenario's ``robot.jerk_limits`` (the MOVE then jerk-limited),
+both stops keep the jerk limits too, from the MOVE's own acceleration at t
+(a category-2 stop: the joint brake is then jerk-limited braking along the
+path).
+
 A stop succeeds by the transport experiment's hold criteria
 (:class:`._rollout.Rollout`: slip under 5 mm and 3 deg). Each trial also
 records the smallest grasp margin of each stop at 1 kHz
@@ -118,20 +123,32 @@ def stop_trial(
         "success_joint_stop": brake_rollout.success,
         "slip_grasp_stop": held_rollout.as_dict(),
         "slip_joint_stop": brake_rollout.as_dict(),
-        "grasp_margin_grasp_stop": _grasp_margin(plant, limits, grasp, held),
-        "grasp_margin_joint_stop": _grasp_margin(plant, limits, grasp, brake),
+        "jerk_limited": limits.jerk is not None,
+        **_margins(plant, limits, grasp, held, "grasp_stop"),
+        **_margins(plant, limits, grasp, brake, "joint_stop"),
     }
 
 
-def _grasp_margin(
+def _margins(
     plant: MultibodyPlant,
     limits: JointLimits,
     grasp: GraspConstraint,
     stop: StopResult,
-) -> float:
-    """Smallest grasp margin of the stop alone (from t on), at 1 kHz."""
+    name: str,
+) -> dict[str, float | None]:
+    """Smallest grasp margin of the stop alone (from t on), at 1 kHz.
+
+    With jerk limits, also the smallest jerk margin of the whole motion (the
+    MOVE up to t, then the stop: the joint acceleration continuous at t).
+    """
     check = check_trajectory(plant, stop.stop, limits, grasp)
-    return float(check.margins[Margin.GRASP].value)
+    margins: dict[str, float | None] = {
+        f"grasp_margin_{name}": float(check.margins[Margin.GRASP].value)
+    }
+    if limits.jerk is not None:
+        whole = check_trajectory(plant, stop.trajectory, limits)
+        margins[f"jerk_margin_{name}"] = float(whole.margins[Margin.JERK].value)
+    return margins
 
 
 def _trial_job(args: tuple) -> dict[str, Any]:

@@ -113,6 +113,7 @@ class _Problem:
     bounds: dict[int, tuple[int, float]]
     sd_start: float
     sd_end: float
+    sdd_start: float | None = None
 
 
 @dataclasses.dataclass
@@ -138,6 +139,8 @@ def jerk_limited(
     sd_end: float,
     start_time: float,
     tolerance: float,
+    *,
+    sdd_start: float | None = None,
 ) -> JerkProfile:
     """The jerk-limited profile near TOPP-RA's ``x_topp`` (module docstring).
 
@@ -153,6 +156,8 @@ def jerk_limited(
         sd_end: Path velocity at the end, 1/s.
         start_time: s.
         tolerance: Relative excess that adds a point (``BETWEEN_TOLERANCE``).
+        sdd_start: Path acceleration ``s''`` at the start (1/s^2), fixed
+            (a stop continuing a motion); None: free.
 
     Raises:
         PathNotControllableError: an LP has no solution.
@@ -171,7 +176,7 @@ def jerk_limited(
     points = JerkPoints.of(spline, s, kinds, limits.velocity)
     problem = _Problem(
         s, kinds, dense, points, limits, rest_bounds(spline, s, kinds, limits.jerk),
-        sd_start, sd_end,
+        sd_start, sd_end, sdd_start,
     )  # fmt: skip
     x_ref = np.interp(dense.s, s_topp, x_topp)
     u_ref = _topp_u(s_topp, x_topp, dense.s)
@@ -457,6 +462,8 @@ def _bounds(problem: _Problem) -> np.ndarray:
     lower[:size] = 0.0
     lower[0] = upper[0] = float(problem.sd_start) ** 2
     lower[size - 1] = upper[size - 1] = float(problem.sd_end) ** 2
+    if problem.sdd_start is not None:  # u_0 given (sd_start > 0: no START piece)
+        lower[size] = upper[size] = float(problem.sdd_start)
     for segment, (variable, most) in problem.bounds.items():
         if problem.kinds[segment] == Piece.START:  # u_0 = 0, 0 <= u_1 <= most
             lower[size] = upper[size] = 0.0

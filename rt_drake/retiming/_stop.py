@@ -43,6 +43,8 @@ from pydrake.trajectories import PiecewisePolynomial, Trajectory
 
 from rt_drake import arguments
 from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.retiming._jerk_stop import JerkStop, JerkStopProblem, jerk_stop
+from rt_drake.retiming._jerk_timed_path import JerkTimedPath
 from rt_drake.retiming._joint_path import JointPath, PathLike, as_joint_path
 from rt_drake.retiming._retime_errors import (
     PathNotControllableError,
@@ -51,14 +53,13 @@ from rt_drake.retiming._retime_errors import (
 )
 from rt_drake.retiming._samples import sample_path
 from rt_drake.retiming._solve import RetimeResult, retime
+from rt_drake.retiming._spliced_path import SplicedPath
 from rt_drake.retiming._stop_pass import REST_X, StopPass, grid_constraints, stop_pass
-from rt_drake.retiming._timed_path import TimedPath
+from rt_drake.retiming._sub_path import STOP_GRIDPOINTS, stop_grid, sub_path
+from rt_drake.retiming._timed_path import PathTrajectory, TimedPath
 from rt_drake.retiming.grid import MIN_STEP
 from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint, JointLimits
 
-#: Uniform points, at least, of the grid of the sub-path a stop is retimed on
-#: (with the retime's own grid points in it).
-STOP_GRIDPOINTS = 30
 #: Parts each grid segment up to the first stop point is split into, for a
 #: second braking pass (a stop at most a fine step longer than the shortest).
 STOP_SUBDIVISION = 4
@@ -183,9 +184,12 @@ def _stop(
         raise RetimeInputError(
             f"stop: path has {spline.num_joints} joints but {limits.num_joints=}"
         )
-    s_t, sd_t = state_at(result, t)
+    s_t, sd_t, sdd_t = path_state_at(result, t)
     context = context or plant.CreateDefaultContext()
     cup = cup or CupFrame.of(plant)
+    smooth = isinstance(result.trajectory, JerkTimedPath) or limits.jerk is not None
+    if smooth and (sd_t * sd_t <= REST_X or s_t >= 1.0 - MIN_STEP):
+        return _spliced(result, float(t), s_t, sd_t, None, grasp_aware)
     if sd_t * sd_t <= REST_X:  # at rest already: the trajectory up to t
         return _at_rest(result, spline, float(t), s_t, sd_t, grasp_aware)
     if s_t >= 1.0 - MIN_STEP:  # at the end already: the MOVE rests there
@@ -210,6 +214,15 @@ def _stop(
         fine = brake(head)  # rest at s[index] reachable: its controllable sets
         if fine.stop_index is not None:
             s, braking = np.concatenate([head, s[index + 1 :]]), fine
+    if limits.jerk is not None:
+        problem = JerkStopProblem(
+            plant, spline, limits, grasp, context, cup, float(t), s_t, sd_t, sdd_t,
+            s_grid,
+        )  # fmt: skip
+        at = 1 if braking.stop_index is None else braking.stop_index
+        remainder = result.trajectory.end_time() - float(t)
+        found = jerk_stop(problem, float(s[at] - s_t), remainder)
+        return _spliced(result, float(t), s_t, sd_t, found, grasp_aware)
     if braking.stop_index is None:
         raise StopNotFoundError(
             f"no stop to rest within the path from t = {t:.4f} s (s = {s_t:.4f}, "
@@ -232,15 +245,23 @@ def _stop(
 
 
 def state_at(result: RetimeResult, t: float) -> tuple[float, float]:
-    """``(s(t), s'(t))`` of a retimed trajectory (exact, from its profile).
+    """``(s(t), s'(t))`` of a retimed trajectory (see :func:`path_state_at`)."""
+    s, sd, _ = path_state_at(result, t)
+    return s, sd
 
-    Within segment k, ``s = s_k + s'_k tau + u_k tau^2 / 2``, ``s' = s'_k +
-    u_k tau`` with ``tau = t - t_k``.
+
+def path_state_at(result: RetimeResult, t: float) -> tuple[float, float, float]:
+    """``(s(t), s'(t), s''(t))`` of a retimed trajectory (exact, from its profile).
+
+    Without jerk limits, within segment k, ``s = s_k + s'_k tau + u_k tau^2
+    / 2``, ``s' = s'_k + u_k tau``, ``s'' = u_k`` with ``tau = t - t_k``;
+    with them, the :class:`JerkTimedPath`'s own state.
 
     Raises:
         RetimeInputError: ``t`` not a finite number in ``[t0, tf]``.
     """
-    times = result.trajectory.times
+    trajectory = result.trajectory
+    times = trajectory.times
     if not (
         isinstance(t, (int, float, np.number))
         and not isinstance(t, bool)
@@ -252,12 +273,15 @@ def state_at(result: RetimeResult, t: float) -> tuple[float, float]:
             f"stop: t = {t!r} s is outside the trajectory "
             f"[{times[0]:.6g}, {times[-1]:.6g}] s"
         )
+    if isinstance(trajectory, JerkTimedPath):
+        s, sd, sdd, _ = (float(v[0]) for v in trajectory.path_state(float(t)))
+        return s, sd, sdd
     k = int(np.clip(np.searchsorted(times, t, side="right") - 1, 0, len(times) - 2))
     tau = float(t) - times[k]
     u = result.sdd[k]
     sd = max(result.sd[k] + u * tau, 0.0)
     s = min(result.gridpoints[k] + result.sd[k] * tau + 0.5 * u * tau**2, 1.0)
-    return float(s), float(sd)
+    return float(s), float(sd), float(u)
 
 
 def subdivided(s: np.ndarray, parts: int) -> np.ndarray:
@@ -296,10 +320,7 @@ def _retimed_stop(
     """
     start, length = s[0], s[index] - s[0]
     sub = sub_path(spline, start, s[index])
-    own = (s[1:index] - start) / length
-    grid = np.unique(np.concatenate([np.linspace(0, 1, STOP_GRIDPOINTS), own]))
-    grid = grid[np.concatenate([[True], np.diff(grid) > MIN_STEP])]
-    grid[-1] = 1.0
+    grid = stop_grid(s[1:index], start, length)
     stop = retime(
         plant, sub, limits, grasp, grid, sd_start=sd_t / length, context=context,
         cup=cup,
@@ -324,23 +345,6 @@ def _remainder(
     )
 
 
-def sub_path(spline: JointPath, start: float, end: float) -> JointPath:
-    """``q(start + sigma (end - start))``, sigma in [0, 1], as a JointPath.
-
-    Its derivatives in sigma are ``L^k d^k q / ds^k`` (``L = end - start``);
-    its breaks are those of ``spline`` inside, mapped.
-    """
-    length = end - start
-    inside = spline.breaks[(spline.breaks > start) & (spline.breaks < end)]
-    breaks = np.concatenate([[0.0], (inside - start) / length, [1.0]])
-
-    def evaluate(sigma: np.ndarray, order: int) -> np.ndarray:
-        s = np.minimum(start + sigma * length, end)
-        return spline(s, order) * length**order
-
-    return JointPath(evaluate, breaks, spline.cubic, spline.num_joints)
-
-
 def _joined(
     result: RetimeResult,
     spline: JointPath,
@@ -356,8 +360,10 @@ def _joined(
     grid = np.concatenate([result.gridpoints[before], stop_s])
     x = np.concatenate([result.sd[before] ** 2, [sd_t * sd_t], stop_x[1:]])
     start = result.trajectory.start_time()
-    whole = TimedPath(spline, grid, x, start)
     stop_alone = TimedPath(spline, stop_s, np.append(sd_t * sd_t, stop_x[1:]), t)
+    whole: PathTrajectory = TimedPath(spline, grid, x, start)
+    if isinstance(result.trajectory, JerkTimedPath):  # the MOVE itself up to t
+        whole = SplicedPath(result.trajectory, t, stop_alone)
     return StopResult(
         trajectory=whole,
         stop=stop_alone,
@@ -366,6 +372,45 @@ def _joined(
         s_start=s_t,
         sd_start=sd_t,
         s_stop=float(stop_s[-1]),
+        grasp_aware=grasp_aware,
+    )
+
+
+def _spliced(
+    result: RetimeResult,
+    t: float,
+    s_t: float,
+    sd_t: float,
+    found: JerkStop | None,
+    grasp_aware: bool,
+) -> StopResult:
+    """A stop joined to the MOVE at t in q, q' and q'' (:class:`SplicedPath`).
+
+    ``found`` None: at rest at t (the stop holds q(t)), or at the path's end;
+    a ``JerkStop`` without a stop: the MOVE's own rest of the path.
+    """
+    move = result.trajectory
+    if found is not None and found.stop is not None:
+        stop: PathTrajectory = found.stop
+        whole = SplicedPath(move, t, stop)
+        s_stop = found.s_stop
+    elif found is None and sd_t * sd_t <= REST_X:
+        stop = SplicedPath(move, t, None, start=t, end=t + STANDSTILL_S)
+        return StopResult(
+            SplicedPath(move, t, None, end=t + STANDSTILL_S), stop, t, 0.0, s_t,
+            sd_t, s_t, grasp_aware,
+        )  # fmt: skip
+    else:  # the MOVE itself, from t to its end at rest
+        stop = SplicedPath(move, t, move, start=t)
+        whole, s_stop = move, 1.0
+    return StopResult(
+        trajectory=whole,
+        stop=stop,
+        start_time=t,
+        duration=float(stop.end_time() - t),
+        s_start=s_t,
+        sd_start=sd_t,
+        s_stop=float(s_stop),
         grasp_aware=grasp_aware,
     )
 
