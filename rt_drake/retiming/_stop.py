@@ -23,12 +23,23 @@ along the same path ``q(s)``, never leaving it.
    (1, 2, 4, ... grid points further); at the path's end the stop is the
    retimed trajectory itself, which ends at rest.
 
+A grasp of a set of objects (``ObjectSetGrasp``): step 1 brakes under the
+nominal object's rows (a stop no longer than the set's), step 2 retimes
+under every object of the set (the retimer's exact set rows), and the
+candidates grow from there until the whole set holds.
+
+With jerk limits (``limits.jerk``) the stop is :mod:`._jerk_stop`'s instead:
+from the MOVE's own ``(s, s', s'')`` at t, the path acceleration continuous
+there, the jerk-limited retime of the sub-path over a searched stop
+distance; step 1 gives its lower bound. The whole motion is then a
+:class:`._spliced_path.SplicedPath` (the MOVE up to t, then the stop).
+
 :func:`joint_brake_stop` is what robots do today: each joint brakes as hard
 as its acceleration limit allows, along the path, under the joint velocity
 and acceleration limits only (no grasp, no torques).
 
-Jerk is not limited on either stop: the path acceleration jumps at t (as
-TOPP-RA's does between segments).
+Without jerk limits, jerk is not limited on either stop: the path
+acceleration jumps at t (as TOPP-RA's does between segments).
 """
 
 from __future__ import annotations
@@ -127,8 +138,8 @@ def protective_stop(
         result: The retimed trajectory.
         t: When the stop begins, s, in ``[start_time, end_time]`` of
             ``result.trajectory``.
-        grasp: Its grasp (one held object; a set of objects is not
-            supported); None: no object.
+        grasp: Its grasp (one held object, or a set of objects without
+            jerk limits); None: no object.
         context: Scratch context of ``plant``.
         cup: The cup frame C (default: the plant's ``suction_cup``).
 
@@ -138,7 +149,8 @@ def protective_stop(
 
     Raises:
         RetimeInputError: ``t`` not a finite number inside the trajectory,
-            a malformed argument, or a grasp of a set of objects.
+            a malformed argument, or a grasp of a set of objects with
+            jerk limits.
         StopNotFoundError: the state at t cannot be brought to rest within
             the path (not for a trajectory this retimer made).
     """
@@ -466,10 +478,11 @@ def _check_objects(
             grasp, "grasp", "GraspConstraint", GRASP_ATTRIBUTES, where="stop",
             error=RetimeInputError,
         )  # fmt: skip
-        if getattr(grasp, "is_robust", False):
+        jerk = isinstance(limits, JointLimits) and limits.jerk is not None
+        if getattr(grasp, "is_robust", False) and jerk:
             raise RetimeInputError(
-                "stop: a grasp of a set of objects is not supported; give the "
-                "nominal object's GraspConstraint"
+                "stop: jerk limits with the grasp of a set of objects are not "
+                "supported (as in retime): stop without them (limits.jerk None)"
             )
     if context is not None:
         check(context, "context", Context)
