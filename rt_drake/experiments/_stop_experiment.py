@@ -69,6 +69,7 @@ def stop_trial(
     seed: int,
     fraction: float,
     planning_budget_s: float | None = None,
+    jerk_limits: bool = False,
 ) -> dict[str, Any]:
     """Plan and retime one transport's MOVE, stop it at ``fraction`` of it, both ways.
 
@@ -81,10 +82,16 @@ def stop_trial(
         seed: The experiment's seed.
         fraction: When the stop begins, as a fraction of the MOVE's duration.
         planning_budget_s: The planner's time per call, s (None: its default).
+        jerk_limits: Retime the MOVE and make both stops under the
+            scenario's ``robot.jerk_limits`` too (when it gives them).
     """
     planner_scenario = transport_scenario(scenario, object_name, X_WO_start, X_WO_goal)
     motions = OnlineMotions(
-        planner_scenario, grasp_constraint=True, seed=seed + index, optimize=False
+        planner_scenario,
+        grasp_constraint=True,
+        seed=seed + index,
+        optimize=False,
+        jerk_limits=jerk_limits,
     )
     if planning_budget_s is not None:
         motions.planner.budget_s = planning_budget_s
@@ -101,7 +108,7 @@ def stop_trial(
     q_grasp = move.planned.q_start
     path, result, grasp = move.planned.path, move.retimed, move.grasp
     plant = make_arm_plant(planner_scenario)
-    limits = JointLimits.from_plant(plant, planner_scenario.robot)
+    limits = JointLimits.from_plant(plant, planner_scenario.robot, jerk=jerk_limits)
     t = result.trajectory.start_time() + fraction * result.duration
     held = protective_stop(plant, path, limits, result, t, grasp)
     brake = joint_brake_stop(plant, path, limits, result, t)
@@ -153,7 +160,7 @@ def _margins(
 
 def _trial_job(args: tuple) -> dict[str, Any]:
     """One trial in a worker: scenarios do not pickle, so it is loaded again."""
-    path, object_name, index, X_start, X_goal, seed, fraction = args
+    path, object_name, index, X_start, X_goal, seed, fraction, jerk = args
     return stop_trial(
         load_scenario(path),
         object_name,
@@ -162,6 +169,7 @@ def _trial_job(args: tuple) -> dict[str, Any]:
         RigidTransform(X_goal),
         seed,
         fraction,
+        jerk_limits=jerk,
     )
 
 
@@ -172,12 +180,15 @@ def run_stop_experiment(
     object_name: str | None = None,
     workers: int = 1,
     progress: Callable[[int, int], None] | None = None,
+    jerk_limits: bool = False,
 ) -> dict[str, Any]:
     """Run n stop trials (in ``workers`` processes); return results and a summary.
 
     The transports are Table I's for ``seed`` (:func:`sample_transports`);
     the stop instants are ``np.random.default_rng(seed)`` uniform fractions
     of each MOVE. ``progress(done, n)`` is called as each trial finishes.
+    With ``jerk_limits``, the MOVEs and both stops keep the scenario's
+    ``robot.jerk_limits`` (:func:`stop_trial`).
 
     Raises:
         InputError: fewer than one trial or one worker.
@@ -196,6 +207,7 @@ def run_stop_experiment(
             X_g.GetAsMatrix4(),
             seed,
             float(fractions[i]),
+            jerk_limits,
         )  # fmt: skip
         for i, (X_s, X_g) in enumerate(pairs)
     ]
@@ -204,6 +216,7 @@ def run_stop_experiment(
         "object": name,
         "seed": seed,
         "n": n,
+        "jerk_limits": jerk_limits,
         "trials": trials,
         "summary": summarize_stops(trials),
     }
