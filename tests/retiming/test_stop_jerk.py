@@ -152,3 +152,15 @@ def test_a_straight_line_stops_in_the_closed_form_jerk_limited_time(plant, limit
         assert expected * (1.0 - 1e-3) <= stop.duration <= 1.03 * expected
         check = check_trajectory(plant, stop.trajectory, limits)
         assert check.passed(), check.summary()
+
+
+def test_at_and_next_to_the_ends_a_jerk_limited_stop_is_at_rest_or_the_move(
+    plant, limits, grasp, move
+):
+    start, end = move.trajectory.start_time(), move.trajectory.end_time()
+    for t in (start, start + 1e-6, end - 1e-6, end):
+        stop = protective_stop(plant, BACK, limits, move, t, grasp)
+        assert stop.duration <= 1e-5
+        assert np.abs(stop.stop.EvalDerivative(stop.end_time, 1)).max() < 1e-6
+        check = check_trajectory(plant, stop.trajectory, limits, grasp)
+        assert check.passed(), check.summary()
