@@ -223,20 +223,20 @@ def run_stop_experiment(
 
 
 def summarize_stops(trials: list[dict[str, Any]]) -> dict[str, Any]:
-    """Successes of both stops; stop times, grasp margins (min, median, max)."""
+    """Successes of both stops; stop times, grasp (and jerk) margins' ranges."""
+    keys = [
+        "stop_time_s",
+        "joint_stop_time_s",
+        "grasp_margin_grasp_stop",
+        "grasp_margin_joint_stop",
+    ]
+    if trials and "jerk_margin_grasp_stop" in trials[0]:
+        keys += ["jerk_margin_grasp_stop", "jerk_margin_joint_stop"]
     return {
         "n": len(trials),
         "success_grasp_stop": sum(t["success_grasp_stop"] for t in trials),
         "success_joint_stop": sum(t["success_joint_stop"] for t in trials),
-        **{
-            key: _stats([t[key] for t in trials])
-            for key in (
-                "stop_time_s",
-                "joint_stop_time_s",
-                "grasp_margin_grasp_stop",
-                "grasp_margin_joint_stop",
-            )
-        },
+        **{key: _stats([t[key] for t in trials]) for key in keys},
     }
 
 
@@ -254,6 +254,8 @@ def stop_table(results: dict[str, Any]) -> str:
             f"{t['slip_joint_stop']['max_translation_mm']:.2f}"
         )
     s = results["summary"]
+    if results.get("jerk_limits"):
+        lines.append("jerk-limited MOVEs and stops (the scenario's robot.jerk_limits)")
     lines.append(
         f"grasp-aware stops hold {s['success_grasp_stop']}/{s['n']}, joint-brake "
         f"stops {s['success_joint_stop']}/{s['n']}; stop time median "
