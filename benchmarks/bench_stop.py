@@ -221,7 +221,7 @@ def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
             s, sd, sdd = path_state_at(result, t)
             problem = JerkStopProblem(
                 plant, spline, limits, grasp, context, cup, t, s, sd, sdd,
-                result.gridpoints,
+                result.gridpoints, result.sd**2,
             )  # fmt: skip
             low = held.s_stop - s if held.s_stop < 1.0 else 0.02
             candidates = [result.trajectory.end_time() - t]

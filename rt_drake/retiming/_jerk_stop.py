@@ -18,6 +18,11 @@ duration ``T(L)`` is defined from the shortest feasible L on. The search:
 3. :data:`BISECTIONS` bisections between the last L without a stop and the
    first with one.
 
+The LPs are linearised first at the smaller of TOPP-RA's stop profile and
+the motion's own (which continues from ``s''_t``: a profile TOPP-RA
+alone, braking or speeding up at once, can leave the first LP without a
+solution where a stop exists), then at TOPP-RA's alone.
+
 The stop kept is the fastest found, or the motion's own remainder if that
 is faster (near the end of a MOVE, in its own final braking). Every stop
 holds the jerk-limited retimer's contract: every limit, jerk included, and
@@ -79,7 +84,9 @@ class JerkStopProblem:
             (``limits.jerk`` set; grasp of one object or None).
         t: s, when the stop begins.
         s: ``s_t``; sd: ``s'_t`` (1/s, > 0); sdd: ``s''_t`` (1/s^2).
-        own: The motion's grid points after ``s_t`` (kept in each stop's grid).
+        own: The motion's grid points (those after ``s_t`` are kept in each
+            stop's grid).
+        own_x: ``s'^2`` of the motion there (1/s^2).
     """
 
     plant: MultibodyPlant
@@ -93,6 +100,7 @@ class JerkStopProblem:
     sd: float
     sdd: float
     own: np.ndarray
+    own_x: np.ndarray
 
     def stop(self, length: float) -> JerkTimedPath | None:
         """The fastest jerk-limited stop to rest at ``s + length`` (None: none).
@@ -122,27 +130,33 @@ class JerkStopProblem:
         if self.grasp is not None and g is not None:
             wider = dataclasses.replace(self.grasp, g=g)
         plain = dataclasses.replace(limits, jerk=None)
-        try:
-            # TOPP-RA's profile is only where the LPs are linearised: from
-            # just below s'_t if the state at t is on the edge of K_0.
-            topp = None
-            for lower in LOWER_START:
-                try:
-                    topp = retime(
-                        self.plant, sub, plain, wider, grid,
-                        sd_start=sd * (1.0 - lower), context=self.context,
-                        cup=self.cup,
-                    )  # fmt: skip
-                    break
-                except PathNotControllableError:
-                    continue
-            if topp is None:
-                return None
-            profile = jerk_limited(
-                sub, sample, topp.gridpoints, topp.sd**2, limits, F, g, sd, 0.0,
-                self.t, BETWEEN_TOLERANCE, sdd_start=sdd,
-            )  # fmt: skip
-        except (PathNotControllableError, LimitsBetweenGridPointsError):
+        # TOPP-RA's profile is only where the LPs are linearised: from just
+        # below s'_t if the state at t is on the edge of K_0.
+        topp = None
+        for lower in LOWER_START:
+            try:
+                topp = retime(
+                    self.plant, sub, plain, wider, grid,
+                    sd_start=sd * (1.0 - lower), context=self.context, cup=self.cup,
+                )  # fmt: skip
+                break
+            except PathNotControllableError:
+                continue
+        if topp is None:
+            return None
+        x_topp = topp.sd**2
+        x_move = np.interp(self.s + length * topp.gridpoints, self.own, self.own_x)
+        profile = None
+        for x_bar in (np.minimum(x_topp, x_move / length**2), x_topp):
+            try:
+                profile = jerk_limited(
+                    sub, sample, topp.gridpoints, x_bar, limits, F, g, sd, 0.0,
+                    self.t, BETWEEN_TOLERANCE, sdd_start=sdd,
+                )  # fmt: skip
+                break
+            except (PathNotControllableError, LimitsBetweenGridPointsError):
+                continue
+        if profile is None:
             return None
         return profile.trajectory
 

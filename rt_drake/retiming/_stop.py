@@ -229,7 +229,7 @@ def _stop(
     if limits.jerk is not None:
         problem = JerkStopProblem(
             plant, spline, limits, grasp, context, cup, float(t), s_t, sd_t, sdd_t,
-            s_grid,
+            s_grid, result.sd**2,
         )  # fmt: skip
         at = 1 if braking.stop_index is None else braking.stop_index
         remainder = result.trajectory.end_time() - float(t)
