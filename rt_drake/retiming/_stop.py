@@ -50,11 +50,10 @@ import functools
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import Context
-from pydrake.trajectories import PiecewisePolynomial, Trajectory
 
 from rt_drake import arguments
 from rt_drake.dynamics.cup_frame import CupFrame
-from rt_drake.retiming._jerk_stop import JerkStop, JerkStopProblem, jerk_stop
+from rt_drake.retiming._jerk_stop import JerkStopProblem, jerk_stop
 from rt_drake.retiming._jerk_timed_path import JerkTimedPath
 from rt_drake.retiming._joint_path import JointPath, PathLike, as_joint_path
 from rt_drake.retiming._retime_errors import (
@@ -64,57 +63,26 @@ from rt_drake.retiming._retime_errors import (
 )
 from rt_drake.retiming._samples import sample_path
 from rt_drake.retiming._solve import RetimeResult, retime
-from rt_drake.retiming._spliced_path import SplicedPath
 from rt_drake.retiming._stop_pass import REST_X, StopPass, grid_constraints, stop_pass
+from rt_drake.retiming._stop_result import (
+    STANDSTILL_S,
+    StopResult,
+    at_rest,
+    joined,
+    remainder,
+    spliced,
+)
 from rt_drake.retiming._sub_path import STOP_GRIDPOINTS, stop_grid, sub_path
-from rt_drake.retiming._timed_path import PathTrajectory, TimedPath
 from rt_drake.retiming.grid import MIN_STEP
 from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint, JointLimits
 
 #: Parts each grid segment up to the first stop point is split into, for a
 #: second braking pass (a stop at most a fine step longer than the shortest).
 STOP_SUBDIVISION = 4
-#: s: how long the trajectory of a stop at the very start (the robot at rest
-#: there) holds the start configuration.
-STANDSTILL_S = 1e-3
 
 
 class StopNotFoundError(RetimeError):
     """The state at t cannot be brought to rest within the path's limits."""
-
-
-@dataclasses.dataclass(frozen=True, eq=False)
-class StopResult:
-    """A protective stop (see the module docstring).
-
-    Attributes:
-        trajectory: The whole motion, q(t): the retimed trajectory up to
-            ``start_time``, then the stop; it ends at rest at ``s_stop``
-            (a ``TimedPath``; at t = the start, where the robot is at
-            rest, it holds the start for :data:`STANDSTILL_S`).
-        stop: The stop alone, from t to rest (at rest at t: holding q(t)
-            for :data:`STANDSTILL_S`).
-        start_time: t, s: when the stop begins.
-        duration: s from t to rest (0 if at rest at t).
-        s_start: Path parameter at t.
-        sd_start: Path velocity ``s'(t)``, 1/s.
-        s_stop: Path parameter where the robot comes to rest.
-        grasp_aware: Whether the grasp (and torques, if limited) were kept.
-    """
-
-    trajectory: Trajectory
-    stop: Trajectory
-    start_time: float
-    duration: float
-    s_start: float
-    sd_start: float
-    s_stop: float
-    grasp_aware: bool
-
-    @property
-    def end_time(self) -> float:
-        """Time (s) at which the robot is at rest."""
-        return self.start_time + self.duration
 
 
 def protective_stop(
@@ -201,12 +169,12 @@ def _stop(
     cup = cup or CupFrame.of(plant)
     smooth = isinstance(result.trajectory, JerkTimedPath) or limits.jerk is not None
     if smooth and (sd_t * sd_t <= REST_X or s_t >= 1.0 - MIN_STEP):
-        return _spliced(result, float(t), s_t, sd_t, None, grasp_aware)
+        return spliced(result, float(t), s_t, sd_t, None, grasp_aware)
     if sd_t * sd_t <= REST_X:  # at rest already: the trajectory up to t
-        return _at_rest(result, spline, float(t), s_t, sd_t, grasp_aware)
+        return at_rest(result, spline, float(t), s_t, sd_t, grasp_aware)
     if s_t >= 1.0 - MIN_STEP:  # at the end already: the MOVE rests there
-        stop_s, stop_x = _remainder(result, s_t, sd_t)
-        return _joined(result, spline, float(t), s_t, sd_t, stop_s, stop_x, grasp_aware)
+        stop_s, stop_x = remainder(result, s_t, sd_t)
+        return joined(result, spline, float(t), s_t, sd_t, stop_s, stop_x, grasp_aware)
     s_grid = result.gridpoints  # it ends at 1
     held = None if grasp is None else grasp.held
     F, g = (None, None) if grasp is None else (grasp.F, grasp.g)
@@ -232,9 +200,9 @@ def _stop(
             s_grid, result.sd**2,
         )  # fmt: skip
         at = 1 if braking.stop_index is None else braking.stop_index
-        remainder = result.trajectory.end_time() - float(t)
-        found = jerk_stop(problem, float(s[at] - s_t), remainder)
-        return _spliced(result, float(t), s_t, sd_t, found, grasp_aware)
+        rest_time = result.trajectory.end_time() - float(t)
+        found = jerk_stop(problem, float(s[at] - s_t), rest_time)
+        return spliced(result, float(t), s_t, sd_t, found, grasp_aware)
     if braking.stop_index is None:
         raise StopNotFoundError(
             f"no stop to rest within the path from t = {t:.4f} s (s = {s_t:.4f}, "
@@ -244,7 +212,7 @@ def _stop(
         )
     for index in _candidates(braking.stop_index, len(s) - 1):
         if index == len(s) - 1 and s[index] >= 1.0 - MIN_STEP:
-            stop_s, stop_x = _remainder(result, s_t, sd_t)
+            stop_s, stop_x = remainder(result, s_t, sd_t)
         else:
             try:
                 stop_s, stop_x = _retimed_stop(
@@ -252,7 +220,7 @@ def _stop(
                 )
             except PathNotControllableError:
                 continue
-        return _joined(result, spline, float(t), s_t, sd_t, stop_s, stop_x, grasp_aware)
+        return joined(result, spline, float(t), s_t, sd_t, stop_s, stop_x, grasp_aware)
     raise AssertionError("the path's end is always a candidate")  # pragma: no cover
 
 
@@ -342,122 +310,6 @@ def _retimed_stop(
         # start is on the edge of K_0): not the trajectory's state at t.
         raise PathNotControllableError("the stop does not start at s'(t)", s=start)
     return start + length * stop.gridpoints, (length * stop.sd) ** 2
-
-
-def _remainder(
-    result: RetimeResult, s_t: float, sd_t: float
-) -> tuple[np.ndarray, np.ndarray]:
-    """The retimed trajectory itself from ``s_t`` to its end at rest: (s, x)."""
-    s = result.gridpoints
-    later = s > s_t + MIN_STEP
-    later[-1] = True  # s = 1, where it rests
-    return (
-        np.concatenate([[s_t], s[later]]),
-        np.concatenate([[sd_t * sd_t], result.sd[later] ** 2]),
-    )
-
-
-def _joined(
-    result: RetimeResult,
-    spline: JointPath,
-    t: float,
-    s_t: float,
-    sd_t: float,
-    stop_s: np.ndarray,
-    stop_x: np.ndarray,
-    grasp_aware: bool,
-) -> StopResult:
-    """The retimed trajectory up to ``s_t``, then the stop profile, as one."""
-    before = _before(result.gridpoints, s_t)
-    grid = np.concatenate([result.gridpoints[before], stop_s])
-    x = np.concatenate([result.sd[before] ** 2, [sd_t * sd_t], stop_x[1:]])
-    start = result.trajectory.start_time()
-    stop_alone = TimedPath(spline, stop_s, np.append(sd_t * sd_t, stop_x[1:]), t)
-    whole: PathTrajectory = TimedPath(spline, grid, x, start)
-    if isinstance(result.trajectory, JerkTimedPath):  # the MOVE itself up to t
-        whole = SplicedPath(result.trajectory, t, stop_alone)
-    return StopResult(
-        trajectory=whole,
-        stop=stop_alone,
-        start_time=t,
-        duration=stop_alone.duration,
-        s_start=s_t,
-        sd_start=sd_t,
-        s_stop=float(stop_s[-1]),
-        grasp_aware=grasp_aware,
-    )
-
-
-def _spliced(
-    result: RetimeResult,
-    t: float,
-    s_t: float,
-    sd_t: float,
-    found: JerkStop | None,
-    grasp_aware: bool,
-) -> StopResult:
-    """A stop joined to the MOVE at t in q, q' and q'' (:class:`SplicedPath`).
-
-    ``found`` None: at rest at t (the stop holds q(t)), or at the path's end;
-    a ``JerkStop`` without a stop: the MOVE's own rest of the path.
-    """
-    move = result.trajectory
-    if found is not None and found.stop is not None:
-        stop: PathTrajectory = found.stop
-        whole = SplicedPath(move, t, stop)
-        s_stop = found.s_stop
-    elif found is None and sd_t * sd_t <= REST_X:
-        stop = SplicedPath(move, t, None, start=t, end=t + STANDSTILL_S)
-        return StopResult(
-            SplicedPath(move, t, None, end=t + STANDSTILL_S), stop, t, 0.0, s_t,
-            sd_t, s_t, grasp_aware,
-        )  # fmt: skip
-    else:  # the MOVE itself, from t to its end at rest
-        stop = SplicedPath(move, t, move, start=t)
-        whole, s_stop = move, 1.0
-    return StopResult(
-        trajectory=whole,
-        stop=stop,
-        start_time=t,
-        duration=float(stop.end_time() - t),
-        s_start=s_t,
-        sd_start=sd_t,
-        s_stop=float(s_stop),
-        grasp_aware=grasp_aware,
-    )
-
-
-def _before(s: np.ndarray, s_t: float) -> np.ndarray:
-    """Grid points kept before ``s_t``: the start, and those MIN_STEP before it.
-
-    A point closer to ``s_t`` would make a segment too short for its path
-    acceleration to be computed from x (rounding over a step of 1e-12); the
-    profile changes by at most ``2 MIN_STEP |u|`` in x without it.
-    """
-    before = s < s_t - MIN_STEP
-    before[0] = s[0] < s_t
-    return before
-
-
-def _at_rest(
-    result: RetimeResult,
-    spline: JointPath,
-    t: float,
-    s_t: float,
-    sd_t: float,
-    grasp_aware: bool,
-) -> StopResult:
-    """A stop of no duration: the robot is at rest at t (the path's ends)."""
-    s = result.gridpoints
-    before = _before(s, s_t)
-    q = spline(s_t).reshape(-1, 1)
-    hold = PiecewisePolynomial.FirstOrderHold([t, t + STANDSTILL_S], np.hstack([q, q]))
-    trajectory: Trajectory = hold
-    if before.any():
-        grid = np.append(s[before], s_t)
-        x = np.append(result.sd[before] ** 2, 0.0)
-        trajectory = TimedPath(spline, grid, x, result.trajectory.start_time())
-    return StopResult(trajectory, hold, t, 0.0, s_t, sd_t, s_t, grasp_aware)
 
 
 def _check_objects(
