@@ -1,6 +1,8 @@
 """CPU time of a protective stop beside the retime of its MOVE, and what it costs.
 
-Run: ``PYTHONPATH=. python benchmarks/bench_stop.py [--paths 6] [--instants 9]``.
+Run: ``PYTHONPATH=. python benchmarks/bench_stop.py [--paths 6] [--instants 9]``;
+``--jerk K`` (jerk limits K x the acceleration limits, per second) runs the
+jerk-limited comparison instead (:func:`jerk_main`).
 
 The MOVE-like paths of ``bench_retime.py`` (lift, swing joint 1 by 0.6 to
 1.8 rad, set down; the notebook on the scenario's cup, 100 grid points) are
@@ -72,7 +74,12 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--paths", type=int, default=6)
     parser.add_argument("--instants", type=int, default=9)
+    parser.add_argument("--jerk", type=float, default=None)
+    parser.add_argument("--sweep", type=int, default=24)
     args = parser.parse_args()
+    if args.jerk is not None:
+        jerk_main(args.paths, args.instants, args.jerk, args.sweep)
+        return
     scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
     plant = make_arm_plant(scenario)
     context = plant.CreateDefaultContext()
@@ -129,6 +136,138 @@ def main() -> None:
     print(row("grasp margin, grasp-aware stop", held_margin, 1.0, "1"))
     print(row("grasp margin, joint-brake stop", brake_margin, 1.0, "1"))
     left = sum(m < -1e-3 for m in brake_margin)
+    print(f"joint-brake stops leaving the grasp set (margin < -1e-3): {left}/{count}")
+
+
+def ruckig_stop(v: np.ndarray, a: np.ndarray, limits: JointLimits) -> float:
+    """Slowest joint's time-optimal jerk-limited stop from (v, a), each apart.
+
+    Ruckig (velocity interface, target v = a = 0) per joint with its own
+    velocity, acceleration and jerk limits: no path, no grasp, no
+    synchronisation, so a lower bound for a stop of all joints along a path.
+    """
+    from ruckig import ControlInterface, InputParameter, Result, Ruckig, Trajectory
+
+    assert limits.jerk is not None
+    slowest = 0.0
+    for j in range(len(v)):
+        otg, inp, out = Ruckig(1), InputParameter(1), Trajectory(1)
+        inp.control_interface = ControlInterface.Velocity
+        inp.current_position, inp.current_velocity = [0.0], [float(v[j])]
+        inp.current_acceleration = [float(a[j])]
+        inp.target_velocity, inp.target_acceleration = [0.0], [0.0]
+        inp.max_velocity = [float(limits.velocity[j])]
+        inp.max_acceleration = [float(limits.acceleration[j])]
+        inp.max_jerk = [float(limits.jerk[j])]
+        assert otg.calculate(inp, out) == Result.Working
+        slowest = max(slowest, out.duration)
+    return slowest
+
+
+def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
+    """Jerk-limited stops beside a sweep over the stop distance and Ruckig.
+
+    On the MOVE-like paths, retimed under the grasp with jerk limits
+    ``factor`` x the acceleration limits, each stop is compared with the
+    fastest of ``sweep`` jerk-limited stops at evenly spaced distances from
+    the acceleration-limited shortest one to the path's end (the reference
+    search, with the MOVE's own remainder), and the joint brake with Ruckig's
+    per-joint stops (:func:`ruckig_stop`). CPU time of this thread.
+    """
+    import dataclasses
+
+    from rt_drake.dynamics.cup_frame import CupFrame
+    from rt_drake.retiming._jerk_stop import JerkStopProblem
+    from rt_drake.retiming._joint_path import as_joint_path
+    from rt_drake.retiming._stop import path_state_at
+
+    scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
+    plant = make_arm_plant(scenario)
+    context = plant.CreateDefaultContext()
+    cup = CupFrame.of(plant)
+    plain = JointLimits.from_plant(plant, scenario.robot)
+    limits = dataclasses.replace(plain, jerk=factor * plain.acceleration)
+    grasp = GraspConstraint.for_cup(
+        held_object_of(scenario.object("notebook")), scenario.cup
+    )
+    path0 = move_paths(1)[0]
+    warm = retime(plant, path0, limits, grasp)
+    protective_stop(plant, path0, limits, warm, 0.3 * warm.duration, grasp)
+    rows: dict[str, list[float]] = {
+        k: []
+        for k in (
+            "retime", "stop_cpu", "brake_cpu", "held", "best", "ratio", "brake",
+            "ruckig", "brake_ratio", "held_margin", "brake_margin", "jerk_margin",
+        )
+    }  # fmt: skip
+    for path in move_paths(paths):
+        result, seconds = cpu(lambda p=path: retime(plant, p, limits, grasp))
+        rows["retime"].append(seconds)
+        spline = as_joint_path(path)
+        for k in range(1, instants + 1):
+            t = k / (instants + 1) * result.duration
+            held, seconds = cpu(
+                lambda p=path, r=result, t=t: protective_stop(
+                    plant, p, limits, r, t, grasp, context=context
+                )
+            )
+            rows["stop_cpu"].append(seconds)
+            brake, seconds = cpu(
+                lambda p=path, r=result, t=t: joint_brake_stop(
+                    plant, p, limits, r, t, context=context
+                )
+            )
+            rows["brake_cpu"].append(seconds)
+            s, sd, sdd = path_state_at(result, t)
+            problem = JerkStopProblem(
+                plant, spline, limits, grasp, context, cup, t, s, sd, sdd,
+                result.gridpoints, result.sd**2,
+            )  # fmt: skip
+            low = held.s_stop - s if held.s_stop < 1.0 else 0.02
+            candidates = [result.trajectory.end_time() - t]
+            for length in np.linspace(0.5 * low, 1.0 - s, sweep, endpoint=False):
+                stop = problem.stop(float(length))
+                if stop is not None:
+                    candidates.append(stop.duration)
+            best = min(candidates)
+            _, v, a = (x[0] for x in result.trajectory.sample(np.array([t]), 2))
+            floor = ruckig_stop(v, a, limits)
+            rows["held"].append(held.duration)
+            rows["best"].append(best)
+            rows["ratio"].append(held.duration / best)
+            rows["brake"].append(brake.duration)
+            rows["ruckig"].append(floor)
+            rows["brake_ratio"].append(brake.duration / floor)
+            for stop, key in ((held, "held_margin"), (brake, "brake_margin")):
+                check = check_trajectory(plant, stop.stop, limits, grasp)
+                rows[key].append(check.margins[Margin.GRASP].value)
+            whole = check_trajectory(plant, held.trajectory, limits, grasp)
+            rows["jerk_margin"].append(whole.margins[Margin.JERK].value)
+
+    def row(name: str, key: str, scale: float, unit: str) -> str:
+        v = np.asarray(rows[key]) * scale
+        return (
+            f"| {name} | {statistics.median(v):.4g} | {v.min():.4g} | "
+            f"{v.max():.4g} | {unit} |"
+        )
+
+    count = len(rows["held"])
+    print(f"jerk {factor:g} x acceleration /s; {paths} paths x {instants} = {count}")
+    print("| quantity | median | min | max | unit |")
+    print("|---|---:|---:|---:|---|")
+    print(row("jerk-limited retime of the MOVE (CPU)", "retime", 1e3, "ms"))
+    print(row("protective_stop, jerk-limited (CPU)", "stop_cpu", 1e3, "ms"))
+    print(row("joint_brake_stop, jerk-limited (CPU)", "brake_cpu", 1e3, "ms"))
+    print(row("grasp-aware stop time", "held", 1.0, "s"))
+    print(row(f"fastest of the {sweep}-distance sweep", "best", 1.0, "s"))
+    print(row("grasp-aware / sweep's fastest", "ratio", 1.0, "1"))
+    print(row("joint-brake stop time", "brake", 1.0, "s"))
+    print(row("Ruckig per joint, slowest", "ruckig", 1.0, "s"))
+    print(row("joint brake / Ruckig", "brake_ratio", 1.0, "1"))
+    print(row("grasp margin, grasp-aware stop", "held_margin", 1.0, "1"))
+    print(row("grasp margin, joint-brake stop", "brake_margin", 1.0, "1"))
+    print(row("jerk margin, MOVE + grasp-aware stop", "jerk_margin", 1.0, "1"))
+    left = sum(m < -1e-3 for m in rows["brake_margin"])
     print(f"joint-brake stops leaving the grasp set (margin < -1e-3): {left}/{count}")
 
 

@@ -26,6 +26,7 @@ PRINTS = {
     "docs/guides/protective-stops.md": [
         "grasp-aware stop within every limit: True",
         "joint brake grasp margin: -",
+        "MOVE and stop within every limit, jerk included: True",
     ],
     "docs/guides/cycle-floor.md": ["whetstone_box 1.190 s of motion at least"],
     "docs/reference/cli.md": ["True", ", 6) scene"],

@@ -134,6 +134,7 @@ def _register_stop(which: argparse._SubParsersAction) -> None:
         "number of stopped MOVEs",
         "transports, planning and stop instants seed (default 0)",
     )
+    add_jerk_flag(stop)
     stop.add_argument("--out", type=Path, required=True, help="output directory")
     stop.set_defaults(run=run_stop)
 
@@ -182,6 +183,7 @@ def run_stop(args: argparse.Namespace) -> int:
             object_name=args.object,
             workers=args.workers,
             progress=progress,
+            jerk_limits=not args.no_jerk_limits,
         ),
     )
     written = args.out / STOP_FILES[0]

@@ -13,6 +13,11 @@ MOVE up to t, then its stop, is played in the cycle's physics
   braking at their acceleration limits along the path, grasp ignored (what
   robots do today).
 
+With the scenario's ``robot.jerk_limits`` (the MOVE then jerk-limited),
+both stops keep the jerk limits too, from the MOVE's own acceleration at t
+(a category-2 stop: the joint brake is then jerk-limited braking along the
+path).
+
 A stop succeeds by the transport experiment's hold criteria
 (:class:`._rollout.Rollout`: slip under 5 mm and 3 deg). Each trial also
 records the smallest grasp margin of each stop at 1 kHz
@@ -64,6 +69,7 @@ def stop_trial(
     seed: int,
     fraction: float,
     planning_budget_s: float | None = None,
+    jerk_limits: bool = False,
 ) -> dict[str, Any]:
     """Plan and retime one transport's MOVE, stop it at ``fraction`` of it, both ways.
 
@@ -76,10 +82,16 @@ def stop_trial(
         seed: The experiment's seed.
         fraction: When the stop begins, as a fraction of the MOVE's duration.
         planning_budget_s: The planner's time per call, s (None: its default).
+        jerk_limits: Retime the MOVE and make both stops under the
+            scenario's ``robot.jerk_limits`` too (when it gives them).
     """
     planner_scenario = transport_scenario(scenario, object_name, X_WO_start, X_WO_goal)
     motions = OnlineMotions(
-        planner_scenario, grasp_constraint=True, seed=seed + index, optimize=False
+        planner_scenario,
+        grasp_constraint=True,
+        seed=seed + index,
+        optimize=False,
+        jerk_limits=jerk_limits,
     )
     if planning_budget_s is not None:
         motions.planner.budget_s = planning_budget_s
@@ -96,7 +108,7 @@ def stop_trial(
     q_grasp = move.planned.q_start
     path, result, grasp = move.planned.path, move.retimed, move.grasp
     plant = make_arm_plant(planner_scenario)
-    limits = JointLimits.from_plant(plant, planner_scenario.robot)
+    limits = JointLimits.from_plant(plant, planner_scenario.robot, jerk=jerk_limits)
     t = result.trajectory.start_time() + fraction * result.duration
     held = protective_stop(plant, path, limits, result, t, grasp)
     brake = joint_brake_stop(plant, path, limits, result, t)
@@ -118,25 +130,37 @@ def stop_trial(
         "success_joint_stop": brake_rollout.success,
         "slip_grasp_stop": held_rollout.as_dict(),
         "slip_joint_stop": brake_rollout.as_dict(),
-        "grasp_margin_grasp_stop": _grasp_margin(plant, limits, grasp, held),
-        "grasp_margin_joint_stop": _grasp_margin(plant, limits, grasp, brake),
+        "jerk_limited": limits.jerk is not None,
+        **_margins(plant, limits, grasp, held, "grasp_stop"),
+        **_margins(plant, limits, grasp, brake, "joint_stop"),
     }
 
 
-def _grasp_margin(
+def _margins(
     plant: MultibodyPlant,
     limits: JointLimits,
     grasp: GraspConstraint,
     stop: StopResult,
-) -> float:
-    """Smallest grasp margin of the stop alone (from t on), at 1 kHz."""
+    name: str,
+) -> dict[str, float | None]:
+    """Smallest grasp margin of the stop alone (from t on), at 1 kHz.
+
+    With jerk limits, also the smallest jerk margin of the whole motion (the
+    MOVE up to t, then the stop: the joint acceleration continuous at t).
+    """
     check = check_trajectory(plant, stop.stop, limits, grasp)
-    return float(check.margins[Margin.GRASP].value)
+    margins: dict[str, float | None] = {
+        f"grasp_margin_{name}": float(check.margins[Margin.GRASP].value)
+    }
+    if limits.jerk is not None:
+        whole = check_trajectory(plant, stop.trajectory, limits)
+        margins[f"jerk_margin_{name}"] = float(whole.margins[Margin.JERK].value)
+    return margins
 
 
 def _trial_job(args: tuple) -> dict[str, Any]:
     """One trial in a worker: scenarios do not pickle, so it is loaded again."""
-    path, object_name, index, X_start, X_goal, seed, fraction = args
+    path, object_name, index, X_start, X_goal, seed, fraction, jerk = args
     return stop_trial(
         load_scenario(path),
         object_name,
@@ -145,6 +169,7 @@ def _trial_job(args: tuple) -> dict[str, Any]:
         RigidTransform(X_goal),
         seed,
         fraction,
+        jerk_limits=jerk,
     )
 
 
@@ -155,12 +180,15 @@ def run_stop_experiment(
     object_name: str | None = None,
     workers: int = 1,
     progress: Callable[[int, int], None] | None = None,
+    jerk_limits: bool = False,
 ) -> dict[str, Any]:
     """Run n stop trials (in ``workers`` processes); return results and a summary.
 
     The transports are Table I's for ``seed`` (:func:`sample_transports`);
     the stop instants are ``np.random.default_rng(seed)`` uniform fractions
     of each MOVE. ``progress(done, n)`` is called as each trial finishes.
+    With ``jerk_limits``, the MOVEs and both stops keep the scenario's
+    ``robot.jerk_limits`` (:func:`stop_trial`).
 
     Raises:
         InputError: fewer than one trial or one worker.
@@ -179,6 +207,7 @@ def run_stop_experiment(
             X_g.GetAsMatrix4(),
             seed,
             float(fractions[i]),
+            jerk_limits,
         )  # fmt: skip
         for i, (X_s, X_g) in enumerate(pairs)
     ]
@@ -187,26 +216,27 @@ def run_stop_experiment(
         "object": name,
         "seed": seed,
         "n": n,
+        "jerk_limits": jerk_limits,
         "trials": trials,
         "summary": summarize_stops(trials),
     }
 
 
 def summarize_stops(trials: list[dict[str, Any]]) -> dict[str, Any]:
-    """Successes of both stops; stop times, grasp margins (min, median, max)."""
+    """Successes of both stops; stop times, grasp (and jerk) margins' ranges."""
+    keys = [
+        "stop_time_s",
+        "joint_stop_time_s",
+        "grasp_margin_grasp_stop",
+        "grasp_margin_joint_stop",
+    ]
+    if trials and "jerk_margin_grasp_stop" in trials[0]:
+        keys += ["jerk_margin_grasp_stop", "jerk_margin_joint_stop"]
     return {
         "n": len(trials),
         "success_grasp_stop": sum(t["success_grasp_stop"] for t in trials),
         "success_joint_stop": sum(t["success_joint_stop"] for t in trials),
-        **{
-            key: _stats([t[key] for t in trials])
-            for key in (
-                "stop_time_s",
-                "joint_stop_time_s",
-                "grasp_margin_grasp_stop",
-                "grasp_margin_joint_stop",
-            )
-        },
+        **{key: _stats([t[key] for t in trials]) for key in keys},
     }
 
 
@@ -224,6 +254,8 @@ def stop_table(results: dict[str, Any]) -> str:
             f"{t['slip_joint_stop']['max_translation_mm']:.2f}"
         )
     s = results["summary"]
+    if results.get("jerk_limits"):
+        lines.append("jerk-limited MOVEs and stops (the scenario's robot.jerk_limits)")
     lines.append(
         f"grasp-aware stops hold {s['success_grasp_stop']}/{s['n']}, joint-brake "
         f"stops {s['success_joint_stop']}/{s['n']}; stop time median "

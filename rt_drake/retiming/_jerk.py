@@ -177,6 +177,8 @@ def jerk_limited(
     sd_end: float,
     start_time: float,
     tolerance: float,
+    *,
+    sdd_start: float | None = None,
 ) -> JerkProfile:
     """The jerk-limited profile near TOPP-RA's ``x_topp`` (module docstring).
 
@@ -194,6 +196,8 @@ def jerk_limited(
         sd_end: Path velocity at the end, 1/s.
         start_time: s.
         tolerance: Relative excess that adds a point (``BETWEEN_TOLERANCE``).
+        sdd_start: Path acceleration ``s''`` at the start (1/s^2), fixed
+            (a stop continuing a motion); None: free.
 
     Raises:
         PathNotControllableError: an LP has no solution, or every LP of a
@@ -216,7 +220,7 @@ def jerk_limited(
     problem = _Problem(
         s, kinds, dense, points, limits, rest, middle, dense.maps.X[middle],
         _bernstein(s, kinds), _continuity(s, kinds),
-        _bounds(s, kinds, rest, sd_start, sd_end),
+        _bounds(s, kinds, rest, sd_start, sd_end, sdd_start),
     )  # fmt: skip
     solver = WarmLP()
     x_ref = np.interp(dense.s, s_topp, x_topp)
@@ -582,14 +586,17 @@ def _bounds(
     rest: dict[int, tuple[int, float]],
     sd_start: float,
     sd_end: float,
+    sdd_start: float | None = None,
 ) -> np.ndarray:
-    """Bounds of z: x >= 0, the ends' x, and the start and stop pieces' u."""
+    """Bounds of z: x >= 0, the ends' x, ``u_0`` if given, the end pieces' u."""
     size = len(s)
     lower = np.full(2 * size, -np.inf)
     upper = np.full(2 * size, np.inf)
     lower[:size] = 0.0
     lower[0] = upper[0] = float(sd_start) ** 2
     lower[size - 1] = upper[size - 1] = float(sd_end) ** 2
+    if sdd_start is not None:  # u_0 given (sd_start > 0: no START piece)
+        lower[size] = upper[size] = float(sdd_start)
     for segment, (variable, most) in rest.items():
         if kinds[segment] == Piece.START:  # u_0 = 0, 0 <= u_1 <= most
             lower[size] = upper[size] = 0.0

@@ -23,12 +23,23 @@ along the same path ``q(s)``, never leaving it.
    (1, 2, 4, ... grid points further); at the path's end the stop is the
    retimed trajectory itself, which ends at rest.
 
+A grasp of a set of objects (``ObjectSetGrasp``): step 1 brakes under the
+nominal object's rows (a stop no longer than the set's), step 2 retimes
+under every object of the set (the retimer's exact set rows), and the
+candidates grow from there until the whole set holds.
+
+With jerk limits (``limits.jerk``) the stop is :mod:`._jerk_stop`'s instead:
+from the MOVE's own ``(s, s', s'')`` at t, the path acceleration continuous
+there, the jerk-limited retime of the sub-path over a searched stop
+distance; step 1 gives its lower bound. The whole motion is then a
+:class:`._spliced_path.SplicedPath` (the MOVE up to t, then the stop).
+
 :func:`joint_brake_stop` is what robots do today: each joint brakes as hard
 as its acceleration limit allows, along the path, under the joint velocity
 and acceleration limits only (no grasp, no torques).
 
-Jerk is not limited on either stop: the path acceleration jumps at t (as
-TOPP-RA's does between segments).
+Without jerk limits, jerk is not limited on either stop: the path
+acceleration jumps at t (as TOPP-RA's does between segments).
 """
 
 from __future__ import annotations
@@ -39,10 +50,11 @@ import functools
 import numpy as np
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import Context
-from pydrake.trajectories import PiecewisePolynomial, Trajectory
 
 from rt_drake import arguments
 from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.retiming._jerk_stop import JerkStopProblem, jerk_stop
+from rt_drake.retiming._jerk_timed_path import JerkTimedPath
 from rt_drake.retiming._joint_path import JointPath, PathLike, as_joint_path
 from rt_drake.retiming._retime_errors import (
     PathNotControllableError,
@@ -52,57 +64,25 @@ from rt_drake.retiming._retime_errors import (
 from rt_drake.retiming._samples import sample_path
 from rt_drake.retiming._solve import RetimeResult, retime
 from rt_drake.retiming._stop_pass import REST_X, StopPass, grid_constraints, stop_pass
-from rt_drake.retiming._timed_path import TimedPath
+from rt_drake.retiming._stop_result import (
+    STANDSTILL_S,
+    StopResult,
+    at_rest,
+    joined,
+    remainder,
+    spliced,
+)
+from rt_drake.retiming._sub_path import STOP_GRIDPOINTS, stop_grid, sub_path
 from rt_drake.retiming.grid import MIN_STEP
 from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint, JointLimits
 
-#: Uniform points, at least, of the grid of the sub-path a stop is retimed on
-#: (with the retime's own grid points in it).
-STOP_GRIDPOINTS = 30
 #: Parts each grid segment up to the first stop point is split into, for a
 #: second braking pass (a stop at most a fine step longer than the shortest).
 STOP_SUBDIVISION = 4
-#: s: how long the trajectory of a stop at the very start (the robot at rest
-#: there) holds the start configuration.
-STANDSTILL_S = 1e-3
 
 
 class StopNotFoundError(RetimeError):
     """The state at t cannot be brought to rest within the path's limits."""
-
-
-@dataclasses.dataclass(frozen=True, eq=False)
-class StopResult:
-    """A protective stop (see the module docstring).
-
-    Attributes:
-        trajectory: The whole motion, q(t): the retimed trajectory up to
-            ``start_time``, then the stop; it ends at rest at ``s_stop``
-            (a ``TimedPath``; at t = the start, where the robot is at
-            rest, it holds the start for :data:`STANDSTILL_S`).
-        stop: The stop alone, from t to rest (at rest at t: holding q(t)
-            for :data:`STANDSTILL_S`).
-        start_time: t, s: when the stop begins.
-        duration: s from t to rest (0 if at rest at t).
-        s_start: Path parameter at t.
-        sd_start: Path velocity ``s'(t)``, 1/s.
-        s_stop: Path parameter where the robot comes to rest.
-        grasp_aware: Whether the grasp (and torques, if limited) were kept.
-    """
-
-    trajectory: Trajectory
-    stop: Trajectory
-    start_time: float
-    duration: float
-    s_start: float
-    sd_start: float
-    s_stop: float
-    grasp_aware: bool
-
-    @property
-    def end_time(self) -> float:
-        """Time (s) at which the robot is at rest."""
-        return self.start_time + self.duration
 
 
 def protective_stop(
@@ -126,8 +106,8 @@ def protective_stop(
         result: The retimed trajectory.
         t: When the stop begins, s, in ``[start_time, end_time]`` of
             ``result.trajectory``.
-        grasp: Its grasp (one held object; a set of objects is not
-            supported); None: no object.
+        grasp: Its grasp (one held object, or a set of objects without
+            jerk limits); None: no object.
         context: Scratch context of ``plant``.
         cup: The cup frame C (default: the plant's ``suction_cup``).
 
@@ -137,7 +117,8 @@ def protective_stop(
 
     Raises:
         RetimeInputError: ``t`` not a finite number inside the trajectory,
-            a malformed argument, or a grasp of a set of objects.
+            a malformed argument, or a grasp of a set of objects with
+            jerk limits.
         StopNotFoundError: the state at t cannot be brought to rest within
             the path (not for a trajectory this retimer made).
     """
@@ -183,14 +164,17 @@ def _stop(
         raise RetimeInputError(
             f"stop: path has {spline.num_joints} joints but {limits.num_joints=}"
         )
-    s_t, sd_t = state_at(result, t)
+    s_t, sd_t, sdd_t = path_state_at(result, t)
     context = context or plant.CreateDefaultContext()
     cup = cup or CupFrame.of(plant)
+    smooth = isinstance(result.trajectory, JerkTimedPath) or limits.jerk is not None
+    if smooth and (sd_t * sd_t <= REST_X or s_t >= 1.0 - MIN_STEP):
+        return spliced(result, float(t), s_t, sd_t, None, grasp_aware)
     if sd_t * sd_t <= REST_X:  # at rest already: the trajectory up to t
-        return _at_rest(result, spline, float(t), s_t, sd_t, grasp_aware)
+        return at_rest(result, spline, float(t), s_t, sd_t, grasp_aware)
     if s_t >= 1.0 - MIN_STEP:  # at the end already: the MOVE rests there
-        stop_s, stop_x = _remainder(result, s_t, sd_t)
-        return _joined(result, spline, float(t), s_t, sd_t, stop_s, stop_x, grasp_aware)
+        stop_s, stop_x = remainder(result, s_t, sd_t)
+        return joined(result, spline, float(t), s_t, sd_t, stop_s, stop_x, grasp_aware)
     s_grid = result.gridpoints  # it ends at 1
     held = None if grasp is None else grasp.held
     F, g = (None, None) if grasp is None else (grasp.F, grasp.g)
@@ -210,6 +194,15 @@ def _stop(
         fine = brake(head)  # rest at s[index] reachable: its controllable sets
         if fine.stop_index is not None:
             s, braking = np.concatenate([head, s[index + 1 :]]), fine
+    if limits.jerk is not None:
+        problem = JerkStopProblem(
+            plant, spline, limits, grasp, context, cup, float(t), s_t, sd_t, sdd_t,
+            s_grid, result.sd**2,
+        )  # fmt: skip
+        at = 1 if braking.stop_index is None else braking.stop_index
+        rest_time = result.trajectory.end_time() - float(t)
+        found = jerk_stop(problem, float(s[at] - s_t), rest_time)
+        return spliced(result, float(t), s_t, sd_t, found, grasp_aware)
     if braking.stop_index is None:
         raise StopNotFoundError(
             f"no stop to rest within the path from t = {t:.4f} s (s = {s_t:.4f}, "
@@ -219,7 +212,7 @@ def _stop(
         )
     for index in _candidates(braking.stop_index, len(s) - 1):
         if index == len(s) - 1 and s[index] >= 1.0 - MIN_STEP:
-            stop_s, stop_x = _remainder(result, s_t, sd_t)
+            stop_s, stop_x = remainder(result, s_t, sd_t)
         else:
             try:
                 stop_s, stop_x = _retimed_stop(
@@ -227,20 +220,28 @@ def _stop(
                 )
             except PathNotControllableError:
                 continue
-        return _joined(result, spline, float(t), s_t, sd_t, stop_s, stop_x, grasp_aware)
+        return joined(result, spline, float(t), s_t, sd_t, stop_s, stop_x, grasp_aware)
     raise AssertionError("the path's end is always a candidate")  # pragma: no cover
 
 
 def state_at(result: RetimeResult, t: float) -> tuple[float, float]:
-    """``(s(t), s'(t))`` of a retimed trajectory (exact, from its profile).
+    """``(s(t), s'(t))`` of a retimed trajectory (see :func:`path_state_at`)."""
+    s, sd, _ = path_state_at(result, t)
+    return s, sd
 
-    Within segment k, ``s = s_k + s'_k tau + u_k tau^2 / 2``, ``s' = s'_k +
-    u_k tau`` with ``tau = t - t_k``.
+
+def path_state_at(result: RetimeResult, t: float) -> tuple[float, float, float]:
+    """``(s(t), s'(t), s''(t))`` of a retimed trajectory (exact, from its profile).
+
+    Without jerk limits, within segment k, ``s = s_k + s'_k tau + u_k tau^2
+    / 2``, ``s' = s'_k + u_k tau``, ``s'' = u_k`` with ``tau = t - t_k``;
+    with them, the :class:`JerkTimedPath`'s own state.
 
     Raises:
         RetimeInputError: ``t`` not a finite number in ``[t0, tf]``.
     """
-    times = result.trajectory.times
+    trajectory = result.trajectory
+    times = trajectory.times
     if not (
         isinstance(t, (int, float, np.number))
         and not isinstance(t, bool)
@@ -252,12 +253,15 @@ def state_at(result: RetimeResult, t: float) -> tuple[float, float]:
             f"stop: t = {t!r} s is outside the trajectory "
             f"[{times[0]:.6g}, {times[-1]:.6g}] s"
         )
+    if isinstance(trajectory, JerkTimedPath):
+        s, sd, sdd, _ = (float(v[0]) for v in trajectory.path_state(float(t)))
+        return s, sd, sdd
     k = int(np.clip(np.searchsorted(times, t, side="right") - 1, 0, len(times) - 2))
     tau = float(t) - times[k]
     u = result.sdd[k]
     sd = max(result.sd[k] + u * tau, 0.0)
     s = min(result.gridpoints[k] + result.sd[k] * tau + 0.5 * u * tau**2, 1.0)
-    return float(s), float(sd)
+    return float(s), float(sd), float(u)
 
 
 def subdivided(s: np.ndarray, parts: int) -> np.ndarray:
@@ -296,10 +300,7 @@ def _retimed_stop(
     """
     start, length = s[0], s[index] - s[0]
     sub = sub_path(spline, start, s[index])
-    own = (s[1:index] - start) / length
-    grid = np.unique(np.concatenate([np.linspace(0, 1, STOP_GRIDPOINTS), own]))
-    grid = grid[np.concatenate([[True], np.diff(grid) > MIN_STEP])]
-    grid[-1] = 1.0
+    grid = stop_grid(s[1:index], start, length)
     stop = retime(
         plant, sub, limits, grasp, grid, sd_start=sd_t / length, context=context,
         cup=cup,
@@ -309,98 +310,6 @@ def _retimed_stop(
         # start is on the edge of K_0): not the trajectory's state at t.
         raise PathNotControllableError("the stop does not start at s'(t)", s=start)
     return start + length * stop.gridpoints, (length * stop.sd) ** 2
-
-
-def _remainder(
-    result: RetimeResult, s_t: float, sd_t: float
-) -> tuple[np.ndarray, np.ndarray]:
-    """The retimed trajectory itself from ``s_t`` to its end at rest: (s, x)."""
-    s = result.gridpoints
-    later = s > s_t + MIN_STEP
-    later[-1] = True  # s = 1, where it rests
-    return (
-        np.concatenate([[s_t], s[later]]),
-        np.concatenate([[sd_t * sd_t], result.sd[later] ** 2]),
-    )
-
-
-def sub_path(spline: JointPath, start: float, end: float) -> JointPath:
-    """``q(start + sigma (end - start))``, sigma in [0, 1], as a JointPath.
-
-    Its derivatives in sigma are ``L^k d^k q / ds^k`` (``L = end - start``);
-    its breaks are those of ``spline`` inside, mapped.
-    """
-    length = end - start
-    inside = spline.breaks[(spline.breaks > start) & (spline.breaks < end)]
-    breaks = np.concatenate([[0.0], (inside - start) / length, [1.0]])
-
-    def evaluate(sigma: np.ndarray, order: int) -> np.ndarray:
-        s = np.minimum(start + sigma * length, end)
-        return spline(s, order) * length**order
-
-    return JointPath(evaluate, breaks, spline.cubic, spline.num_joints)
-
-
-def _joined(
-    result: RetimeResult,
-    spline: JointPath,
-    t: float,
-    s_t: float,
-    sd_t: float,
-    stop_s: np.ndarray,
-    stop_x: np.ndarray,
-    grasp_aware: bool,
-) -> StopResult:
-    """The retimed trajectory up to ``s_t``, then the stop profile, as one."""
-    before = _before(result.gridpoints, s_t)
-    grid = np.concatenate([result.gridpoints[before], stop_s])
-    x = np.concatenate([result.sd[before] ** 2, [sd_t * sd_t], stop_x[1:]])
-    start = result.trajectory.start_time()
-    whole = TimedPath(spline, grid, x, start)
-    stop_alone = TimedPath(spline, stop_s, np.append(sd_t * sd_t, stop_x[1:]), t)
-    return StopResult(
-        trajectory=whole,
-        stop=stop_alone,
-        start_time=t,
-        duration=stop_alone.duration,
-        s_start=s_t,
-        sd_start=sd_t,
-        s_stop=float(stop_s[-1]),
-        grasp_aware=grasp_aware,
-    )
-
-
-def _before(s: np.ndarray, s_t: float) -> np.ndarray:
-    """Grid points kept before ``s_t``: the start, and those MIN_STEP before it.
-
-    A point closer to ``s_t`` would make a segment too short for its path
-    acceleration to be computed from x (rounding over a step of 1e-12); the
-    profile changes by at most ``2 MIN_STEP |u|`` in x without it.
-    """
-    before = s < s_t - MIN_STEP
-    before[0] = s[0] < s_t
-    return before
-
-
-def _at_rest(
-    result: RetimeResult,
-    spline: JointPath,
-    t: float,
-    s_t: float,
-    sd_t: float,
-    grasp_aware: bool,
-) -> StopResult:
-    """A stop of no duration: the robot is at rest at t (the path's ends)."""
-    s = result.gridpoints
-    before = _before(s, s_t)
-    q = spline(s_t).reshape(-1, 1)
-    hold = PiecewisePolynomial.FirstOrderHold([t, t + STANDSTILL_S], np.hstack([q, q]))
-    trajectory: Trajectory = hold
-    if before.any():
-        grid = np.append(s[before], s_t)
-        x = np.append(result.sd[before] ** 2, 0.0)
-        trajectory = TimedPath(spline, grid, x, result.trajectory.start_time())
-    return StopResult(trajectory, hold, t, 0.0, s_t, sd_t, s_t, grasp_aware)
 
 
 def _check_objects(
@@ -421,10 +330,12 @@ def _check_objects(
             grasp, "grasp", "GraspConstraint", GRASP_ATTRIBUTES, where="stop",
             error=RetimeInputError,
         )  # fmt: skip
-        if getattr(grasp, "is_robust", False):
+        jerk = isinstance(limits, JointLimits) and limits.jerk is not None
+        if getattr(grasp, "is_robust", False) and jerk:
             raise RetimeInputError(
-                "stop: a grasp of a set of objects is not supported; give the "
-                "nominal object's GraspConstraint"
+                "stop: jerk limits with the grasp of a set of objects are not "
+                "supported for a stop (retime supports them): stop without them "
+                "(limits.jerk None)"
             )
     if context is not None:
         check(context, "context", Context)

@@ -24,17 +24,23 @@ PLANNING_BUDGET_S = 30.0
 @pytest.mark.slow
 def test_the_grasp_aware_stop_holds_in_physics_and_the_joint_brake_leaves_the_set():
     """Transport 0 of random_transport_paper, seed 0, stopped where the
-    experiment stops it: the grasp-aware stop keeps the grasp set at 1 kHz
-    and the object on the cup in the simulated physics (slip under the
-    transport experiment's thresholds); the joint brake, braking harder than
-    the grasp allows, leaves the set, sooner."""
+    experiment stops it, under the scenario's jerk limits (the command's
+    default): the grasp-aware stop keeps the grasp set at 1 kHz and the
+    object on the cup in the simulated physics (slip under the transport
+    experiment's thresholds); the jerk-limited joint brake, braking harder
+    than the grasp allows, leaves the set, sooner. Both keep the jerk limits
+    across the instant (finite differences of the 1 kHz accelerations)."""
     scenario = load_scenario(resolve_scenario_path("random_transport_paper"))
     ((X_start, X_goal),) = sample_transports(scenario, 1, 0)
     fraction = float(np.random.default_rng(0).uniform(size=1)[0])
     name = scenario.random_transport.object
     trial = stop_trial(
-        scenario, name, 0, X_start, X_goal, 0, fraction, PLANNING_BUDGET_S
-    )
+        scenario, name, 0, X_start, X_goal, 0, fraction, PLANNING_BUDGET_S,
+        jerk_limits=True,
+    )  # fmt: skip
+    assert trial["jerk_limited"]
+    assert trial["jerk_margin_grasp_stop"] >= -1e-3
+    assert trial["jerk_margin_joint_stop"] >= -1e-3
     assert trial["stop_at_s"] == pytest.approx(fraction * trial["move_duration_s"])
     assert trial["s_stop"] > trial["s_at_stop"] and trial["sd_at_stop"] > 0.0
     assert trial["grasp_margin_grasp_stop"] >= -1e-3

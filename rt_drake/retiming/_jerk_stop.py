@@ -1,0 +1,244 @@
+"""The jerk-limited stop: from the motion's own (s, s', s'') at t to rest.
+
+With ``limits.jerk`` the stop must start where the retimed motion is at t
+in path position, velocity and acceleration (``s_t``, ``s'_t``, ``s''_t``:
+the joint acceleration ``q' s'' + q'' s'^2`` is then continuous at t, so
+the jerk stays bounded), and end at rest at some ``s_stop`` on the path.
+
+For a stop distance ``L = s_stop - s_t`` the fastest such stop is the
+jerk-limited retime (:func:`._jerk.jerk_limited`: TOPP-RA first, then its
+LPs) of the sub-path ``sigma = (s - s_t) / L`` in [0, 1], from
+``sigma' = s'_t / L`` with ``sigma'' = s''_t / L`` fixed, to rest. Its
+duration ``T(L)`` is defined from the shortest feasible L on. The search:
+
+1. ``L_0``: the acceleration-limited shortest stop (:mod:`._stop_pass`),
+   a lower bound (a jerk limit only removes profiles);
+2. ``L_k = GROWTH^k L_0`` until a stop is found (the path's end caps it:
+   the motion itself ends at rest there);
+3. :data:`BISECTIONS` bisections between the last L without a stop and the
+   first with one.
+
+The LPs are linearised first at the smaller of TOPP-RA's stop profile and
+the motion's own (which continues from ``s''_t``: a profile TOPP-RA
+alone, braking or speeding up at once, can leave the first LP without a
+solution where a stop exists), then at TOPP-RA's alone.
+
+The stop kept is the fastest found, or the motion's own remainder if that
+is faster (near the end of a MOVE, in its own final braking). Every stop
+holds the jerk-limited retimer's contract: every limit, jerk included, and
+the grasp rows at its points, and within 1e-3 between them.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import NamedTuple
+
+import numpy as np
+from pydrake.multibody.plant import MultibodyPlant
+from pydrake.systems.framework import Context
+
+from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.retiming._jerk import jerk_limited
+from rt_drake.retiming._jerk_timed_path import JerkTimedPath
+from rt_drake.retiming._joint_path import JointPath
+from rt_drake.retiming._retime_errors import (
+    LimitsBetweenGridPointsError,
+    PathNotControllableError,
+)
+from rt_drake.retiming._samples import PathSamples, sample_path
+from rt_drake.retiming._solve import BETWEEN_TOLERANCE, retime
+from rt_drake.retiming._sub_path import stop_grid, sub_path
+from rt_drake.retiming.grid import MIN_STEP
+from rt_drake.retiming.limits import GraspConstraint, JointLimits
+
+#: Factor between successive stop distances tried until a stop is found.
+GROWTH = 1.3
+#: Relative decreases of s'_t from which TOPP-RA's profile is tried (the
+#: jerk LPs themselves start at s'_t).
+LOWER_START = (0.0, 1e-3, 1e-2)
+#: Bisections of the stop distance between the last failure and a stop.
+BISECTIONS = 4
+
+
+class JerkStop(NamedTuple):
+    """A jerk-limited stop.
+
+    Attributes:
+        stop: q(t) from t to rest (None: the motion's own remainder).
+        s_stop: Path parameter where it rests.
+        tried: Stop distances L tried, each with its duration (inf: no stop).
+    """
+
+    stop: JerkTimedPath | None
+    s_stop: float
+    tried: list[tuple[float, float]]
+
+
+@dataclasses.dataclass(frozen=True)
+class JerkStopProblem:
+    """What a jerk-limited stop from time t is retimed with.
+
+    Attributes:
+        plant, spline, limits, grasp, context, cup: As for the retime
+            (``limits.jerk`` set; grasp of one object or None).
+        t: s, when the stop begins.
+        s: ``s_t``; sd: ``s'_t`` (1/s, > 0); sdd: ``s''_t`` (1/s^2).
+        own: The motion's grid points (those after ``s_t`` are kept in each
+            stop's grid).
+        own_x: ``s'^2`` of the motion there (1/s^2).
+    """
+
+    plant: MultibodyPlant
+    spline: JointPath
+    limits: JointLimits
+    grasp: GraspConstraint | None
+    context: Context
+    cup: CupFrame
+    t: float
+    s: float
+    sd: float
+    sdd: float
+    own: np.ndarray
+    own_x: np.ndarray
+
+    def stop(self, length: float) -> JerkTimedPath | None:
+        """The fastest jerk-limited stop to rest at ``s + length`` (None: none).
+
+        In sigma, ``x_sigma = x_s / L^2`` and ``u_sigma = u_s / L``.
+        """
+        sub = sub_path(self.spline, self.s, self.s + length)
+        grid = stop_grid(self.own, self.s, length)
+        sd, sdd = self.sd / length, self.sdd / length
+        held = None if self.grasp is None else self.grasp.held
+        torque = self.limits.torque is not None
+        F = None if self.grasp is None else self.grasp.F
+        g = None if self.grasp is None else self.grasp.g
+        start = sample_path(
+            self.plant, sub, np.zeros(1), self.limits.velocity, torque, held,
+            self.context, self.cup,
+        )  # fmt: skip
+        limits, g = start_slack(start, sd * sd, sdd, self.limits, F, g)
+
+        def sample(s: np.ndarray) -> PathSamples:
+            return sample_path(
+                self.plant, sub, s, limits.velocity, torque, held, self.context,
+                self.cup,
+            )  # fmt: skip
+
+        wider = None
+        if self.grasp is not None and g is not None:
+            wider = dataclasses.replace(self.grasp, g=g)
+        plain = dataclasses.replace(limits, jerk=None)
+        # TOPP-RA's profile is only where the LPs are linearised: from just
+        # below s'_t if the state at t is on the edge of K_0.
+        topp = None
+        for lower in LOWER_START:
+            try:
+                topp = retime(
+                    self.plant, sub, plain, wider, grid,
+                    sd_start=sd * (1.0 - lower), context=self.context, cup=self.cup,
+                )  # fmt: skip
+                break
+            except PathNotControllableError:
+                continue
+        if topp is None:
+            return None
+        x_topp = topp.sd**2
+        x_move = np.interp(self.s + length * topp.gridpoints, self.own, self.own_x)
+        profile = None
+        for x_bar in (np.minimum(x_topp, x_move / length**2), x_topp):
+            try:
+                profile = jerk_limited(
+                    sub, sample, topp.gridpoints, x_bar, limits, F, g, None, sd, 0.0,
+                    self.t, BETWEEN_TOLERANCE, sdd_start=sdd,
+                )  # fmt: skip
+                break
+            except (PathNotControllableError, LimitsBetweenGridPointsError):
+                continue
+        if profile is None:
+            return None
+        return profile.trajectory
+
+
+def start_slack(
+    start: PathSamples,
+    x: float,
+    u: float,
+    limits: JointLimits,
+    F: np.ndarray | None,
+    g: np.ndarray | None,
+) -> tuple[JointLimits, np.ndarray | None]:
+    """Limits and grasp offsets widened to hold the start state ``(x, u)``.
+
+    The motion's state at t keeps each limit within the retimer's contract
+    between grid points, not exactly: a limit it binds can be exceeded there
+    by up to ``BETWEEN_TOLERANCE``, which would leave the stop's LPs, whose
+    start is fixed, without a solution. Each limit (per joint; per grasp
+    row) is widened to the start's own value where that exceeds it:
+    ``x <= x_cap``, ``|q' u + q'' x| <= a``, ``|tau| <= tau_max``, ``F w <=
+    g``, so the stop holds them within the motion's own excess at t.
+    """
+    widen = 1.0 + 1e-9
+    velocity = limits.velocity * np.sqrt(max(1.0, widen * x / start.x_cap[0]))
+    joint = np.abs(start.dq[0] * u + start.ddq[0] * x)
+    acceleration = np.maximum(limits.acceleration, widen * joint)
+    torque = limits.torque
+    if torque is not None and start.torque is not None:
+        a, b, c = (v[0] for v in start.torque)
+        torque = np.maximum(torque, widen * np.abs(a * u + b * x + c))
+    if F is not None and g is not None and start.wrench is not None:
+        a, b, c = (v[0] for v in start.wrench)
+        g = np.maximum(g, widen * (F @ (a * u + b * x + c)))
+    wider = dataclasses.replace(
+        limits, velocity=velocity, acceleration=acceleration, torque=torque
+    )
+    return wider, g
+
+
+def jerk_stop(problem: JerkStopProblem, shortest: float, remainder: float) -> JerkStop:
+    """The fastest jerk-limited stop found by the module docstring's search.
+
+    Args:
+        problem: The stop's data.
+        shortest: ``L_0``, the acceleration-limited shortest stop distance.
+        remainder: Duration (s) of the motion's own rest of the path.
+    """
+    room = 1.0 - problem.s
+    tried: list[tuple[float, float]] = []
+    found: dict[float, JerkTimedPath] = {}
+
+    def attempt(length: float) -> bool:
+        stop = problem.stop(length)
+        tried.append((length, np.inf if stop is None else stop.duration))
+        if stop is not None:
+            found[length] = stop
+        return stop is not None
+
+    low, length = None, max(min(shortest, room), MIN_STEP)
+    while length < room - MIN_STEP and not attempt(length):
+        low, length = length, length * GROWTH
+    if found and low is not None:
+        high = length
+        for _ in range(BISECTIONS):
+            middle = 0.5 * (low + high)
+            if attempt(middle):
+                high = middle
+            else:
+                low = middle
+    if not found:
+        return JerkStop(None, 1.0, tried)
+    best = min(found, key=lambda key: found[key].duration)
+    if found[best].duration >= remainder:
+        return JerkStop(None, 1.0, tried)
+    return JerkStop(found[best], problem.s + best, tried)
+
+
+__all__ = [
+    "BISECTIONS",
+    "GROWTH",
+    "JerkStop",
+    "JerkStopProblem",
+    "jerk_stop",
+    "start_slack",
+]

@@ -1,0 +1,76 @@
+"""rt_drake.retiming: a protective stop that holds every object of a set.
+
+Reference independent of the stop and of the set's rows: each object's own
+grasp checked apart, at 1 kHz, with Drake's Newton-Euler wrench
+(``check_trajectory`` with that object's ``GraspConstraint``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from rt_drake.model.held import held_object_of
+from rt_drake.retiming import (
+    GraspConstraint,
+    JointLimits,
+    Margin,
+    RetimeInputError,
+    check_trajectory,
+    protective_stop,
+    retime,
+)
+
+HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
+#: The MOVE-like path of test_stop.py, on which the notebook's grasp binds.
+BACK = np.array(
+    [
+        HOME,
+        HOME + [-0.4, 0.1, -0.2, 0.0, 0.1, -0.5],
+        HOME + [-1.2, -0.1, 0.2, 0, -0.1, -0.8],
+    ]
+)
+
+
+@pytest.fixture(scope="module")
+def objects(scenario):
+    """The notebook, one 30 % heavier, one with its CoM 2 cm off along x."""
+    nominal = held_object_of(scenario.object("notebook"))
+    heavy = dataclasses.replace(nominal, mass=1.3 * nominal.mass)
+    shifted = dataclasses.replace(
+        nominal, p_CoScm_C=nominal.p_CoScm_C + [0.02, 0.0, 0.0]
+    )
+    return [nominal, heavy, shifted]
+
+
+def test_a_stop_under_a_set_holds_every_object(plant, scenario, objects):
+    limits = JointLimits.from_plant(plant, scenario.robot)
+    assert limits.jerk is None  # the test scenario: acceleration-limited
+    grasp = GraspConstraint.for_objects(objects, scenario.cup)
+    assert grasp.is_robust
+    move = retime(plant, BACK, limits, grasp)
+    t = 0.45 * move.duration
+    stop = protective_stop(plant, BACK, limits, move, t, grasp)
+    assert stop.s_start < stop.s_stop and stop.duration > 0.0
+    for held in objects:  # each object apart, its own grasp
+        alone = GraspConstraint.for_cup(held, scenario.cup)
+        check = check_trajectory(plant, stop.trajectory, limits, alone)
+        assert check.passed(), check.summary()
+    # The nominal object's own stop brakes harder than the heavy one holds.
+    nominal = GraspConstraint.for_cup(objects[0], scenario.cup)
+    own = protective_stop(plant, BACK, limits, move, t, nominal)
+    heavy = GraspConstraint.for_cup(objects[1], scenario.cup)
+    thrown = check_trajectory(plant, own.stop, limits, heavy)
+    assert thrown.margins[Margin.GRASP].value < -1e-3
+    assert own.duration <= stop.duration
+
+
+def test_a_set_with_jerk_limits_is_refused_in_one_line(plant, scenario, objects):
+    limits = JointLimits.from_plant(plant, scenario.robot)
+    grasp = GraspConstraint.for_objects(objects, scenario.cup)
+    move = retime(plant, BACK, limits, grasp, gridpoints=20)
+    jerky = dataclasses.replace(limits, jerk=20.0 * limits.acceleration)
+    with pytest.raises(RetimeInputError, match="jerk limits with the grasp of a set"):
+        protective_stop(plant, BACK, jerky, move, 0.5 * move.duration, grasp)
