@@ -84,6 +84,9 @@ class Motion:
         parts: for a motion over several phases (the pick: APPROACH then
             REACH), each phase's end and plan times, in order; empty for a
             motion of one phase.
+        release_s: for a MOVE, s before its end at which the valve may
+            close: the grasp holds over that last stretch with the force
+            certain as the vacuum decays (:mod:`._release`); 0: on arrival.
     """
 
     trajectory: Trajectory
@@ -93,6 +96,7 @@ class Motion:
     grasp: GraspConstraint | None = None
     guarantee: str = ""
     parts: tuple[PhasePart, ...] = ()
+    release_s: float = 0.0
 
     def phase_end(self, phase: Phase) -> float:
         """Seconds after the start at which ``phase`` ends (duration if no parts)."""

@@ -43,6 +43,7 @@ holds the limits between its points as any other (:func:`~rt_drake.retiming.reti
 from __future__ import annotations
 
 import dataclasses
+import math
 import time
 from collections.abc import Callable
 
@@ -70,8 +71,10 @@ from rt_drake.model.scenario import (
     ObjectConfig,
     Scenario,
 )
+from rt_drake.model.vacuum import VacuumModel
 from rt_drake.planning import CyclePlanner, GeometricPath, PlannedPath
 from rt_drake.retiming import (
+    CupGrasp,
     GraspConstraint,
     JerkTimedPath,
     JointLimits,
@@ -90,6 +93,7 @@ from rt_drake.shaping import (
     retime_adaptive,
 )
 from rt_drake.shaping import warm_up as warm_up_optimizer
+from rt_drake.simulation._release import release_lead
 from rt_drake.simulation.motion import Motion, PhasePart, PlanTimes
 from rt_drake.types.held_object import HeldObject
 from rt_drake.types.object_uncertainty import ObjectUncertainty
@@ -397,7 +401,54 @@ class OnlineMotions:
         def plan(q: np.ndarray, name: str) -> PlannedPath:
             return self._planner.plan_move(q, name, reach=planned_reach)
 
-        return self._timed(plan, q_start, obj, carrying=True)
+        motion = self._timed(plan, q_start, obj, carrying=True)
+        return self._with_release(motion)
+
+    def _with_release(self, move: Motion) -> Motion:
+        """``move`` with its valve closing early, if the grasp holds (:mod:`._release`).
+
+        Only with the ``first_order`` vacuum, one cup of a fixed suction
+        force, the nominal grasp (:class:`~rt_drake.retiming.CupGrasp`) and
+        the MOVE played as retimed; else the valve closes on arrival.
+        """
+        vacuum = self._scenario.vacuum
+        grasp = move.grasp
+        if (
+            vacuum.kind is not VacuumModel.FIRST_ORDER
+            or not isinstance(grasp, CupGrasp)
+            or self._scenario.tool is None
+            and self._scenario.cup.is_uncertain()
+            or self._speed != 1.0
+        ):
+            return move
+        full = cached_wrench_polytope(self._scenario.cup)
+        margin = self._scenario.planning.grasp_margin
+
+        def grasp_at(force: float) -> GraspConstraint:
+            polytope = with_suction_force(full, force)
+            return GraspConstraint.for_polytope(grasp.held, polytope).with_margin(
+                margin
+            )
+
+        force = vacuum.part_present_fraction * self._scenario.cup.suction_force
+        lead = release_lead(
+            self._plant,
+            move.trajectory,
+            grasp.held,
+            grasp_at,
+            force,
+            vacuum.release_tau_s,
+            self._context,
+            self._cup,
+        )
+        if lead <= 0.0:
+            return move
+        floor = force * math.exp(-lead / vacuum.release_tau_s)
+        guarantee = (
+            f"{move.guarantee}; valve closed {lead:.3f} s before arrival "
+            f"(at least {floor:.1f} N then)"
+        )
+        return dataclasses.replace(move, release_s=lead, guarantee=guarantee)
 
     def _place_objects_for(self, obj: ObjectConfig) -> None:
         """Objects picked before ``obj`` are at their goals, the rest at their starts.

@@ -210,7 +210,9 @@ def test_the_valve_opens_on_the_descent_and_the_seal_forms_at_contact(scenario_p
     distance), from the valve opening ``time_to_part_present`` before REACH
     ends. So ATTACH lasts less than the closed-form build-up time from a cold
     start, yet the MOVE starts with at least ``part_present_fraction`` of P A
-    (the force its retime assumed) and the notebook holds and lands.
+    (the force its retime assumed) and the notebook holds and lands. Likewise
+    the valve closes before the MOVE arrives (its guarantee says how early),
+    and the notebook still holds on the way down and lands.
     """
     from rt_drake.simulation import OnlineMotions
 
@@ -221,5 +223,6 @@ def test_the_valve_opens_on_the_descent_and_the_seal_forms_at_contact(scenario_p
     attach = record.exec_s[Phase.ATTACH]
     assert 0.0 <= attach < time_to_part_present(FIRST_ORDER) - 0.01
     assert record.move_suction_force >= 0.8 * scenario.cup.suction_force
+    assert "s before arrival" in record.guarantee
     assert record.max_slip_translation < 2e-3
     assert record.placement_translation < 0.01
