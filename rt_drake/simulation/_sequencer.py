@@ -333,7 +333,10 @@ class Sequencer(LeafSystem):
             state = _with_record(
                 dataclasses.replace(state, X_CO_attached=self._X_CO(context, index)),
                 dataclasses.replace(
-                    record, move_suction_force=force, guarantee=motion.guarantee
+                    record,
+                    move_suction_force=force,
+                    guarantee=motion.guarantee,
+                    grasp_price_s=motion.grasp_price_s,
                 ),
             )
         if self._pipelined:  # plan the next motion while this one runs

@@ -288,6 +288,29 @@ class OnlineMotions:
         except RetimeError:
             return self.retime_path(path, grasp)
 
+    def grasp_price(
+        self,
+        path: GeometricPath,
+        grasp: GraspConstraint,
+        with_grasp: RetimeResult | None = None,
+    ) -> float:
+        """What ``grasp`` costs on ``path`` (s): the duration with it less without.
+
+        At the acceleration limits (no jerk limits), both by
+        :func:`~rt_drake.shaping.retime_adaptive` (``with_grasp``: that retime
+        already done, e.g. the optimiser's). A report figure, not part of the
+        motion: its wall time is not counted as planning.
+        """
+        plain = dataclasses.replace(self._limits, jerk=None)
+        if with_grasp is None:
+            with_grasp = retime_adaptive(
+                self._plant, path, plain, grasp, context=self._context, cup=self._cup
+            )
+        without = retime_adaptive(
+            self._plant, path, plain, None, context=self._context, cup=self._cup
+        )
+        return with_grasp.duration - without.duration
+
     def grasp_for(
         self, obj: ObjectConfig, X_OC: RigidTransform, robust: bool | None = None
     ) -> GraspConstraint:
@@ -473,7 +496,7 @@ class OnlineMotions:
         start = time.perf_counter()
         planned: PlannedPath = plan(q_start, obj.name)
         planned_s = time.perf_counter() - start
-        grasp = None
+        grasp, acceleration_limited = None, None
         if carrying and self._polytope is not None:
             grasp = self.grasp_for(obj, planned.X_OC)
         if grasp is not None and self._optimizer is not None:
@@ -481,7 +504,7 @@ class OnlineMotions:
             optimized = self._optimizer.optimize(self._planner, planned, grasp)
             path = optimized.path
             planned = dataclasses.replace(planned, path=path, polyline=path.waypoints)
-            result = optimized.retimed
+            result = acceleration_limited = optimized.retimed
             planned_s += optimized.wall_s - optimized.retime_wall_s
             retime_s = optimized.retime_wall_s
             if self._limits.jerk is not None:  # the kept path, jerk-limited
@@ -493,6 +516,9 @@ class OnlineMotions:
             start = time.perf_counter()
             result = self.retime_path(planned.path, grasp)
             retime_s = time.perf_counter() - start
+        price = float("nan")  # cheap only beside the optimiser's own retime
+        if grasp is not None and acceleration_limited is not None:
+            price = self.grasp_price(planned.path, grasp, acceleration_limited)
         trajectory: Trajectory = result.trajectory
         guarantee = ""
         if carrying:
@@ -507,6 +533,7 @@ class OnlineMotions:
             retimed=result,
             grasp=grasp,
             guarantee=guarantee,
+            grasp_price_s=price,
         )
 
 

@@ -10,6 +10,7 @@ import toppra.constraint
 
 from rt_drake.model.plant import make_arm_plant
 from rt_drake.retiming import JointLimits, TimeScaled, check_trajectory
+from rt_drake.shaping import retime_adaptive
 from rt_drake.simulation import OnlineMotions
 from rt_drake.types.phase import Phase
 
@@ -95,7 +96,9 @@ def toppra_duration(path, limits: JointLimits) -> float:
 def test_the_pick_is_retimed_within_a_percent_of_a_fine_grid(motions, scenario):
     """On its adaptive grid the pick is within 1 % of toppra's time-optimal
     duration on 2000 points (on 100 uniform points it is 4-6 % above), and
-    at least 3 % faster than on the 100 uniform points alone."""
+    at least 3 % faster than on the 100 uniform points alone. The shaped
+    MOVE's grasp price is its path retimed with the grasp (adaptive grid)
+    less toppra's duration without it, within 1 % of the MOVE, and >= 0."""
     plant = make_arm_plant(scenario)
     limits = JointLimits.from_plant(plant, scenario.robot)
     first, second = scenario.objects[:2]
@@ -108,3 +111,12 @@ def test_the_pick_is_retimed_within_a_percent_of_a_fine_grid(motions, scenario):
         assert reference * (1 - 2e-3) <= motion.duration <= reference * 1.01
         uniform = motions.retime_path(path, None).duration
         assert motion.duration <= 0.97 * uniform
+    # The carton box, whose MOVE its grasp slows (the light boxes' hardly).
+    carton = scenario.objects[3]
+    pick = motions.pick(motions.q_home, carton)
+    move = motions.move(pick.q_end, carton, pick)
+    path = move.planned.path
+    with_grasp = retime_adaptive(plant, path, limits, move.grasp).duration
+    price = with_grasp - toppra_duration(path, limits)
+    assert move.grasp_price_s == pytest.approx(price, abs=0.01 * move.duration)
+    assert move.grasp_price_s > 0.02 * move.duration
