@@ -16,7 +16,10 @@ With the floors (:func:`~rt_drake.experiments.cycle_floor.cycle_floors`),
 each object and the cycle also carry ``floor_s``, the least time the arm's
 joint limits allow through the same configurations and vertical lines
 without the grasp (the motion floor) plus the ATTACH and DETACH times as
-run, and ``floor_ratio = total_s / floor_s``.
+run, and ``floor_ratio = total_s / floor_s``. What the grasp costs apart
+from that: ``grasp_price_s``, the MOVE's path at the acceleration limits
+retimed with the grasp less without it (shaped MOVEs only; the key is
+left out where it was not computed), and its sum for the cycle.
 """
 
 from __future__ import annotations
@@ -95,6 +98,8 @@ class ObjectReport:
         move_suction_force_n: The vacuum's force when the MOVE started, N.
         guarantee: What the MOVE's retiming holds, in words.
         floor: Its motion floor, or None if not computed.
+        grasp_price_s: What the grasp cost its MOVE's path, s (NaN: not
+            computed; ``ObjectRecord.grasp_price_s``).
     """
 
     name: str
@@ -106,6 +111,7 @@ class ObjectReport:
     move_suction_force_n: float
     guarantee: str
     floor: ObjectFloor | None = None
+    grasp_price_s: float = float("nan")
 
     @property
     def total_s(self) -> float:
@@ -139,6 +145,7 @@ class ObjectReport:
             "guarantee": self.guarantee,
             "total_s": self.total_s,
             **self._floor_dict(),
+            **_if_finite("grasp_price_s", self.grasp_price_s),
         }
 
     def _floor_dict(self) -> dict[str, Any]:
@@ -225,6 +232,11 @@ class CycleReport:
         return None if floor is None or floor <= 0 else self.total_s / floor
 
     @property
+    def grasp_price_s(self) -> float:
+        """The objects' ``grasp_price_s`` summed, s (NaN if any is missing)."""
+        return math.fsum(o.grasp_price_s for o in self.objects)
+
+    @property
     def picks_per_hour(self) -> float:
         """``objects / total_s * 3600`` (0 if no time passed)."""
         total = self.total_s
@@ -243,6 +255,7 @@ class CycleReport:
                 if self.floor_s is None
                 else {"floor_s": self.floor_s, "floor_ratio": self.floor_ratio}
             ),
+            **_if_finite("grasp_price_s", self.grasp_price_s),
             **({} if self.run is None else dataclasses.asdict(self.run)),
         }
 
@@ -278,6 +291,7 @@ def object_report(
         move_suction_force_n=record.move_suction_force,
         guarantee=record.guarantee,
         floor=floor,
+        grasp_price_s=record.grasp_price_s,
     )
 
 
@@ -339,6 +353,8 @@ def table_markdown(report: CycleReport) -> str:
     if report.floor_s is not None:
         row("floor (joint limits, no grasp)", [o.floor_s or 0.0 for o in objects])
         row("floor ratio (total / floor)", [o.floor_ratio or 0.0 for o in objects])
+    if any(math.isfinite(o.grasp_price_s) for o in objects):
+        row("grasp price (MOVE, acc. limits)", [o.grasp_price_s for o in objects])
     return "\n".join(rows) + "\n"
 
 
@@ -356,6 +372,11 @@ def summary_line(report: CycleReport) -> str:
             f"{report.floor_ratio:.3f}x of it"
         )
     )
+
+
+def _if_finite(key: str, value: float) -> dict[str, float]:
+    """``{key: value}``, or nothing if ``value`` is NaN (not computed)."""
+    return {} if math.isnan(value) else {key: value}
 
 
 def write_report(report: CycleReport, out_dir: Path) -> tuple[Path, Path]:

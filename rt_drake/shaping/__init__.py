@@ -26,6 +26,8 @@ planner's spline path and never returns a slower one. Modules:
 from rt_drake.shaping._compile_kernels import warm_up
 from rt_drake.shaping._family import FamilyError
 from rt_drake.shaping._finish import (
+    ADAPTIVE_WEIGHT,
+    adaptive_grid,
     retime_adaptive,
     vertical_drift,
 )
@@ -41,12 +43,14 @@ from rt_drake.shaping._options import (
 )
 
 __all__ = [
+    "ADAPTIVE_WEIGHT",
     "FamilyError",
     "MoveOptimizer",
     "MoveOptimizerError",
     "MoveOptimizerOptions",
     "MovePlanner",
     "OptimizedMove",
+    "adaptive_grid",
     "optimize_move",
     "retime_adaptive",
     "vertical_drift",

@@ -53,6 +53,8 @@ MIDDLE_POINTS = 200
 FINAL_POINTS = 400
 #: Uniform points if the adaptive retime fails numerically.
 FALLBACK_POINTS = 1000
+#: w of the measure: the share of time in it (module docstring).
+ADAPTIVE_WEIGHT = 0.3
 
 
 def adaptive_grid(
@@ -138,7 +140,7 @@ def retime_adaptive(
     limits: JointLimits,
     grasp: GraspConstraint | None,
     points: int = FINAL_POINTS,
-    weight: float = 0.3,
+    weight: float = ADAPTIVE_WEIGHT,
     context=None,
     cup: CupFrame | None = None,
     chain: CupChain | None = None,
@@ -207,6 +209,7 @@ def vertical_drift(chain: CupChain, path, s_start: float, s_end: float) -> float
 
 
 __all__ = [
+    "ADAPTIVE_WEIGHT",
     "COARSE_POINTS",
     "FALLBACK_POINTS",
     "FINAL_POINTS",

@@ -26,7 +26,10 @@ vacuum needs to reach "part present" (``time_to_part_present``) before
 REACH ends: the level builds only once the cup seals (its face within the
 seal distance), so the seal forms at contact and the build-up overlaps the
 motion's end; the MOVE still starts at "part present", retimed for the
-force certain then.
+force certain then. Likewise the valve closes ``release_s`` before the MOVE
+arrives (:attr:`~.motion.Motion.release_s`: the lead over which the grasp
+holds with the force certain as the vacuum decays), so the release overlaps
+the set-down; DETACH still ends at "released".
 
 It measures, from the plant's body poses, how far the held object slips on
 the cup and where it lands. All that changes lives in the Context's abstract
@@ -203,10 +206,20 @@ class Sequencer(LeafSystem):
 
     def _CalcValve(self, context: Context, output: BasicVector) -> None:
         state = self.sequencer_state(context)
-        on = state.phase in (Phase.ATTACH, Phase.MOVE) or self._opens_early(
-            context, state
+        on = (
+            state.phase is Phase.ATTACH
+            or (state.phase is Phase.MOVE and not self._closes_early(context, state))
+            or self._opens_early(context, state)
         )
         output.SetFromVector([1.0 if on else 0.0])
+
+    def _closes_early(self, context: Context, state: SequencerState) -> bool:
+        """MOVE: off for its last ``release_s`` s (0 unless first_order)."""
+        motion = state.motion
+        if motion is None or motion.release_s <= 0.0:
+            return False
+        t = context.get_time() - state.t_motion_start
+        return t >= motion.duration - motion.release_s
 
     def _opens_early(self, context: Context, state: SequencerState) -> bool:
         """first_order: on for the last ``time_to_part_present`` s of REACH."""
@@ -320,7 +333,10 @@ class Sequencer(LeafSystem):
             state = _with_record(
                 dataclasses.replace(state, X_CO_attached=self._X_CO(context, index)),
                 dataclasses.replace(
-                    record, move_suction_force=force, guarantee=motion.guarantee
+                    record,
+                    move_suction_force=force,
+                    guarantee=motion.guarantee,
+                    grasp_price_s=motion.grasp_price_s,
                 ),
             )
         if self._pipelined:  # plan the next motion while this one runs

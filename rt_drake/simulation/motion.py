@@ -84,6 +84,14 @@ class Motion:
         parts: for a motion over several phases (the pick: APPROACH then
             REACH), each phase's end and plan times, in order; empty for a
             motion of one phase.
+        release_s: for a MOVE, s before its end at which the valve may
+            close: the grasp holds over that last stretch with the force
+            certain as the vacuum decays (:mod:`._release`); 0: on arrival.
+        grasp_price_s: for a MOVE retimed under a grasp, what the grasp costs
+            on its path: its duration at the acceleration limits with the
+            grasp less without it (s, both on adaptive grids); NaN for other
+            motions and for a MOVE not shaped (the figure is computed beside
+            the optimiser's own acceleration-limited retime only).
     """
 
     trajectory: Trajectory
@@ -93,6 +101,8 @@ class Motion:
     grasp: GraspConstraint | None = None
     guarantee: str = ""
     parts: tuple[PhasePart, ...] = ()
+    release_s: float = 0.0
+    grasp_price_s: float = float("nan")
 
     def phase_end(self, phase: Phase) -> float:
         """Seconds after the start at which ``phase`` ends (duration if no parts)."""

@@ -29,6 +29,8 @@ class ObjectRecord:
             distance from its goal pose during DETACH.
         move_suction_force: N, the vacuum's force when the MOVE started.
         guarantee: What the MOVE's retiming held (``Motion.guarantee``).
+        grasp_price_s: s, what the grasp cost the MOVE's path
+            (``Motion.grasp_price_s``; NaN: not computed).
     """
 
     name: str
@@ -41,6 +43,7 @@ class ObjectRecord:
     placement_rotation: float = float("nan")
     move_suction_force: float = float("nan")
     guarantee: str = ""
+    grasp_price_s: float = float("nan")
 
     @property
     def plan_on_critical_path_s(self) -> float:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from pathlib import Path
@@ -173,3 +174,20 @@ def test_the_floor_is_set_beside_each_object_and_the_cycle(tmp_path):
     # without floors the report has no floor keys (older report.json files)
     plain = json.loads(cycle_report((_record("a", 0.0),)).to_json())
     assert "floor_s" not in plain and "floor_s" not in plain["objects"][0]
+
+
+def test_the_grasp_price_is_reported_where_it_was_computed():
+    """Each object's price and their sum; left out where not computed."""
+    priced = [
+        dataclasses.replace(_record(name, 0.0), grasp_price_s=price)
+        for name, price in (("a", 0.05), ("b", 0.125))
+    ]
+    data = json.loads(cycle_report(tuple(priced)).to_json())
+    assert [o["grasp_price_s"] for o in data["objects"]] == [0.05, 0.125]
+    assert data["grasp_price_s"] == pytest.approx(0.175)
+    assert "| grasp price (MOVE, acc. limits) | 0.050 | 0.125 |" in table_markdown(
+        cycle_report(tuple(priced))
+    )
+    mixed = json.loads(cycle_report((priced[0], _record("c", 0.0))).to_json())
+    assert "grasp_price_s" not in mixed["objects"][1]
+    assert "grasp_price_s" not in mixed

@@ -4,9 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import toppra
+import toppra.algorithm
+import toppra.constraint
 
 from rt_drake.model.plant import make_arm_plant
 from rt_drake.retiming import JointLimits, TimeScaled, check_trajectory
+from rt_drake.shaping import retime_adaptive
 from rt_drake.simulation import OnlineMotions
 from rt_drake.types.phase import Phase
 
@@ -67,3 +71,52 @@ def test_picks_and_moves_keep_their_limits_between_grid_points(motions, scenario
         np.testing.assert_allclose(
             motion.trajectory.value(t).ravel(), motion.planned.descent[0], atol=1e-9
         )
+
+
+def toppra_duration(path, limits: JointLimits) -> float:
+    """Time-optimal duration (s) of ``path`` at the joint limits: toppra, 2000 points.
+
+    An independent TOPP-RA (the toppra package) on a grid 20 times finer
+    than the cycle's uniform one.
+    """
+    s = np.linspace(0.0, 1.0, 2000)
+    spline = toppra.SplineInterpolator(s, path.value(s))
+    constraints = [
+        toppra.constraint.JointVelocityConstraint(
+            np.column_stack([-limits.velocity, limits.velocity])
+        ),
+        toppra.constraint.JointAccelerationConstraint(
+            np.column_stack([-limits.acceleration, limits.acceleration])
+        ),
+    ]
+    instance = toppra.algorithm.TOPPRA(constraints, spline, gridpoints=s)
+    return float(instance.compute_trajectory(0.0, 0.0).duration)
+
+
+def test_the_pick_is_retimed_within_a_percent_of_a_fine_grid(motions, scenario):
+    """On its adaptive grid the pick is within 1 % of toppra's time-optimal
+    duration on 2000 points (on 100 uniform points it is 4-6 % above), and
+    at least 3 % faster than on the 100 uniform points alone. The shaped
+    MOVE's grasp price is its path retimed with the grasp (adaptive grid)
+    less toppra's duration without it, within 1 % of the MOVE, and >= 0."""
+    plant = make_arm_plant(scenario)
+    limits = JointLimits.from_plant(plant, scenario.robot)
+    first, second = scenario.objects[:2]
+    pick = motions.pick(motions.q_home, first)
+    move = motions.move(pick.q_end, first, pick)
+    after = motions.pick(move.q_end, second, retreat=True)
+    for motion in (pick, after):
+        path = motion.planned.path
+        reference = toppra_duration(path, limits)
+        assert reference * (1 - 2e-3) <= motion.duration <= reference * 1.01
+        uniform = motions.retime_path(path, None).duration
+        assert motion.duration <= 0.97 * uniform
+    # The carton box, whose MOVE its grasp slows (the light boxes' hardly).
+    carton = scenario.objects[3]
+    pick = motions.pick(motions.q_home, carton)
+    move = motions.move(pick.q_end, carton, pick)
+    path = move.planned.path
+    with_grasp = retime_adaptive(plant, path, limits, move.grasp).duration
+    price = with_grasp - toppra_duration(path, limits)
+    assert move.grasp_price_s == pytest.approx(price, abs=0.01 * move.duration)
+    assert move.grasp_price_s > 0.02 * move.duration

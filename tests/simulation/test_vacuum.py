@@ -20,6 +20,7 @@ from pydrake.systems.primitives import ConstantVectorSource, TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
 from rt_drake.experiments._rollout import Replay
+from rt_drake.model.held import held_object_of
 from rt_drake.model.scenario import load_scenario
 from rt_drake.model.vacuum import (
     Vacuum,
@@ -210,7 +211,9 @@ def test_the_valve_opens_on_the_descent_and_the_seal_forms_at_contact(scenario_p
     distance), from the valve opening ``time_to_part_present`` before REACH
     ends. So ATTACH lasts less than the closed-form build-up time from a cold
     start, yet the MOVE starts with at least ``part_present_fraction`` of P A
-    (the force its retime assumed) and the notebook holds and lands.
+    (the force its retime assumed) and the notebook holds and lands. Likewise
+    the valve closes before the MOVE arrives (its guarantee says how early),
+    and the notebook still holds on the way down and lands.
     """
     from rt_drake.simulation import OnlineMotions
 
@@ -221,5 +224,13 @@ def test_the_valve_opens_on_the_descent_and_the_seal_forms_at_contact(scenario_p
     attach = record.exec_s[Phase.ATTACH]
     assert 0.0 <= attach < time_to_part_present(FIRST_ORDER) - 0.01
     assert record.move_suction_force >= 0.8 * scenario.cup.suction_force
+    assert "s before arrival" in record.guarantee
+    # Closed on arrival, the force (at least 0.8 P A then) would need
+    # tau_r ln(0.8 P A / W) to fall below the weight W: DETACH is shorter.
+    weight = held_object_of(scenario.object("notebook")).mass * 9.81
+    on_arrival = FIRST_ORDER.release_tau_s * math.log(
+        0.8 * scenario.cup.suction_force / weight
+    )
+    assert record.exec_s[Phase.DETACH] < on_arrival
     assert record.max_slip_translation < 2e-3
     assert record.placement_translation < 0.01

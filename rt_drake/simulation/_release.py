@@ -1,0 +1,95 @@
+"""Release on arrival: how early a MOVE may close the valve (first_order vacuum).
+
+With the ``first_order`` vacuum the suction force certain from the start
+of a MOVE is ``f0 = part_present_fraction P A`` (N): "part present" fired,
+and the level only rises while the valve stays on and the cup sealed. If
+the valve closes ``L`` s before the MOVE ends, at ``t_c = T - L``, the level
+decays as ``lambda(t) = lambda(t_c) exp(-(t - t_c) / tau_r)`` (the vacuum's
+``release_tau_s``), so on ``[T - L, T]`` the force certain at every instant
+is at least its value at T, ``f(L) = f0 exp(-L / tau_r)``.
+
+The lead is the largest L for which the object's wrench ``w(t)`` (the cup
+on the object, frame C, ``[torque; force]``), sampled at ``RATE_HZ`` over
+``[T - L, T]``, stays in the cup's wrench set for that force, shrunk by the
+grasp margin: ``F w <= g(f(L))`` with the rows of ``grasp_at(f(L))``
+(:func:`~rt_drake.contact.with_suction_force` translates the set; the
+MOVE's own rows are those of ``f0``). A larger L both lowers ``f(L)`` and
+lengthens the window, so "holds" is monotone in L and a bisection over
+``[0, LEAD_TAUS tau_r]`` (``LEAD_STEPS`` halvings) finds it. L = 0 always
+holds (the MOVE was retimed for ``f0``): the valve then closes on arrival,
+as before.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+from pydrake.multibody.plant import MultibodyPlant
+from pydrake.systems.framework import Context
+from pydrake.trajectories import Trajectory
+
+from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.dynamics.wrench import object_wrench
+from rt_drake.retiming import GraspConstraint
+from rt_drake.types.held_object import HeldObject
+
+#: Hz: the wrench's sampling rate over the window.
+RATE_HZ = 1000.0
+#: The longest lead searched, in time constants ``tau_r`` (force down to 5 %).
+LEAD_TAUS = 3.0
+#: Halvings of the bisection (resolution ``LEAD_TAUS tau_r / 2^LEAD_STEPS``).
+LEAD_STEPS = 10
+
+
+def release_lead(
+    plant: MultibodyPlant,
+    trajectory: Trajectory,
+    held: HeldObject,
+    grasp_at: Callable[[float], GraspConstraint],
+    force_s: float,
+    release_tau_s: float,
+    context: Context | None = None,
+    cup: CupFrame | None = None,
+) -> float:
+    """The largest lead L (s) before ``trajectory``'s end at which the valve may close.
+
+    Args:
+        plant: The retimer's arm plant.
+        trajectory: The MOVE, q(t) (rad) with derivatives.
+        held: The held object.
+        grasp_at: The grasp constraint of ``held`` for a suction force (N).
+        force_s: ``f0``, N, the force certain while the valve is on.
+        release_tau_s: ``tau_r``, s, the release's time constant.
+        context: Scratch context of ``plant``.
+        cup: The cup frame C of ``plant``.
+    """
+    t1 = trajectory.end_time()
+    longest = min(LEAD_TAUS * release_tau_s, t1 - trajectory.start_time())
+    times = np.append(np.arange(t1 - longest, t1, 1.0 / RATE_HZ), t1)
+    q = np.array([trajectory.value(t).ravel() for t in times])
+    v, vdot = (
+        np.array([trajectory.EvalDerivative(t, k).ravel() for t in times])
+        for k in (1, 2)
+    )
+    wrench = object_wrench(plant, held, q, v, vdot, context, cup)
+
+    def holds(lead: float) -> bool:
+        grasp = grasp_at(force_s * math.exp(-lead / release_tau_s))
+        window = wrench[times >= t1 - lead - 1e-12]
+        return bool(np.all(window @ grasp.F.T <= grasp.g))
+
+    if holds(longest):
+        return longest
+    low, high = 0.0, longest
+    for _ in range(LEAD_STEPS):
+        middle = 0.5 * (low + high)
+        if holds(middle):
+            low = middle
+        else:
+            high = middle
+    return low
+
+
+__all__ = ["LEAD_STEPS", "LEAD_TAUS", "RATE_HZ", "release_lead"]
