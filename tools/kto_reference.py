@@ -184,6 +184,8 @@ class Kto:
             inner = np.linspace(lo, hi, VERTICAL_SAMPLES + 2)[1:-1]
             self.samples += [(float(tau), side) for tau in inner]
         self.rows = self.cell_rows(self.initial_bspline(), args.row_share, None)
+        #: Extra collision samples (where an earlier solution collided).
+        self.collision_taus: list[float] = []
 
     def cell_rows(self, traj, share: float, rows) -> list[np.ndarray]:
         """Per sample, its rows: those within ``share`` of their bound in its cell.
@@ -338,7 +340,10 @@ class Kto:
         for (tau, side), rows in zip(self.samples, self.rows, strict=True):
             self.add_sample(prog, cp, T, tau, side, rows)
         if collision is not None:  # between the vertical segments
-            taus = np.linspace(self.tau_up, self.tau_down, self.args.collision_samples)
+            taus = np.union1d(
+                np.linspace(self.tau_up, self.tau_down, self.args.collision_samples),
+                self.collision_taus,
+            )
             for tau in taus:
                 kto.AddPathPositionConstraint(collision, float(tau))
         kto.SetInitialGuess(guess)
@@ -422,8 +427,8 @@ def _spline_segment_ends(chain, path, p0, p1) -> tuple[float, float]:
 
 
 def path_of(traj, kto: Kto, count: int = 200):
-    """Clamped chord-length GeometricPath through ``count`` samples of r, and the
-    knots of its vertical segment tops.
+    """Clamped chord-length GeometricPath through ``count`` samples of r, the
+    knots of its vertical segment tops, and the samples' tau (one per knot).
 
     The samples are at equal steps of r's chord length in joint space (from
     4000 uniform ones), not of tau: a rest-to-rest r moves as tau^2 near its
@@ -443,6 +448,7 @@ def path_of(traj, kto: Kto, count: int = 200):
         path,
         float(path.knots[np.searchsorted(taus, kto.tau_up)]),
         float(path.knots[np.searchsorted(taus, kto.tau_down)]),
+        taus,
     )
 
 
@@ -453,22 +459,47 @@ HEADER = (
 )
 
 
+def solve_and_check(setup, optimizer, move, grasp, result, args, extra=()):
+    """(Kto, Solved, (path, s_up, s_down, taus), the planner's collision check).
+
+    ``extra``: collision samples (tau) added to the uniform ones.
+    """
+    planner = setup.planner
+    scene = planner.prepare(Phase.MOVE, move.object, move.q_start, move.X_OC)
+    kto = Kto(optimizer, move, grasp, result, args)
+    kto.collision_taus = list(extra)
+    solved = kto.solve(setup, scene)
+    path = path_of(solved.trajectory, kto)
+    scene = planner.prepare(Phase.MOVE, move.object, move.q_start, move.X_OC)
+    return kto, solved, path, check_path(scene, path[0])
+
+
 def measure(setup, optimizer, move, grasp, result, args) -> dict:
     """One transport's KTO, its checks and retimes, and the anchors (s)."""
-    plant, limits, planner, chain = (
-        setup.plant, setup.limits, setup.planner, optimizer.chain
-    )  # fmt: skip
+    plant, limits, chain = setup.plant, setup.limits, optimizer.chain
     kw = {"context": setup.context, "cup": setup.cup}
     spl100 = retime(plant, move.path, limits, grasp, 100, **kw).duration
     spl1k = retime(plant, move.path, limits, grasp, 1000, **kw).duration
     cma1k = retime(plant, result.path, limits, grasp, 1000, **kw).duration
-    scene = planner.prepare(Phase.MOVE, move.object, move.q_start, move.X_OC)
-    kto = Kto(optimizer, move, grasp, result, args)
-    solved = kto.solve(setup, scene)
+    kto, solved, (path, s_up, s_down, taus), collision = solve_and_check(
+        setup, optimizer, move, grasp, result, args
+    )
+    cpu_s, retries, extra = solved.cpu_s, 0, []
+    again = argparse.Namespace(
+        **{**vars(args), "collision_samples": args.collision_samples or 40}
+    )
+    while not collision.ok and retries < args.collision_rounds:
+        # Again from the same guess, with collision constraints (40 uniform
+        # if none were asked for) and three more around each collision found.
+        retries += 1
+        hit = float(np.interp(collision.s, path.knots, taus))
+        extra += list(np.clip(hit + np.array([-0.005, 0.0, 0.005]),
+                              kto.tau_up, kto.tau_down))  # fmt: skip
+        kto, solved, (path, s_up, s_down, taus), collision = solve_and_check(
+            setup, optimizer, move, grasp, result, again, extra
+        )
+        cpu_s += solved.cpu_s
     traj, T = solved.trajectory, solved.trajectory.end_time()
-    path, s_up, s_down = path_of(traj, kto)
-    scene = planner.prepare(Phase.MOVE, move.object, move.q_start, move.X_OC)
-    collision = check_path(scene, path)
     tilt = chain.tilt(path.value(np.linspace(0, 1, 1000))).max()
     drift = max(
         vertical_drift(chain, path, 0.0, s_up), vertical_drift(chain, path, s_down, 1.0)
@@ -510,8 +541,8 @@ def measure(setup, optimizer, move, grasp, result, args) -> dict:
         "retimed_check_worst_pct": 100 * worst,
         "feasible": solved.feasible, "snopt_info": solved.info,
         "stopped": solved.stopped, "chunks": solved.chunks,
-        "cpu_s": solved.cpu_s, "rounds": solved.rounds, "tau_up": kto.tau_up,
-        "tau_down": kto.tau_down,
+        "cpu_s": cpu_s, "retries": retries, "rounds": solved.rounds,
+        "tau_up": kto.tau_up, "tau_down": kto.tau_down,
     }  # fmt: skip
 
 
@@ -526,6 +557,7 @@ def format_row(r: dict) -> str:
         f"{r['drift_mm']:9.2f} {r['kto_own_grasp_excess_pct']:+10.2f} "
         f"{r['retimed_check_worst_pct']:+14.3f}  {r['feasible']!s:>8} "
         f"{r['chunks']:7d}  {r['stopped']:<12} {r['cpu_s']:6.1f}"
+        + (f"  ({r['retries']} with collision constraints)" if r["retries"] else "")
     )
 
 
@@ -561,6 +593,7 @@ def main() -> None:
     parser.add_argument("--time-limit", type=float, default=120.0)
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--collision-samples", type=int, default=0)
+    parser.add_argument("--collision-rounds", type=int, default=3)
     parser.add_argument("--clearance", type=float, default=0.002)
     parser.add_argument("--influence", type=float, default=0.02)
     parser.add_argument("--guess", choices=["optimised", "spline"], default="optimised")
