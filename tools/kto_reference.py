@@ -41,14 +41,18 @@ each chunk) or SNOPT ends for another reason than its iteration limit. The
 iterate kept is the feasible one (every constraint of the program within
 1e-5) of least T, else the last.
 
-Initial guess: the optimiser's path (``--guess spline``: the spline path),
-retimed (the adaptive 400-point retime), fitted by least squares. With
-``--collision-samples K``, a ``MinimumDistanceLowerBoundConstraint`` on the
-planner's checker (carried object attached) of ``--clearance`` m at K samples
-between the vertical segments. The KTO path is a clamped chord-length spline
-through 200 samples of r at equal steps of its joint-space length. Its
-duration, ``kto``, is its exact retime under the grasp constraint by the
-optimiser's scheme (``MoveOptimizer.retime``: ``rt_drake.retime`` on the
+Initial guess: the optimiser's path, retimed (the adaptive 400-point
+retime), fitted by least squares. (``--guess spline``, the spline path,
+ended infeasible, SNOPT 13, on the four transports tried: the vertical
+ends' times then come from another path.) With ``--collision-samples K``, a
+``MinimumDistanceLowerBoundConstraint`` on the planner's checker (carried
+object attached) of ``--clearance`` m at K samples between the vertical
+segments. Without it, a KTO path that the planner's check finds colliding
+is solved again from the same guess with 40 such samples and three more
+around each collision found, at most ``--collision-rounds`` times. The KTO
+path is a clamped chord-length spline through 200 samples of r at equal
+steps of its joint-space length. Its duration, ``kto``, is its exact
+retime under the grasp constraint by the optimiser's scheme (``MoveOptimizer.retime``: ``rt_drake.retime`` on the
 adaptive grid; ``kto1k`` at 1000 uniform points), the same scheme as the
 shaped MOVE's ``cma``; the KTO trajectory and the retimed one are checked at
 1 kHz (``check_trajectory``). A KTO path is valid (and enters the medians)
