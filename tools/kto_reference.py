@@ -51,14 +51,15 @@ segments. Without it, a KTO path that the planner's check finds colliding
 is solved again from the same guess with 40 such samples and three more
 around each collision found, at most ``--collision-rounds`` times. The KTO
 path is a clamped chord-length spline through 200 samples of r at equal
-steps of its joint-space length. Its duration, ``kto``, is its exact
-retime under the grasp constraint by the optimiser's scheme (``MoveOptimizer.retime``: ``rt_drake.retime`` on the
-adaptive grid; ``kto1k`` at 1000 uniform points), the same scheme as the
-shaped MOVE's ``cma``; the KTO trajectory and the retimed one are checked at
-1 kHz (``check_trajectory``). A KTO path is valid (and enters the medians)
-if it passes the optimiser's own acceptance: the planner's dense collision
-check with the carried object (``check_path``), the tilt bound (+0.5 deg
-between samples) and the vertical ends within 1 mm.
+steps of its joint-space length. Its duration, ``kto``, is its exact retime
+under the grasp constraint by the optimiser's scheme
+(``MoveOptimizer.retime``: ``rt_drake.retime`` on the adaptive grid;
+``kto1k`` at 1000 uniform points), the same scheme as the shaped MOVE's
+``cma``; the KTO trajectory and the retimed one are checked at 1 kHz
+(``check_trajectory``). A KTO path is valid (and enters the medians) if it
+passes the optimiser's own acceptance: the planner's dense collision check
+with the carried object (``check_path``), the tilt bound (+0.5 deg between
+samples) and the vertical ends within 1 mm.
 
 Printed per transport (s): ``spl100`` the spline path at 100 uniform points
 (the issue's denominator), ``spl`` on the adaptive scheme, ``cma`` the
