@@ -299,18 +299,27 @@ class OnlineMotions:
     ) -> float:
         """What ``grasp`` costs on ``path`` (s): the duration with it less without.
 
-        At the acceleration limits (no jerk limits), both by
+        At the acceleration limits (no jerk limits): with the grasp by
         :func:`~rt_drake.shaping.retime_adaptive` (``with_grasp``: that retime
-        already done, e.g. the optimiser's). A report figure, not part of the
-        motion: its wall time is not counted as planning.
+        already done, e.g. the optimiser's), without it on the same grid
+        points, so that both solve the same discretisation and the price is
+        never negative (on grids of their own the two differed by up to
+        5 ms either way). A report figure, not part of the motion: its wall
+        time is not counted as planning.
         """
         plain = dataclasses.replace(self._limits, jerk=None)
         if with_grasp is None:
             with_grasp = retime_adaptive(
                 self._plant, path, plain, grasp, context=self._context, cup=self._cup
             )
-        without = retime_adaptive(
-            self._plant, path, plain, None, context=self._context, cup=self._cup
+        without = retime(
+            self._plant,
+            path,
+            plain,
+            None,
+            gridpoints=with_grasp.gridpoints,
+            context=self._context,
+            cup=self._cup,
         )
         return with_grasp.duration - without.duration
 
