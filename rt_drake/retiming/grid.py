@@ -98,10 +98,11 @@ def _fill_pieces(s: np.ndarray, knots: np.ndarray) -> np.ndarray:
 
     ``s`` holds every knot. A piece of one or two segments would leave the
     wrench and torque between its grid points to a linear or quadratic
-    interpolation (:mod:`._between`), blind to the piece's curvature: on a
-    path whose knots bunch near its start (waypoints sampled at equal times
-    from rest) a grid of 101 given points let the grasp exceed its limit by
-    0.62 % at 1 kHz, unseen.
+    interpolation (:mod:`._between`), blind to the piece's curvature: on
+    paths whose knots bunch at their ends (waypoints sampled at equal times
+    of a rest-to-rest motion) a given grid of 101 points, or the adaptive
+    grid, let the grasp exceed its limit by up to 4 % at 1 kHz, unseen
+    (BENCHMARKS.md, "Retiming on paths whose knots bunch at their ends").
     """
     segments = np.diff(np.searchsorted(s, knots))  # per piece
     short = np.flatnonzero(segments < MIN_PIECE_SEGMENTS)
