@@ -320,6 +320,20 @@ def jerk_limited(
     )
 
 
+def _taylor(
+    spline: JointPath, s: np.ndarray, order: int, h: float, third: np.ndarray
+) -> np.ndarray:
+    """``q^(order)(s + h)`` by Taylor's series at ``s`` up to ``third`` = q'''(s).
+
+    ``q'(s) + h q''(s) + h^2 / 2 q'''(s)`` for order 1, ``q''(s) + h
+    q'''(s)`` for order 2: exact inside a cubic piece.
+    """
+    value = spline(s, order)
+    if order == 1:
+        return value + h * spline(s, 2) + 0.5 * h * h * third
+    return value + h * third
+
+
 def check_smooth(spline: JointPath) -> None:
     """Refuse a path whose q' or q'' jumps at a break.
 
@@ -334,11 +348,17 @@ def check_smooth(spline: JointPath) -> None:
     if not inner.size:
         return
     step = 1e-9
+    third = {side: spline(inner + side * step, 3) for side in (-1.0, 1.0)}
     for order in (1, 2):
-        # Each side extrapolated to the break by its own next derivative, so
-        # that a steep but continuous q'' (a short spline piece) is no jump.
-        right = spline(inner + step, order) - step * spline(inner + step, order + 1)
-        left = spline(inner - step, order) + step * spline(inner - step, order + 1)
+        # Each side extrapolated to the break by its Taylor series up to the
+        # third derivative (exact inside a cubic piece), so that a steep but
+        # continuous q' or q'' (a short spline piece) is no jump: with the
+        # next derivative alone, a last piece 3e-7 of the path long made q'
+        # "jump" by 6e-6 (the step^2 / 2 q''' term left out).
+        right, left = (
+            _taylor(spline, inner + side * step, order, -side * step, third[side])
+            for side in (1.0, -1.0)
+        )
         jump = right - left
         scale = max(1.0, float(np.max(np.abs(spline(spline.breaks, order)))))
         if np.max(np.abs(jump)) > 1e-6 * scale:

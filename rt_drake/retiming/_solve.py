@@ -213,10 +213,11 @@ def retime(
             one whose joint jerk is limited, :mod:`._jerk`).
         grasp: Held object and grasp polytope; None: no object.
         gridpoints: Number of uniform grid points in s (>= 2), to which the
-            path's knots are added, points so that no step is longer than
-            0.05 rad in joint space and, where the limits would be exceeded
-            between grid points, more points (:mod:`.grid`); or an explicit
-            grid, refined likewise.
+            path's knots are added, points so that every piece of the path
+            has at least three segments and no step is longer than 0.05 rad
+            in joint space and, where the limits would be exceeded between
+            grid points, more points (:mod:`.grid`); or an explicit grid,
+            refined likewise.
         sd_start: Path velocity ds/dt at the start (1/s; 0 = rest).
         sd_end: Path velocity ds/dt at the end (1/s; 0 = rest).
         start_time: Time (s) at which the trajectory starts.

@@ -159,7 +159,8 @@ def retime_adaptive(
         path: The path (``GeometricPath``).
         limits: Joint limits.
         grasp: Grasp constraint, or None.
-        points: Size of the adaptive grid (before the knots are added).
+        points: Size of the adaptive grid (before ``retime`` adds the knots
+            and the points of :mod:`rt_drake.retiming.grid`).
         weight: w of the measure (module docstring).
         context: Scratch context of ``plant``.
         cup: The cup frame C of ``plant``.

@@ -39,6 +39,7 @@ from rt_drake.retiming import (
     retime,
 )
 from rt_drake.retiming import _solve as solve_module
+from rt_drake.retiming import grid as grid_module
 from rt_drake.retiming import (
     stage_rows as rows,
 )
@@ -408,7 +409,17 @@ def test_a_tiny_joint_step_beside_a_large_one_is_retimed(plant, limits, grasps):
         assert held.duration == pytest.approx(plain.duration, rel=1e-4)
 
 
-def test_acceleration_peaking_between_sub_points_holds_at_1khz(plant, limits):
+@pytest.fixture
+def one_segment_pieces(monkeypatch):
+    """The stored grid as given: pieces of one segment kept (grid.py now gives
+    every piece MIN_PIECE_SEGMENTS), so that the peak below stays inside one
+    segment and exercises the sub-point, vertex, cut and split machinery."""
+    monkeypatch.setattr(grid_module, "MIN_PIECE_SEGMENTS", 1)
+
+
+def test_acceleration_peaking_between_sub_points_holds_at_1khz(
+    plant, limits, one_segment_pieces
+):
     """An optimised MOVE sampled densely (202 waypoints, its first knot
     interval 1.1e-4 of the path), on the adaptive grid it was retimed on.
 
@@ -423,7 +434,9 @@ def test_acceleration_peaking_between_sub_points_holds_at_1khz(plant, limits):
     assert check.margins[Margin.ACCELERATION].value >= -1e-3, check.summary()
 
 
-def test_cuts_that_do_not_converge_split_the_segment(plant, limits, monkeypatch):
+def test_cuts_that_do_not_converge_split_the_segment(
+    plant, limits, monkeypatch, one_segment_pieces
+):
     """With no rounds of cuts allowed, the retimer splits the segments where a
     joint limit is exceeded (it used to stop and return the excess): the
     acceleration peak of the test above holds at 1 kHz by Drake's route."""
@@ -437,7 +450,7 @@ def test_cuts_that_do_not_converge_split_the_segment(plant, limits, monkeypatch)
 
 
 def test_a_limit_exceeded_after_the_last_refinement_is_refused(
-    plant, limits, monkeypatch
+    plant, limits, monkeypatch, one_segment_pieces
 ):
     """No cuts and no refinements allowed: the acceleration peaks in the end
     segments, from and to rest (+0.22 % at 1 kHz in the first before the
