@@ -214,7 +214,11 @@ def jerk_limited(
             if abs(previous - duration) <= CONVERGED * duration:
                 break
             previous = duration
-        assert best is not None
+        if best is None:  # every LP's profile stopped (s' = 0) short of the end
+            raise PathNotControllableError(
+                "jerk-limited retiming: every profile found stops on the path "
+                "(s' = 0 between grid points)"
+            )
         z = best[1]
         over = dense.excess(z, limits) > tolerance
         jerk_over = _point_excess(problem, z) > tolerance
