@@ -193,6 +193,8 @@ CASES = [
      ["acceleration must be a (joints,) array", "got ndarray of shape (2, 3)"]),
     ("JointLimits", lambda e: JointLimits(np.ones(6), np.ones(6), [1.0] * 5 + [0]),
      ["JointLimits: torque limits must be > 0"]),
+    ("JointLimits", lambda e: e.limits.with_acceleration_ramp(0.0),
+     ["JointLimits.with_acceleration_ramp: ramp_s", "> 0, got float 0.0"]),
     ("JointLimits", lambda e: JointLimits(np.ones(6), np.ones(6), jerk=[np.nan] * 6),
      ["JointLimits: jerk must be a (joints,) array of finite numbers"]),
     ("JointLimits", lambda e: JointLimits(np.ones(6), np.ones(6), jerk=np.ones(5)),

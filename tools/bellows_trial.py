@@ -7,12 +7,14 @@
 For each trial of ``experiment transport`` (same sampling and planner seed,
 the same grasp: from the cup, or APPROACH and REACH from home): plan the
 MOVE, retime it under the grasp constraint and under the joint limits only
-(both with the scenario's jerk limits, if it gives any), and play both in
-the simulated cell; ``--sweep`` also plays the constrained MOVE faster until
-it slips. ``--scale`` multiplies catalogue parameters of the bellows cup (a
+(both with the scenario's jerk limits, if it gives any; the constrained one
+also with ``planning.grasp_ramp_s``), and play both in the simulated cell;
+``--sweep`` also plays the constrained MOVE faster until it slips.
+``--scale`` multiplies catalogue parameters of the bellows cup (a
 sensitivity sweep: ``--scale lateral_stiffness=0.5``); ``--scale
 pressure=1.358`` makes its pull 20 N. Prints one line per rollout: duration,
-slip (mm, deg), held.
+slip on the lip (mm, deg), motion on the tool (mm, deg: the slip plus the
+bellows' deflection), held.
 """
 
 from __future__ import annotations
@@ -109,7 +111,9 @@ def _print(i, label, trajectory, rollout, start, factors) -> None:
     print(
         f"trial {i} {label}: {trajectory.end_time():.3f} s, slip "
         f"{slip['max_translation_mm']:.2f} mm {slip['max_rotation_deg']:.2f} "
-        f"deg, {'held' if rollout.success else 'SLIP'} "
+        f"deg (on the tool {slip['on_tool_translation_mm']:.2f} mm "
+        f"{slip['on_tool_rotation_deg']:.2f} deg), "
+        f"{'held' if rollout.success else 'SLIP'} "
         f"({time.perf_counter() - start:.1f} s wall) {factors or ''}",
         flush=True,
     )

@@ -4,7 +4,10 @@ A rollout runs the cycle's Diagram (the station and sequencer of ``rt-drake
 run``) for one object: the arm starts at the grasp, the valve is on for the
 attach wait, then the MOVE runs. It succeeds when, during the MOVE, the
 object moves less than :data:`SLIP_TRANSLATION` and turns less than
-:data:`SLIP_ROTATION` relative to the cup. :func:`critical_speed` plays a
+:data:`SLIP_ROTATION` relative to what touches it: the bellows cup's lip
+(``cup_physics: bellows``), else the tool's cup frame. Its motion relative
+to the tool's cup frame (the slip plus the bellows' elastic deflection; the
+slip itself under the rim cup) is reported beside it. :func:`critical_speed` plays a
 MOVE faster and faster until it slips (the paper saw slip at 120-140 %).
 """
 
@@ -38,10 +41,17 @@ ROLLOUT_WAIT_S = 0.3
 
 @dataclasses.dataclass(frozen=True)
 class Rollout:
-    """One simulated MOVE: its slip (m, rad) and whether it stayed put."""
+    """One simulated MOVE: its slip (m, rad) and whether it stayed put.
+
+    ``slip_*``: the object's largest motion on the lip (the rim cup: on the
+    tool's cup frame); ``on_tool_*``: on the tool's cup frame, the slip plus
+    the bellows' deflection.
+    """
 
     slip_translation: float
     slip_rotation: float
+    on_tool_translation: float = 0.0
+    on_tool_rotation: float = 0.0
 
     @property
     def success(self) -> bool:
@@ -52,10 +62,12 @@ class Rollout:
         )
 
     def as_dict(self) -> dict[str, float]:
-        """``max_translation_mm``, ``max_rotation_deg``."""
+        """``max_translation_mm``, ``max_rotation_deg`` (the slip), and on the tool."""
         return {
             "max_translation_mm": 1e3 * self.slip_translation,
             "max_rotation_deg": math.degrees(self.slip_rotation),
+            "on_tool_translation_mm": 1e3 * self.on_tool_translation,
+            "on_tool_rotation_deg": math.degrees(self.on_tool_rotation),
         }
 
 
@@ -114,7 +126,12 @@ def simulate_move(
         object_inertias=object_inertias,
     )
     (record,) = result.records
-    return Rollout(record.max_slip_translation, record.max_slip_rotation)
+    return Rollout(
+        record.max_slip_translation,
+        record.max_slip_rotation,
+        record.max_on_tool_translation,
+        record.max_on_tool_rotation,
+    )
 
 
 def critical_speed(

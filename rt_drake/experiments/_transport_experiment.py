@@ -46,7 +46,7 @@ from rt_drake.model.scenario import (
     load_scenario,
 )
 from rt_drake.planning import GeometricPath, PlanningError, sample_transports
-from rt_drake.retiming import GraspConstraint, RetimeResult
+from rt_drake.retiming import GraspConstraint, RetimeError, RetimeResult
 from rt_drake.simulation import Motion, OnlineMotions
 from rt_drake.types.phase import Phase
 
@@ -114,7 +114,48 @@ def transport_trial(
 
     With ``optimize``, also the optimised MOVE (:func:`.optimized_trial`),
     its Meshcat replay written to ``replay_path`` if given. With
-    ``jerk_limits``, both retimes keep the scenario's ``robot.jerk_limits``.
+    ``jerk_limits``, both retimes keep the scenario's ``robot.jerk_limits``
+    (the constrained one also ``planning.grasp_ramp_s``'s).
+
+    A path that the retimer refuses with or without the constraint (a
+    :class:`~rt_drake.retiming.RetimeError`, e.g. not controllable under
+    the jerk limits) is not played: the trial is ``{"index", "start",
+    "goal", "not_retimed": "<which retime>: <message>"}``.
+    """
+    try:
+        return _retimed_trial(
+            scenario, object_name, index, X_WO_start, X_WO_goal, seed, optimize,
+            replay_path, jerk_limits,
+        )  # fmt: skip
+    except _NotRetimed as error:
+        return {
+            "index": index,
+            "start": _pose_list(X_WO_start),
+            "goal": _pose_list(X_WO_goal),
+            "not_retimed": str(error),
+        }
+
+
+class _NotRetimed(Exception):
+    """The retimer refused one of a trial's MOVEs (its message says which)."""
+
+
+def _retimed_trial(
+    scenario: Scenario,
+    object_name: str,
+    index: int,
+    X_WO_start: RigidTransform,
+    X_WO_goal: RigidTransform,
+    seed: int,
+    optimize: bool,
+    replay_path: Path | None,
+    jerk_limits: bool,
+) -> dict[str, Any]:
+    """:func:`transport_trial` once both MOVEs are retimed.
+
+    Raises:
+        _NotRetimed: the retimer refused the MOVE with or without the
+            grasp constraint.
     """
     planner_scenario = transport_scenario(scenario, object_name, X_WO_start, X_WO_goal)
     constrained = OnlineMotions(
@@ -128,20 +169,29 @@ def transport_trial(
     transport = scenario.random_transport
     if transport is not None and transport.start_on_cup:
         start = time.perf_counter()
-        move_c = move_from_the_cup(constrained, planned_obj, X_WO_start)
+        try:
+            move_c = move_from_the_cup(constrained, planned_obj, X_WO_start)
+        except RetimeError as error:
+            raise _NotRetimed(f"with the grasp constraint: {error}") from None
         q_grasp = move_c.planned.q_start if move_c.planned is not None else None
     else:
         approach = constrained.approach(constrained.q_home, planned_obj)
         reach = constrained.reach(approach.q_end, planned_obj)
         q_grasp = reach.q_end
         start = time.perf_counter()
-        move_c = constrained.move(q_grasp, planned_obj, reach)
+        try:
+            move_c = constrained.move(q_grasp, planned_obj, reach)
+        except RetimeError as error:
+            raise _NotRetimed(f"with the grasp constraint: {error}") from None
     assert move_c.planned is not None and move_c.retimed is not None
     assert q_grasp is not None
     assert move_c.grasp is not None
     path = move_c.planned.path
     result_c = move_c.retimed
-    result_u = constrained.retime_path(path, grasp=None)
+    try:
+        result_u = constrained.retime_path(path, grasp=None)
+    except RetimeError as error:
+        raise _NotRetimed(f"without the grasp constraint: {error}") from None
     plan_s = time.perf_counter() - start
 
     rollout_world = rollout_scenario(planner_scenario, q_grasp)
@@ -194,19 +244,24 @@ def move_from_the_cup(
     seed 0, transport 16's MOVE with the wrist turned half a turn took 4.95 s
     and tilted the cup 138 deg.)
 
+    A flip whose MOVE the retimer refuses is skipped like one that does
+    not plan.
+
     Raises:
         PlanningError: no grasp yaw flip has a reachable, collision-free
-            configuration whose MOVE plans.
+            configuration whose MOVE plans (the last flip's error).
+        RetimeError: likewise, the last flip's MOVE planned but the retimer
+            refused it.
     """
     planner = motions.planner
-    error: PlanningError | None = None
+    error: PlanningError | RetimeError | None = None
     best: tuple[float, Motion] | None = None
     for X_OC in planner.grasps(obj.name):
         try:
             planner.prepare(Phase.MOVE, obj.name, planner.q_home, X_OC)
             q = planner.configuration_for(X_WO_start @ X_OC, planner.q_home, obj.name)
             motion = motions.move(q, obj)
-        except PlanningError as exc:
+        except (PlanningError, RetimeError) as exc:
             error = exc
             continue
         assert motion.retimed is not None
@@ -325,7 +380,15 @@ def run_transport_experiment(
         )  # fmt: skip
         for i, (X_s, X_g) in enumerate(pairs)
     ]
-    trials = run_trials(_trial_job, jobs, workers, progress)
+    done = run_trials(_trial_job, jobs, workers, progress)
+    trials = [t for t in done if "not_retimed" not in t]
+    not_retimed = [t for t in done if "not_retimed" in t]
+    if not trials:
+        first = not_retimed[0]
+        raise RetimeError(
+            f"{scenario_path}: none of the {n} MOVEs could be retimed; path "
+            f"{first['index']}: {first['not_retimed']}"
+        )
     return {
         "object": name,
         "seed": seed,
@@ -333,17 +396,25 @@ def run_transport_experiment(
         "optimize": optimize,
         "cup_physics": scenario.cup_physics.kind,
         "jerk_limits": jerk_limits,
+        "grasp_ramp_s": scenario.planning.grasp_ramp_s,
         "trials": trials,
-        "summary": summarize(trials),
+        "not_retimed": not_retimed,
+        "summary": summarize(trials, len(not_retimed)),
     }
 
 
-def summarize(trials: list[dict[str, Any]]) -> dict[str, Any]:
-    """Counts of successes, duration and extension statistics, critical speeds."""
+def summarize(trials: list[dict[str, Any]], not_retimed: int = 0) -> dict[str, Any]:
+    """Counts of successes, duration and extension statistics, critical speeds.
+
+    ``trials``: the played ones; ``not_retimed``: how many more the retimer
+    refused (``n`` counts the played trials, ``n_sampled`` both).
+    """
     critical = [t["critical_speed_factor"] for t in trials]
     finite = [c for c in critical if c is not None]
     return {
         "n": len(trials),
+        "n_sampled": len(trials) + not_retimed,
+        "not_retimed": not_retimed,
         "success_constrained": sum(t["success_constrained"] for t in trials),
         "success_unconstrained": sum(t["success_unconstrained"] for t in trials),
         "duration_constrained_s": _stats([t["duration_constrained_s"] for t in trials]),

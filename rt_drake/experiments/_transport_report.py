@@ -131,6 +131,8 @@ def write_transport_report(results: dict[str, Any], out_dir: Path) -> list[Path]
         f"- constrained durations {duration['min']:.3f}-{duration['max']:.3f} s",
         f"- critical speed factor: {critical}",
     ]
+    for t in results.get("not_retimed", []):
+        text.append(f"- path {t['index']} not retimed, not played: {t['not_retimed']}")
     if results.get("optimize"):
         text += [
             f"- {optimized_summary(s)}",

@@ -4,8 +4,10 @@ Per object: planning wall times (s) of APPROACH, REACH, MOVE and the MOVE
 retime (the paper's rows, however much of them ran ahead); the plan on the
 critical path (s the arm waited for planning, :mod:`rt_drake.simulation.motion`
 defines the clock); execution times (s, simulated) of APPROACH, REACH,
-ATTACH, MOVE and DETACH; the object's slip on the cup while attached (max
-translation mm, max rotation deg) and its placement error at the goal; the
+ATTACH, MOVE and DETACH; the object's slip during MOVE (max translation mm,
+max rotation deg) on what touches it (the bellows cup's lip, else the tool's
+cup frame), its motion on the tool's cup frame (``on_tool``: the slip plus the
+bellows' deflection) and its placement error at the goal; the
 MOVE's guarantee (what its retiming holds: the nominal object, every object
 of its uncertainty set, or none); and its total, execution plus the plan on
 the critical path (planning sequentially, as the paper did, the whole plan
@@ -92,7 +94,9 @@ class ObjectReport:
         plan_s: Planning wall times.
         exec_s: Simulated seconds of each phase of :data:`EXEC_PHASES`, in
             that order.
-        slip: Its slip on the cup while attached.
+        slip: Its slip during MOVE, on the lip (rim cup: the cup frame).
+        on_tool: Its motion during MOVE on the tool's cup frame: the slip
+            plus the bellows' deflection.
         placement_error: Its error at the goal.
         plan_on_critical_path_s: Simulated seconds the arm waited for plans.
         move_suction_force_n: The vacuum's force when the MOVE started, N.
@@ -112,6 +116,7 @@ class ObjectReport:
     guarantee: str
     floor: ObjectFloor | None = None
     grasp_price_s: float = float("nan")
+    on_tool: Slip = Slip(0.0, 0.0)
 
     @property
     def total_s(self) -> float:
@@ -139,6 +144,7 @@ class ObjectReport:
             "plan_s": dataclasses.asdict(self.plan_s),
             "exec_s": {phase.value: s for phase, s in self.exec_s.items()},
             "slip": dataclasses.asdict(self.slip),
+            "on_tool": dataclasses.asdict(self.on_tool),
             "placement_error": dataclasses.asdict(self.placement_error),
             "plan_on_critical_path_s": self.plan_on_critical_path_s,
             "move_suction_force_n": self.move_suction_force_n,
@@ -283,6 +289,10 @@ def object_report(
             max_translation_mm=1000.0 * record.max_slip_translation,
             max_rotation_deg=math.degrees(record.max_slip_rotation),
         ),
+        on_tool=Slip(
+            max_translation_mm=1000.0 * record.max_on_tool_translation,
+            max_rotation_deg=math.degrees(record.max_on_tool_rotation),
+        ),
         placement_error=PlacementError(
             translation_mm=1000.0 * record.placement_translation,
             rotation_deg=math.degrees(record.placement_rotation),
@@ -340,6 +350,8 @@ def table_markdown(report: CycleReport) -> str:
     row("**Total (critical plan + exec.)**", [o.total_s for o in objects])
     row("slip (mm)", [o.slip.max_translation_mm for o in objects], "{:.2f}")
     row("slip (deg)", [o.slip.max_rotation_deg for o in objects], "{:.2f}")
+    row("on tool (mm)", [o.on_tool.max_translation_mm for o in objects], "{:.2f}")
+    row("on tool (deg)", [o.on_tool.max_rotation_deg for o in objects], "{:.2f}")
     row(
         "placement error (mm)",
         [o.placement_error.translation_mm for o in objects],

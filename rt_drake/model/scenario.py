@@ -183,6 +183,16 @@ class PlanningConfig:
             are retimed under ``F w <= (1 - m) g``, so that a controller's
             interpolation between samples stays in the set (docs: the export
             guide gives the m that covers each interpolation and period).
+        grasp_ramp_s: s, a margin for a compliant cup (None: none). The MOVE
+            retimed under the grasp constraint reaches each joint's
+            acceleration limit a_j in this time at the earliest: its jerk
+            limit is ``min(robot.jerk_limits[j], a_j / grasp_ramp_s)``, so that
+            an acceleration ramp as long as the cup's longest natural period
+            leaves its modes no residual vibration
+            (``tools/bellows_jerk_limits.py``, docs: the bellows cup guide).
+            Applied with or without ``robot.jerk_limits`` (it is part of the
+            grasp's margin, not a robot limit); motions without the grasp
+            constraint keep the robot's own jerk limits. In (0, 2] s.
     """
 
     optimize_move: bool = True
@@ -192,6 +202,7 @@ class PlanningConfig:
     approach_offset: float | str = 0.2
     approach_clearance: float = 0.02
     grasp_margin: float = 0.0
+    grasp_ramp_s: float | None = None
 
 
 @dataclasses.dataclass
@@ -386,6 +397,8 @@ def load_scenario(path: str | Path) -> Scenario:
 AUTO = "auto"
 #: m, the largest ``planning.approach_clearance``.
 MAX_APPROACH_CLEARANCE = 0.2
+#: s, the longest ``planning.grasp_ramp_s``.
+MAX_GRASP_RAMP_S = 2.0
 
 
 def _check_offset(where: str, value: float | str | None) -> None:
@@ -509,7 +522,8 @@ def _check_grip(
 def _check_planning(path: Path, planning: PlanningConfig) -> None:
     """``max_tilt_deg`` in [0, 90), ``max_evaluations`` >= 1, no ``budget_s``.
 
-    And the approach keys and ``grasp_margin`` in [0, 0.9].
+    And the approach keys, ``grasp_margin`` in [0, 0.9] and
+    ``grasp_ramp_s`` None or in (0, :data:`MAX_GRASP_RAMP_S`].
     """
     if not 0 <= planning.max_tilt_deg < 90:
         raise ScenarioError(
@@ -537,6 +551,12 @@ def _check_planning(path: Path, planning: PlanningConfig) -> None:
         raise ScenarioError(
             f"{path}: key 'planning.grasp_margin': must be in [0, 0.9] (a share "
             f"of g), got {planning.grasp_margin}"
+        )
+    ramp = planning.grasp_ramp_s
+    if ramp is not None and not 0.0 < ramp <= MAX_GRASP_RAMP_S:
+        raise ScenarioError(
+            f"{path}: key 'planning.grasp_ramp_s': must be in "
+            f"(0, {MAX_GRASP_RAMP_S}] s, got {ramp}"
         )
 
 

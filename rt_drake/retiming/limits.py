@@ -108,6 +108,28 @@ class JointLimits:
         """The same limits with the jerk left free (``jerk`` None)."""
         return dataclasses.replace(self, jerk=None)
 
+    def with_acceleration_ramp(self, ramp_s: float) -> JointLimits:
+        """These limits with each joint's jerk at most ``acceleration / ramp_s``.
+
+        ``jerk_j = min(jerk_j, acceleration_j / ramp_s)`` (rad/s^3; ``jerk``
+        None counts as unlimited): going from rest to its acceleration limit
+        takes joint j at least ``ramp_s`` seconds. The planner's
+        ``planning.grasp_ramp_s`` (a margin for a compliant cup's modes).
+
+        Raises:
+            RetimeInputError: ``ramp_s`` not a finite number > 0.
+        """
+        ramp_s = arguments.number(
+            ramp_s,
+            "ramp_s",
+            where="JointLimits.with_acceleration_ramp",
+            above=0.0,
+            error=RetimeInputError,
+        )
+        ramped = self.acceleration / ramp_s
+        jerk = ramped if self.jerk is None else np.minimum(self.jerk, ramped)
+        return dataclasses.replace(self, jerk=jerk)
+
     @property
     def num_joints(self) -> int:
         """N."""

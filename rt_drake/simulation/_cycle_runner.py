@@ -15,7 +15,6 @@ from collections.abc import Callable
 
 import numpy as np
 from pydrake.geometry import Meshcat
-from pydrake.math import RigidTransform
 from pydrake.multibody.tree import SpatialInertia
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, EventStatus
@@ -80,10 +79,9 @@ def build_cycle(
     ]
     gravity = float(np.linalg.norm(plant.gravity_field().gravity_vector()))
     # Slip is the object's motion on what touches it: the cup frame of the
-    # tool, or a single bellows cup's lip (its bellows deflection apart).
-    slip_body, X_TC = cup.body().index(), cup.GetFixedPoseInBodyFrame()
-    if len(station.lips) == 1:
-        slip_body, X_TC = station.lips[0].body_index, RigidTransform()
+    # tool, or a single bellows cup's lip (its bellows deflection apart); the
+    # motion on the tool's cup frame is measured too.
+    lip = station.lips[0].body_index if len(station.lips) == 1 else None
     builder = DiagramBuilder()
     cell = builder.AddNamedSystem("station", station.diagram)
     sequencer = builder.AddNamedSystem(
@@ -93,12 +91,13 @@ def build_cycle(
             objects=list(scenario.objects),
             object_bodies=[body.index() for body in bodies],
             object_weights=[body.default_mass() * gravity for body in bodies],
-            tool_body=slip_body,
-            X_TC=X_TC,
+            tool_body=cup.body().index(),
+            X_TC=cup.GetFixedPoseInBodyFrame(),
             q_home=home_configuration(plant, scenario),
             vacuum=scenario.vacuum,
             pipelined=pipelined,
             command_period=scenario.robot.command_period_s,
+            lip_body=lip,
         ),
     )
     for name in ("body_poses", "body_spatial_velocities"):

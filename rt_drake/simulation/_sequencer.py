@@ -32,7 +32,9 @@ holds with the force certain as the vacuum decays), so the release overlaps
 the set-down; DETACH still ends at "released".
 
 It measures, from the plant's body poses, how far the held object slips on
-the cup and where it lands. All that changes lives in the Context's abstract
+what touches it (the bellows cup's lip, else the tool's cup frame), how far
+it moves on the tool's cup frame (the slip plus the bellows' deflection) and
+where it lands. All that changes lives in the Context's abstract
 state.
 """
 
@@ -87,6 +89,7 @@ class SequencerState:
     pending: PendingMotion | None = None
     pick: Motion | None = None
     X_CO_attached: RigidTransform | None = None
+    X_LO_attached: RigidTransform | None = None
     records: tuple[ObjectRecord, ...] = ()
 
 
@@ -125,6 +128,7 @@ class Sequencer(LeafSystem):
         vacuum: Vacuum,
         pipelined: bool = True,
         command_period: float | None = None,
+        lip_body: BodyIndex | None = None,
     ) -> None:
         """Make the sequencer.
 
@@ -141,6 +145,8 @@ class Sequencer(LeafSystem):
             command_period: s, send the motion sampled at this period and
                 interpolated between samples (:mod:`._command`); None:
                 continuous.
+            lip_body: the bellows cup's lip L, whose frame is C at rest: the
+                slip is measured on it; None: on C (the rim cup).
         """
         super().__init__()
         self._motions = motions
@@ -149,6 +155,7 @@ class Sequencer(LeafSystem):
         self._weights = list(object_weights)
         self._tool = tool_body
         self._X_TC = X_TC
+        self._lip = lip_body
         self._vacuum = vacuum
         self._pipelined = pipelined
         self._command_period = command_period
@@ -331,7 +338,11 @@ class Sequencer(LeafSystem):
             record = state.records[index]
             force = float(self._force_port.Eval(context)[0])
             state = _with_record(
-                dataclasses.replace(state, X_CO_attached=self._X_CO(context, index)),
+                dataclasses.replace(
+                    state,
+                    X_CO_attached=self._X_CO(context, index),
+                    X_LO_attached=self._X_LO(context, index),
+                ),
                 dataclasses.replace(
                     record,
                     move_suction_force=force,
@@ -370,16 +381,35 @@ class Sequencer(LeafSystem):
 
     # -- measurements -------------------------------------------------------
     def _X_CO(self, context: Context, index: int) -> RigidTransform:
+        """Pose of object ``index`` in the tool's cup frame C."""
         poses = self._poses_port.Eval(context)
         X_WC = poses[int(self._tool)] @ self._X_TC
         return X_WC.inverse() @ poses[int(self._bodies[index])]
+
+    def _X_LO(self, context: Context, index: int) -> RigidTransform:
+        """Pose of object ``index`` on the lip L (C itself without a lip)."""
+        if self._lip is None:
+            return self._X_CO(context, index)
+        poses = self._poses_port.Eval(context)
+        return poses[int(self._lip)].inverse() @ poses[int(self._bodies[index])]
 
     def _measure(self, context: Context, state: SequencerState) -> SequencerState:
         """Track slip during MOVE and the placement error during DETACH."""
         index = state.object_index
         record = state.records[index]
-        if state.phase is Phase.MOVE and state.X_CO_attached is not None:
-            record = with_slip(record, state.X_CO_attached, self._X_CO(context, index))
+        X_LO_attached, X_CO_attached = state.X_LO_attached, state.X_CO_attached
+        if (
+            state.phase is Phase.MOVE
+            and X_LO_attached is not None
+            and X_CO_attached is not None
+        ):
+            record = with_slip(
+                record,
+                X_LO_attached,
+                self._X_LO(context, index),
+                X_CO_attached,
+                self._X_CO(context, index),
+            )
         elif state.phase is Phase.DETACH:
             X_WO = self._poses_port.Eval(context)[int(self._bodies[index])]
             goal = self._objects[index].goal.GetDeterministicValue()

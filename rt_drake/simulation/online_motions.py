@@ -191,6 +191,7 @@ class OnlineMotions:
         self._limits = JointLimits.from_plant(
             self._plant, scenario.robot, jerk=jerk_limits
         )
+        self._grasp_limits = grasp_limits(self._limits, scenario)
         self._speed = move_speed
         self._gridpoints = gridpoints
         self._polytope = None
@@ -239,13 +240,15 @@ class OnlineMotions:
     ) -> RetimeResult:
         """Retime ``path`` under the joint limits (and ``grasp`` if given).
 
-        The retimer adds the path's knots to the ``gridpoints`` uniform points
-        and holds every limit between grid points too.
+        With ``grasp``, the jerk limits are also tightened by the scenario's
+        ``planning.grasp_ramp_s`` (:func:`grasp_limits`). The retimer adds the
+        path's knots to the ``gridpoints`` uniform points and holds every
+        limit between grid points too.
         """
         return retime(
             self._plant,
             path,
-            self._limits,
+            self._limits if grasp is None else self._grasp_limits,
             grasp,
             gridpoints=self._gridpoints,
             context=self._context,
@@ -519,7 +522,7 @@ class OnlineMotions:
             result = acceleration_limited = optimized.retimed
             planned_s += optimized.wall_s - optimized.retime_wall_s
             retime_s = optimized.retime_wall_s
-            if self._limits.jerk is not None:  # the kept path, jerk-limited
+            if self._grasp_limits.jerk is not None:  # the kept path, jerk-limited
                 planned_s += retime_s
                 start = time.perf_counter()
                 result = self.retime_on_profile(path, grasp, optimized.retimed)
@@ -547,6 +550,19 @@ class OnlineMotions:
             guarantee=guarantee,
             grasp_price_s=price,
         )
+
+
+def grasp_limits(limits: JointLimits, scenario: Scenario) -> JointLimits:
+    """The joint limits of a MOVE retimed under the grasp constraint.
+
+    ``limits`` with each joint's jerk at most ``a_j / planning.grasp_ramp_s``
+    (rad/s^3, ``a_j`` the acceleration limit) when the scenario gives that
+    margin (:meth:`~rt_drake.retiming.JointLimits.with_acceleration_ramp`);
+    else ``limits`` unchanged. Motions without the grasp constraint keep
+    ``limits``: the ramp is a margin of the grasp, not a robot limit.
+    """
+    ramp_s = scenario.planning.grasp_ramp_s
+    return limits if ramp_s is None else limits.with_acceleration_ramp(ramp_s)
 
 
 def move_cup(scenario: Scenario) -> CupParameters:
@@ -587,6 +603,7 @@ def time_at(result: RetimeResult, s: float) -> float:
 __all__ = [
     "NO_GUARANTEE",
     "OnlineMotions",
+    "grasp_limits",
     "held_object",
     "move_cup",
     "move_polytope",

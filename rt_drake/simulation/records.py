@@ -24,7 +24,12 @@ class ObjectRecord:
         exec_s: Simulated seconds each phase lasted (APPROACH and MOVE from
             the start of their motion, after any wait).
         max_slip_translation, max_slip_rotation: m and rad, the object's
-            largest displacement relative to the cup during MOVE.
+            largest displacement during MOVE relative to what touches it:
+            the bellows cup's lip L, else the tool's cup frame C (the slip).
+        max_on_tool_translation, max_on_tool_rotation: m and rad, the
+            object's largest displacement during MOVE relative to the tool's
+            cup frame C: the slip plus the bellows' elastic deflection (the
+            slip itself under the rim cup, whose lip is the tool).
         placement_translation, placement_rotation: m and rad, the object's
             distance from its goal pose during DETACH.
         move_suction_force: N, the vacuum's force when the MOVE started.
@@ -39,6 +44,8 @@ class ObjectRecord:
     exec_s: dict[Phase, float] = dataclasses.field(default_factory=dict)
     max_slip_translation: float = 0.0
     max_slip_rotation: float = 0.0
+    max_on_tool_translation: float = 0.0
+    max_on_tool_rotation: float = 0.0
     placement_translation: float = float("nan")
     placement_rotation: float = float("nan")
     move_suction_force: float = float("nan")
@@ -60,18 +67,27 @@ def pose_difference(X_A: RigidTransform, X_B: RigidTransform) -> tuple[float, fl
 
 
 def with_slip(
-    record: ObjectRecord, X_CO_attached: RigidTransform, X_CO: RigidTransform
+    record: ObjectRecord,
+    X_LO_attached: RigidTransform,
+    X_LO: RigidTransform,
+    X_CO_attached: RigidTransform,
+    X_CO: RigidTransform,
 ) -> ObjectRecord:
-    """``record`` with its largest slip (m, rad) updated.
+    """``record`` with its largest slip and motion on the tool (m, rad) updated.
 
-    The slip is the object's pose X_CO on the cup against X_CO when the MOVE
-    started.
+    The slip is the object's pose X_LO on the lip L (what touches it)
+    against X_LO when the MOVE started; the motion on the tool, its pose
+    X_CO in the tool's cup frame C against X_CO then. Each is
+    :func:`pose_difference`'s pair.
     """
-    translation, rotation = pose_difference(X_CO_attached, X_CO)
+    translation, rotation = pose_difference(X_LO_attached, X_LO)
+    on_tool, on_tool_rotation = pose_difference(X_CO_attached, X_CO)
     return dataclasses.replace(
         record,
         max_slip_translation=max(record.max_slip_translation, translation),
         max_slip_rotation=max(record.max_slip_rotation, rotation),
+        max_on_tool_translation=max(record.max_on_tool_translation, on_tool),
+        max_on_tool_rotation=max(record.max_on_tool_rotation, on_tool_rotation),
     )
 
 

@@ -23,7 +23,7 @@ from rt_drake.types.phase import Phase
 
 #: report.json of :func:`_stored_records` with :data:`_SETTINGS`, written by
 #: the report before it was a dataclass (a dict, ``json.dumps(report,
-#: indent=2)``, at 60ab596).
+#: indent=2)``, at 60ab596), with the ``on_tool`` entries added since.
 STORED = Path(__file__).parent / "data" / "cycle_report_small.json"
 
 _SETTINGS = RunSettings(
@@ -77,6 +77,8 @@ def _stored_records():
         },
         max_slip_translation=0.0016,
         max_slip_rotation=0.01,
+        max_on_tool_translation=0.0042,
+        max_on_tool_rotation=0.03,
         placement_translation=0.002,
         placement_rotation=0.02,
         move_suction_force=20.0,

@@ -2,13 +2,17 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
 from rt_drake import CupFrame, load_scenario, make_arm_plant
 from rt_drake.experiments._transport_experiment import (
     move_from_the_cup,
+    summarize,
     transport_scenario,
+    transport_trial,
 )
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.planning import sample_transports
@@ -60,3 +64,33 @@ def test_the_grasp_flip_with_the_fastest_move_is_chosen():
     assert chosen.retimed.duration == pytest.approx(min(first, second), rel=1e-9)
     chosen_tilt = np.degrees(chain.tilt(chosen.planned.path.value(s)).max())
     assert chosen_tilt < np.degrees(1.0) and second_tilt < np.degrees(1.0)
+
+
+def test_a_move_the_retimer_refuses_is_recorded_not_played():
+    """A cup that pulls 5 N cannot hold the 5.4 N notebook even at rest: the
+    retimer refuses every flip's MOVE (grasp unstable at rest), and the trial
+    says so instead of stopping the experiment; the summary counts it."""
+    scenario = load_scenario(resolve_scenario_path("random_transport_paper"))
+    weak = dataclasses.replace(
+        scenario, cup=dataclasses.replace(scenario.cup, suction_force=5.0)
+    )
+    name = weak.random_transport.object
+    ((X_start, X_goal),) = sample_transports(weak, 1, 0)
+    trial = transport_trial(weak, name, 0, X_start, X_goal, seed=0)
+    assert set(trial) == {"index", "start", "goal", "not_retimed"}
+    assert trial["not_retimed"].startswith("with the grasp constraint: ")
+    assert "rest" in trial["not_retimed"]
+    played = {"critical_speed_factor": 1.2, "success_constrained": True}
+    summary = summarize([_played_trial(played)], not_retimed=1)
+    assert (summary["n"], summary["n_sampled"], summary["not_retimed"]) == (1, 2, 1)
+
+
+def _played_trial(fields: dict) -> dict:
+    """A played trial's summary fields (durations 1 s and 0.8 s, no slip)."""
+    return {
+        "success_unconstrained": False,
+        "duration_constrained_s": 1.0,
+        "duration_unconstrained_s": 0.8,
+        "time_extension_pct": 20.0,
+        **fields,
+    }

@@ -53,6 +53,9 @@ def test_guaranteed_move_holds_under_the_bellows_cup(moves):
     rollout = simulate_move(world, q_grasp, guaranteed)
     assert rollout.slip_translation < 2e-3
     assert rollout.slip_rotation < math.radians(2.0)
+    # On the tool the object also moves with the bellows' deflection: the
+    # notebook's inertial load stretches it by more than the slip on the lip.
+    assert rollout.on_tool_translation > rollout.slip_translation
 
 
 def test_move_under_joint_limits_only_leaves_the_bellows_cup(moves):

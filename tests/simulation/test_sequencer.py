@@ -40,3 +40,12 @@ def test_object_is_carried_to_its_goal_without_slipping(one_object_cycle):
     assert np.degrees(record.max_slip_rotation) < 2.0
     assert record.placement_translation < 0.01
     assert np.degrees(record.placement_rotation) < 5.0
+
+
+def test_under_the_rim_cup_the_slip_is_the_motion_on_the_tool(one_object_cycle):
+    """The rim cup's lip is the tool: the two measures are one."""
+    _, result = one_object_cycle
+    (record,) = result.records
+    assert record.max_slip_translation > 0.0
+    assert record.max_on_tool_translation == record.max_slip_translation
+    assert record.max_on_tool_rotation == record.max_slip_rotation
