@@ -27,7 +27,7 @@ import numpy as np
 from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
 
-from rt_drake.errors import InputError, ScenarioError
+from rt_drake.errors import InputError, RtDrakeError, ScenarioError
 from rt_drake.experiments._optimized_transport import (
     REPLAY_FILE,
     optimized_trial,
@@ -136,7 +136,7 @@ def transport_trial(
         }
 
 
-class _NotRetimed(Exception):
+class _NotRetimed(RtDrakeError):
     """The retimer refused one of a trial's MOVEs (its message says which)."""
 
 
