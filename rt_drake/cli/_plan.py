@@ -151,7 +151,7 @@ def _optimized(scenario, planner, move):
         MoveOptimizerOptions,
         warm_up,
     )
-    from rt_drake.simulation.online_motions import move_polytope
+    from rt_drake.simulation.move_grasp import move_polytope
 
     plant = make_arm_plant(scenario)
     limits = JointLimits.from_plant(plant, scenario.robot)

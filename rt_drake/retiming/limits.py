@@ -349,7 +349,7 @@ class GraspConstraint:
         """The rows of a wrench set already computed for a cup or a tool.
 
         E.g. ``cached_wrench_polytope(cup)`` or the set the cycle retimes a
-        MOVE under (``rt_drake.simulation.online_motions.move_polytope``).
+        MOVE under (``rt_drake.simulation.move_grasp.move_polytope``).
         """
         if isinstance(polytope.cup, ToolParameters):
             return ToolGrasp(held=held, F=polytope.F, g=polytope.g, tool=polytope.cup)

@@ -42,7 +42,8 @@ from rt_drake.simulation.motion import (
     PhasePart,
     PlanTimes,
 )
-from rt_drake.simulation.online_motions import OnlineMotions, held_object
+from rt_drake.simulation.move_grasp import held_object
+from rt_drake.simulation.online_motions import OnlineMotions
 from rt_drake.simulation.records import ObjectRecord, pose_difference
 
 __all__ = [

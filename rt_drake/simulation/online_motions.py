@@ -13,8 +13,9 @@ one retimed (the search compares paths under the acceleration limits; with
 ``robot.jerk_limits`` the kept path is retimed once more under them). Both are
 timed on the wall clock, as in the paper's Table II. The grasp polytope is
 computed once, offline, per cup or multi-cup tool (as the paper did: the
-exact W_c, or the tool's set about the tool frame, :func:`move_polytope`),
-not in the cycle; with a ``first_order`` vacuum the MOVE is retimed for
+exact W_c, or the tool's set about the tool frame:
+:func:`~rt_drake.simulation.move_grasp.move_polytope`), not in the cycle;
+with a ``first_order`` vacuum the MOVE is retimed for
 the force guaranteed when "part present" fires, ``part_present_fraction
 P A``: the same polytope translated (:func:`~rt_drake.contact.with_suction_force`).
 
@@ -53,24 +54,17 @@ import time
 from collections.abc import Callable
 
 import numpy as np
-from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
 from pydrake.trajectories import Trajectory
 
 from rt_drake import arguments
 from rt_drake.contact import (
-    CupParameters,
-    LoadSharing,
-    SharedLoadSet,
-    ToolParameters,
-    WrenchPolytope,
     cached_wrench_polytope,
     with_suction_force,
     worst_cup_polytope,
 )
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.dynamics.wrench import path_wrench_coefficients
-from rt_drake.model.held import held_object_of
 from rt_drake.model.plant import make_arm_plant
 from rt_drake.model.scenario import (
     ObjectConfig,
@@ -100,55 +94,18 @@ from rt_drake.shaping import (
 from rt_drake.shaping import warm_up as warm_up_optimizer
 from rt_drake.simulation._release import release_lead
 from rt_drake.simulation.motion import Motion, PhasePart, PlanTimes
-from rt_drake.types.held_object import HeldObject
+from rt_drake.simulation.move_grasp import (
+    grasp_limits,
+    held_object,
+    move_cup,
+    move_polytope,
+)
 from rt_drake.types.object_uncertainty import ObjectUncertainty
 from rt_drake.types.phase import Phase
 from rt_drake.uncertainty.inertial_set import uncertain_object
 
 #: The guarantee of a MOVE retimed without the grasp constraint.
 NO_GUARANTEE = "none: joint limits only"
-
-
-def held_object(obj: ObjectConfig, X_OC: RigidTransform) -> HeldObject:
-    """Inertia of ``obj`` in the cup frame, held at grasp ``X_OC``."""
-    return held_object_of(dataclasses.replace(obj, grasp=Transform(X_OC)))
-
-
-def move_polytope(scenario: Scenario) -> WrenchPolytope | SharedLoadSet:
-    """The wrench set the MOVE is retimed under (F, g and the cup or tool).
-
-    The scenario's cup W_c (cached on disk), or its tool's set about the
-    tool frame, in it: for several cups with ``tool.load_sharing:
-    elastic`` (the default) the rims' spring split (:class:`SharedLoadSet`,
-    milliseconds), with ``any`` the exact W_T of any split (two paper cups:
-    47,728 rows, about a minute the first time, then cached). With a
-    ``first_order`` vacuum, for the suction force guaranteed at "part
-    present": every cup's ``P A`` times ``part_present_fraction`` (one cup:
-    W_c translated; a tool: the set of the tool with those forces).
-    """
-    fraction = scenario.vacuum.move_force_fraction
-    if scenario.tool is None:
-        full = cached_wrench_polytope(scenario.cup)
-        if fraction == 1.0:
-            return full
-        return with_suction_force(full, fraction * scenario.cup.suction_force)
-    tool = scenario.tool_parameters()
-    if fraction != 1.0:
-        tool = ToolParameters(
-            cups=tuple(
-                dataclasses.replace(
-                    mount,
-                    cup=dataclasses.replace(
-                        mount.cup,
-                        suction_force=fraction * mount.cup.suction_force,
-                    ),
-                )
-                for mount in tool.cups
-            )
-        )
-    if len(tool.cups) > 1 and scenario.tool.load_sharing == LoadSharing.ELASTIC.value:
-        return SharedLoadSet.of(tool)
-    return cached_wrench_polytope(tool)
 
 
 class OnlineMotions:
@@ -241,7 +198,8 @@ class OnlineMotions:
         """Retime ``path`` under the joint limits (and ``grasp`` if given).
 
         With ``grasp``, the jerk limits are also tightened by the scenario's
-        ``planning.grasp_ramp_s`` (:func:`grasp_limits`). The retimer adds the
+        ``planning.grasp_ramp_s``
+        (:func:`~rt_drake.simulation.move_grasp.grasp_limits`). The retimer adds the
         path's knots to the ``gridpoints`` uniform points and holds every
         limit between grid points too.
         """
@@ -552,36 +510,6 @@ class OnlineMotions:
         )
 
 
-def grasp_limits(limits: JointLimits, scenario: Scenario) -> JointLimits:
-    """The joint limits of a MOVE retimed under the grasp constraint.
-
-    ``limits`` with each joint's jerk at most ``a_j / planning.grasp_ramp_s``
-    (rad/s^3, ``a_j`` the acceleration limit) when the scenario gives that
-    margin (:meth:`~rt_drake.retiming.JointLimits.with_acceleration_ramp`);
-    else ``limits`` unchanged. Motions without the grasp constraint keep
-    ``limits``: the ramp is a margin of the grasp, not a robot limit.
-    """
-    ramp_s = scenario.planning.grasp_ramp_s
-    return limits if ramp_s is None else limits.with_acceleration_ramp(ramp_s)
-
-
-def move_cup(scenario: Scenario) -> CupParameters:
-    """The scenario's (single) cup with the suction range a MOVE may rely on.
-
-    With a ``first_order`` vacuum the MOVE starts when "part present" fires,
-    at ``part_present_fraction`` of the suction, and the force then builds
-    up: the range reaches down to that fraction of its lowest P A.
-    """
-    cup = scenario.single_cup("a robust grasp (an uncertainty set)")
-    fraction = scenario.vacuum.move_force_fraction
-    if fraction == 1.0:
-        return cup
-    lowest = (
-        cup.suction_force if cup.suction_force_min is None else cup.suction_force_min
-    )
-    return dataclasses.replace(cup, suction_force_min=fraction * lowest)
-
-
 def time_at(result: RetimeResult, s: float) -> float:
     """Time (s) at which the retimed motion reaches path parameter ``s``.
 
@@ -600,12 +528,4 @@ def time_at(result: RetimeResult, s: float) -> float:
     return float(result.trajectory.start_time() + dt[:i].sum() + tau)
 
 
-__all__ = [
-    "NO_GUARANTEE",
-    "OnlineMotions",
-    "grasp_limits",
-    "held_object",
-    "move_cup",
-    "move_polytope",
-    "time_at",
-]
+__all__ = ["NO_GUARANTEE", "OnlineMotions", "time_at"]

@@ -33,7 +33,7 @@ from rt_drake.model.plant import (
 from rt_drake.model.resources import scenarios_dir
 from rt_drake.model.scenario import load_scenario
 from rt_drake.simulation._station import MakeStation
-from rt_drake.simulation.online_motions import held_object
+from rt_drake.simulation.move_grasp import held_object
 
 COARSE = """radius: 0.0125
     points: 4

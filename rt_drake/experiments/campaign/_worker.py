@@ -48,7 +48,7 @@ from rt_drake.experiments.campaign._row_types import (
 from rt_drake.experiments.campaign._variants import run_variant
 from rt_drake.retiming import warm_up
 from rt_drake.shaping import warm_up as warm_up_optimizer
-from rt_drake.simulation.online_motions import move_polytope
+from rt_drake.simulation.move_grasp import move_polytope
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

@@ -1,0 +1,106 @@
+"""The grasp a MOVE is retimed under: the held object, the wrench set, the cup.
+
+What :class:`~rt_drake.simulation.OnlineMotions` (and the campaigns and the
+``plan`` command) take from the scenario to state the grasp constraint
+``F w <= g`` of a MOVE: the held object's inertia in the cup frame
+(:func:`held_object`), the set W of the cup or tool (:func:`move_polytope`),
+the cup with the suction range a MOVE may rely on (:func:`move_cup`), and
+the joint limits of a grasp-constrained MOVE (:func:`grasp_limits`). Units:
+SI; wrenches about the cup (or tool) frame, in it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from pydrake.common.schema import Transform
+from pydrake.math import RigidTransform
+
+from rt_drake.contact import (
+    CupParameters,
+    LoadSharing,
+    SharedLoadSet,
+    ToolParameters,
+    WrenchPolytope,
+    cached_wrench_polytope,
+    with_suction_force,
+)
+from rt_drake.model.held import held_object_of
+from rt_drake.model.scenario import ObjectConfig, Scenario
+from rt_drake.retiming import JointLimits
+from rt_drake.types.held_object import HeldObject
+
+
+def held_object(obj: ObjectConfig, X_OC: RigidTransform) -> HeldObject:
+    """Inertia of ``obj`` in the cup frame, held at grasp ``X_OC``."""
+    return held_object_of(dataclasses.replace(obj, grasp=Transform(X_OC)))
+
+
+def move_polytope(scenario: Scenario) -> WrenchPolytope | SharedLoadSet:
+    """The wrench set the MOVE is retimed under (F, g and the cup or tool).
+
+    The scenario's cup W_c (cached on disk), or its tool's set about the
+    tool frame, in it: for several cups with ``tool.load_sharing:
+    elastic`` (the default) the rims' spring split (:class:`SharedLoadSet`,
+    milliseconds), with ``any`` the exact W_T of any split (two paper cups:
+    47,728 rows, about a minute the first time, then cached). With a
+    ``first_order`` vacuum, for the suction force guaranteed at "part
+    present": every cup's ``P A`` times ``part_present_fraction`` (one cup:
+    W_c translated; a tool: the set of the tool with those forces).
+    """
+    fraction = scenario.vacuum.move_force_fraction
+    if scenario.tool is None:
+        full = cached_wrench_polytope(scenario.cup)
+        if fraction == 1.0:
+            return full
+        return with_suction_force(full, fraction * scenario.cup.suction_force)
+    tool = scenario.tool_parameters()
+    if fraction != 1.0:
+        tool = ToolParameters(
+            cups=tuple(
+                dataclasses.replace(
+                    mount,
+                    cup=dataclasses.replace(
+                        mount.cup,
+                        suction_force=fraction * mount.cup.suction_force,
+                    ),
+                )
+                for mount in tool.cups
+            )
+        )
+    if len(tool.cups) > 1 and scenario.tool.load_sharing == LoadSharing.ELASTIC.value:
+        return SharedLoadSet.of(tool)
+    return cached_wrench_polytope(tool)
+
+
+def grasp_limits(limits: JointLimits, scenario: Scenario) -> JointLimits:
+    """The joint limits of a MOVE retimed under the grasp constraint.
+
+    ``limits`` with each joint's jerk at most ``a_j / planning.grasp_ramp_s``
+    (rad/s^3, ``a_j`` the acceleration limit) when the scenario gives that
+    margin (:meth:`~rt_drake.retiming.JointLimits.with_acceleration_ramp`);
+    else ``limits`` unchanged. Motions without the grasp constraint keep
+    ``limits``: the ramp is a margin of the grasp, not a robot limit.
+    """
+    ramp_s = scenario.planning.grasp_ramp_s
+    return limits if ramp_s is None else limits.with_acceleration_ramp(ramp_s)
+
+
+def move_cup(scenario: Scenario) -> CupParameters:
+    """The scenario's (single) cup with the suction range a MOVE may rely on.
+
+    With a ``first_order`` vacuum the MOVE starts when "part present" fires,
+    at ``part_present_fraction`` of the suction, and the force then builds
+    up: the range reaches down to that fraction of its lowest P A.
+    """
+    cup = scenario.single_cup("a robust grasp (an uncertainty set)")
+    fraction = scenario.vacuum.move_force_fraction
+    if fraction == 1.0:
+        return cup
+    lowest = (
+        cup.suction_force if cup.suction_force_min is None else cup.suction_force_min
+    )
+    return dataclasses.replace(cup, suction_force_min=fraction * lowest)
+
+
+__all__ = ["grasp_limits", "held_object", "move_cup", "move_polytope"]
