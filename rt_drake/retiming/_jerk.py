@@ -228,7 +228,7 @@ def jerk_limited(
     active = np.isin(dense.k, (0, len(DENSE) - 1))
     rows = None
     if grasp is not None:
-        rows = (dense.grasp_ratio(x_ref, u_ref) >= SCREEN) & active[:, None]
+        rows = dense.grasp_screen(x_ref, u_ref, SCREEN)[0] & active[:, None]
     pairs = None
     if objects is not None:
         assert dense.samples.wrench_set is not None
@@ -277,11 +277,13 @@ def jerk_limited(
         if best is None:  # every LP of the round stops the motion somewhere
             _refuse_stop(dense, z)
         z = best[1]
-        grasp_excess = None if grasp is None else dense.grasp_excess(z)
-        grasp_max = None if grasp_excess is None else grasp_excess.max(axis=1) + 1.0
+        x_z, u_z = dense.maps.X @ z, dense.maps.U @ z
+        grasp_over, grasp_max = None, None
+        if grasp is not None:  # the pairs over the contract, each point's worst
+            grasp_over, grasp_max = dense.grasp_screen(x_z, u_z, 1.0 + tolerance)
         set_worst = None
         if pairs is not None:  # the set's worst object at every dense point
-            set_worst = pairs.worst(dense.maps.X @ z, dense.maps.U @ z)
+            set_worst = pairs.worst(x_z, u_z)
             grasp_max = set_worst.ratio
         ratios = dense.ratios(z, limits, grasp_max)
         excess, jerk_excess = largest_excess(ratios), _point_excess(problem, z)
@@ -298,8 +300,8 @@ def jerk_limited(
         chosen.jerk_acceleration = (
             near if previous_near is None else previous_near | near
         )
-        if chosen.rows is not None and grasp_excess is not None:
-            chosen.rows |= grasp_excess > tolerance
+        if chosen.rows is not None and grasp_over is not None:
+            chosen.rows |= grasp_over
         if pairs is not None and set_worst is not None:
             assert set_worst.ranked is not None
             pairs.add(set_worst, set_worst.ranked[0] - 1.0 > tolerance)
@@ -508,11 +510,7 @@ def _solve(
             bound = np.where(keep.torque[once], limits.torque - sign * c, np.inf)
             add(_Kind.TORQUE + offset, sign * a, sign * b, bound)
     if chosen.rows is not None and dense.grasp is not None and smp.wrench is not None:
-        mask = chosen.rows[once]
-        a, b, c = (v[once] for v in smp.wrench)
-        F, g = dense.grasp.F, dense.grasp.g
-        bound = np.where(mask, g - c @ F.T, np.inf)
-        add(_Kind.GRASP, a @ F.T, b @ F.T, bound)
+        blocks.append(_grasp_rows_at(dense, once, chosen.rows[once]))
     if chosen.pairs is not None and len(chosen.pairs):
         blocks.append(chosen.pairs.rows(dense.band, once, _Kind.GRASP))
     index = np.flatnonzero(chosen.jerk_active & points.inner)
@@ -578,6 +576,29 @@ def _solve(
             f"jerk-limited retiming: no admissible profile ({status})", s=0.0
         )
     return z
+
+
+def _grasp_rows_at(dense: DensePoints, once: np.ndarray, mask: np.ndarray) -> Rows:
+    """Grasp rows ``F_r (a u + b x) <= g_r - F_r c`` of the (point, row) pairs ``mask``.
+
+    ``once``: (P,) dense points; ``mask``: (P, R). Only the pairs asked for
+    are made (an LP takes a few percent of them); in the order of
+    :func:`._jerk_rows.affine_rows` (point-major).
+    """
+    assert dense.grasp is not None and dense.samples.wrench is not None
+    p, r = np.nonzero(mask)
+    at = once[p]
+    a, b, c = (v[at] for v in dense.samples.wrench)
+    F = dense.grasp.F[r]
+    alpha = np.einsum("ij,ij->i", a, F)[:, None]
+    beta = np.einsum("ij,ij->i", b, F)[:, None]
+    band = dense.band
+    return Rows(
+        band.cols[at],
+        alpha * band.U[at] + beta * band.X[at],
+        dense.grasp.g[r] - np.einsum("ij,ij->i", c, F),
+        key(_Kind.GRASP, at, r),
+    )
 
 
 def _bernstein(s: np.ndarray, kinds: np.ndarray) -> Rows:

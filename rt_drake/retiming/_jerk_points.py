@@ -18,6 +18,7 @@ from collections.abc import Callable
 import numpy as np
 
 from rt_drake.retiming._check import Margin
+from rt_drake.retiming._jerk_kernels import grasp_screen
 from rt_drake.retiming._jerk_rows import (
     Band,
     PointMaps,
@@ -152,16 +153,25 @@ class DensePoints:
             torque = np.abs(a * u[:, None] + b * x[:, None] + c) / limits.torque
         return Keep(acc, torque, np.zeros(len(x), dtype=bool))
 
-    def grasp_ratio(self, x: np.ndarray, u: np.ndarray) -> np.ndarray:
-        """``F_r w / g_r`` at every point and row, (P, R)."""
-        assert self.grasp is not None and self.samples.wrench is not None
-        a, b, c = self.samples.wrench
-        w = a * u[:, None] + b * x[:, None] + c
-        return w @ self.grasp.scaled.T
+    def grasp_screen(
+        self, x: np.ndarray, u: np.ndarray, threshold: float
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Pairs with ``F_r w / g_r >= threshold``, (P, R), and each point's largest.
 
-    def grasp_excess(self, z: np.ndarray) -> np.ndarray:
-        """Relative excess of every grasp row at every point, (P, R)."""
-        return self.grasp_ratio(self.maps.X @ z, self.maps.U @ z) - 1.0
+        ``w = a u + b x + c`` at every point (:func:`._jerk_kernels.grasp_screen`,
+        one compiled pass: the (P, R) ratios are not stored).
+        """
+        assert self.grasp is not None and self.samples.wrench is not None
+        a, b, c = (np.ascontiguousarray(v, dtype=float) for v in self.samples.wrench)
+        scaled = np.ascontiguousarray(self.grasp.scaled.T, dtype=float)
+        over = np.empty((len(x), scaled.shape[1]), dtype=bool)
+        largest = np.empty(len(x))
+        grasp_screen(
+            a, b, c, np.ascontiguousarray(x, dtype=float),
+            np.ascontiguousarray(u, dtype=float), scaled, float(threshold), over,
+            largest,
+        )  # fmt: skip
+        return over, largest
 
     def ratios(
         self, z: np.ndarray, limits: JointLimits, grasp: np.ndarray | None = None
@@ -189,7 +199,7 @@ class DensePoints:
             tau = a * u[:, None] + b * x[:, None] + c
             out[Margin.TORQUE] = np.max(np.abs(tau) / limits.torque, axis=1)
         if grasp is None and self.grasp is not None:
-            grasp = np.max(self.grasp_excess(z), axis=1) + 1.0
+            grasp = self.grasp_screen(x, u, np.inf)[1]
         if grasp is not None:
             out[Margin.GRASP] = grasp
         return out
