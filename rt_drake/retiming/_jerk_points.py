@@ -23,7 +23,6 @@ from rt_drake.retiming._jerk_rows import (
     Band,
     PointMaps,
     jerk_values,
-    point_maps,
     rest_bound,
 )
 from rt_drake.retiming._jerk_timed_path import Piece
@@ -133,13 +132,13 @@ class DensePoints:
         ds = np.diff(s)[segments]
         at = s[segments] + sigma * ds
         at[k == len(DENSE) - 1] = s[segments + 1][k == len(DENSE) - 1]
-        maps = point_maps(s, kinds, segments, sigma)
+        band = Band.of(s, kinds, segments, sigma)
         return DensePoints(
             s=at,
             k=k,
             samples=sample(at),
-            maps=maps,
-            band=Band.of(maps, segments, len(s)),
+            maps=band.maps(len(s)),
+            band=band,
             grasp=grasp,
         )
 
@@ -257,7 +256,7 @@ class JerkPoints:
         at[k == count - 1] = s[segments + 1][k == count - 1]
         own = np.clip(at, s[segments] + 1e-9 * ds, s[segments + 1] - 1e-9 * ds)
         dq = spline(at, 1)
-        maps = point_maps(s, kinds, segments, sigma)
+        band = Band.of(s, kinds, segments, sigma)
         with np.errstate(divide="ignore", over="ignore"):  # q' = 0: no cap
             x_cap = np.min(velocity**2 / dq**2, axis=1)
         return JerkPoints(
@@ -268,8 +267,8 @@ class JerkPoints:
             dq=dq,
             ddq=spline(at, 2),
             dddq=spline(own, 3),
-            maps=maps,
-            band=Band.of(maps, segments, len(s)),
+            maps=band.maps(len(s)),
+            band=band,
             segment=segments,
         )
 
