@@ -37,4 +37,32 @@ def grasp_screen(a, b, c, x, u, scaled_t, threshold, over, largest):  # noqa: D4
         largest[p] = most
 
 
-__all__ = ["grasp_screen"]
+@njit(cache=True)
+def jerk_ratios(cols, X, U, K, z, dq, ddq, dddq, jerk, inner, out):  # noqa: D417
+    """``|q'''_j| / J_j`` at every point, 0 off the interior pieces, in place.
+
+    At point p, ``x``, ``u``, ``k`` are ``band . z[cols[p]]`` (``cols``, ``X``,
+    ``U``, ``K``: (P, 3), :class:`._jerk_rows.Band`, summed in the order of
+    the sparse maps' rows), ``x`` clipped at 0, and the joint jerk ``sqrt(x)
+    (q'_j k + 3 q''_j u + q'''_j x)`` (1/s^3 times rad). ``dq``, ``ddq``,
+    ``dddq``, ``out``: (P, n); ``jerk``: (n,); ``inner``: (P,) bool.
+    """
+    for p in range(cols.shape[0]):
+        if not inner[p]:
+            for j in range(out.shape[1]):
+                out[p, j] = 0.0
+            continue
+        x, u, k = 0.0, 0.0, 0.0
+        for e in range(3):
+            value = z[cols[p, e]]
+            x += X[p, e] * value
+            u += U[p, e] * value
+            k += K[p, e] * value
+        x = max(x, 0.0)
+        root = np.sqrt(x)
+        for j in range(out.shape[1]):
+            bracket = dq[p, j] * k + 3.0 * ddq[p, j] * u + dddq[p, j] * x
+            out[p, j] = abs(root * bracket / jerk[j])
+
+
+__all__ = ["grasp_screen", "jerk_ratios"]

@@ -18,11 +18,10 @@ from collections.abc import Callable
 import numpy as np
 
 from rt_drake.retiming._check import Margin
-from rt_drake.retiming._jerk_kernels import grasp_screen
+from rt_drake.retiming._jerk_kernels import grasp_screen, jerk_ratios
 from rt_drake.retiming._jerk_rows import (
     Band,
     PointMaps,
-    jerk_values,
     rest_bound,
 )
 from rt_drake.retiming._jerk_timed_path import Piece
@@ -264,20 +263,29 @@ class JerkPoints:
             k=k,
             inner=kinds[segments] == Piece.INTERIOR,
             x_cap=x_cap,
-            dq=dq,
-            ddq=spline(at, 2),
-            dddq=spline(own, 3),
+            dq=np.ascontiguousarray(dq, dtype=float),
+            ddq=np.ascontiguousarray(spline(at, 2), dtype=float),
+            dddq=np.ascontiguousarray(spline(own, 3), dtype=float),
             maps=band.maps(len(s)),
             band=band,
             segment=segments,
         )
 
     def per_joint(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
-        """``|jerk_j| / J_j`` at the interior points, (P, n) (0 elsewhere)."""
+        """``|jerk_j| / J_j`` at the interior points, (P, n) (0 elsewhere).
+
+        :func:`._jerk_kernels.jerk_ratios`: :func:`._jerk_rows.jerk_values`
+        with x, u, k from the band, in one compiled pass.
+        """
         assert limits.jerk is not None
-        x, u, k = self.maps.X @ z, self.maps.U @ z, self.maps.K @ z
-        jerk = jerk_values(x, u, k, self.dq, self.ddq, self.dddq) / limits.jerk
-        return np.where(self.inner[:, None], np.abs(jerk), 0.0)
+        out = np.empty(self.dq.shape)
+        band = self.band
+        jerk_ratios(
+            band.cols, band.X, band.U, band.K, np.ascontiguousarray(z, dtype=float),
+            self.dq, self.ddq, self.dddq, np.array(limits.jerk, dtype=float),
+            self.inner, out,
+        )  # fmt: skip
+        return out
 
     def ratio(
         self, z: np.ndarray, limits: JointLimits, bounds: dict[int, tuple[int, float]]

@@ -21,7 +21,7 @@ from rt_drake.retiming import (
     stage_rows as rows,
 )
 from rt_drake.retiming._between_kernels import position_excess
-from rt_drake.retiming._jerk_kernels import grasp_screen
+from rt_drake.retiming._jerk_kernels import grasp_screen, jerk_ratios
 from rt_drake.retiming._joint_path import as_joint_path
 from rt_drake.retiming._robust_rows import (
     Layout,
@@ -75,6 +75,11 @@ def warm_up() -> None:
     # The jerk-limited retimer's grasp screen: three points, twelve rows.
     over = np.empty((3, 12), dtype=bool)
     grasp_screen(wrench, wrench, wrench, grid, grid, normals, 0.5, over, np.empty(3))
+    cols = np.array([[0, 3, 4]] * 3, dtype=np.int64)
+    inner = np.ones(3, dtype=bool)
+    band = np.zeros((3, 3))
+    jerk_ratios(cols, band, band, band, np.ones(6), path, path, path, np.ones(1),
+                inner, np.empty((3, 1)))  # fmt: skip
     # The object wrench on a serial chain (rt_drake.dynamics.chain): two joints.
     q, steps = np.zeros((3, 2)), np.tile(np.eye(4), (2, 1, 1))
     z, o = np.empty((3, 2, 3)), np.empty((3, 2, 3))
