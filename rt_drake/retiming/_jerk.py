@@ -231,7 +231,8 @@ def jerk_limited(
     active = np.isin(dense.k, (0, len(DENSE) - 1))
     rows = None
     if grasp is not None:
-        rows = dense.grasp_screen(x_ref, u_ref, SCREEN)[0] & active[:, None]
+        # Only the active points' rows enter the LPs: screened there alone.
+        rows = dense.grasp_screen(x_ref, u_ref, SCREEN, np.flatnonzero(active))[0]
     pairs = None
     if objects is not None:
         assert dense.samples.wrench_set is not None

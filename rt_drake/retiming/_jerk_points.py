@@ -152,23 +152,36 @@ class DensePoints:
         return Keep(acc, torque, np.zeros(len(x), dtype=bool))
 
     def grasp_screen(
-        self, x: np.ndarray, u: np.ndarray, threshold: float
+        self,
+        x: np.ndarray,
+        u: np.ndarray,
+        threshold: float,
+        at: np.ndarray | None = None,
     ) -> tuple[np.ndarray, np.ndarray]:
         """Pairs with ``F_r w / g_r >= threshold``, (P, R), and each point's largest.
 
         ``w = a u + b x + c`` at every point (:func:`._jerk_kernels.grasp_screen`,
-        one compiled pass: the (P, R) ratios are not stored).
+        one compiled pass: the (P, R) ratios are not stored). ``at``: the
+        points to evaluate (the others: no pair, largest -inf); None: all.
         """
         assert self.grasp is not None and self.samples.wrench is not None
-        a, b, c = (np.ascontiguousarray(v, dtype=float) for v in self.samples.wrench)
+        index = np.arange(len(x)) if at is None else at
+        a, b, c = (
+            np.ascontiguousarray(v[index], dtype=float) for v in self.samples.wrench
+        )
         scaled = np.ascontiguousarray(self.grasp.scaled.T, dtype=float)
-        over = np.empty((len(x), scaled.shape[1]), dtype=bool)
-        largest = np.empty(len(x))
+        over = np.zeros((len(x), scaled.shape[1]), dtype=bool)
+        largest = np.full(len(x), -np.inf)
+        some_over = np.empty((len(index), scaled.shape[1]), dtype=bool)
+        some_largest = np.empty(len(index))
         grasp_screen(
-            a, b, c, np.ascontiguousarray(x, dtype=float),
-            np.ascontiguousarray(u, dtype=float), scaled, float(threshold), over,
-            largest,
+            a, b, c, np.ascontiguousarray(x[index], dtype=float),
+            np.ascontiguousarray(u[index], dtype=float), scaled, float(threshold),
+            some_over, some_largest,
         )  # fmt: skip
+        if at is None:
+            return some_over, some_largest
+        over[index], largest[index] = some_over, some_largest
         return over, largest
 
     def ratios(
