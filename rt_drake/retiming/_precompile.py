@@ -75,11 +75,11 @@ def warm_up() -> None:
     # The jerk-limited retimer's grasp screen: three points, twelve rows.
     over = np.empty((3, 12), dtype=bool)
     grasp_screen(wrench, wrench, wrench, grid, grid, normals, 0.5, over, np.empty(3))
-    cols = np.array([[0, 3, 4]] * 3, dtype=np.int64)
-    inner = np.ones(3, dtype=bool)
-    band = np.zeros((3, 3))
-    jerk_ratios(cols, band, band, band, np.ones(6), path, path, path, np.ones(1),
-                inner, np.empty((3, 1)))  # fmt: skip
+    # Its jerk ratios: three points on one segment (z = [x_0, x_1, u_0, u_1]).
+    cols = np.array([[0, 2, 3]] * 3, dtype=np.int64)
+    entries = np.zeros((3, 3))
+    jerk_ratios(cols, entries, entries, entries, np.ones(4), path, path, path,
+                np.ones(1), np.ones(3, dtype=bool), np.empty((3, 1)))  # fmt: skip
     # The object wrench on a serial chain (rt_drake.dynamics.chain): two joints.
     q, steps = np.zeros((3, 2)), np.tile(np.eye(4), (2, 1, 1))
     z, o = np.empty((3, 2, 3)), np.empty((3, 2, 3))
