@@ -162,6 +162,9 @@ class _Selection:
     jerk_keep: np.ndarray | None = None
     jerk_acceleration: np.ndarray | None = None
     pairs: SetPairs | None = None
+    #: The LP rows other than the jerk's (:func:`_fixed_rows`), while the
+    #: selection is unchanged; None: to be made.
+    fixed: tuple[list[Rows], list[Rows]] | None = None
 
 
 def jerk_limited(
@@ -228,7 +231,8 @@ def jerk_limited(
     active = np.isin(dense.k, (0, len(DENSE) - 1))
     rows = None
     if grasp is not None:
-        rows = (dense.grasp_ratio(x_ref, u_ref) >= SCREEN) & active[:, None]
+        # Only the active points' rows enter the LPs: screened there alone.
+        rows = dense.grasp_screen(x_ref, u_ref, SCREEN, np.flatnonzero(active))[0]
     pairs = None
     if objects is not None:
         assert dense.samples.wrench_set is not None
@@ -262,6 +266,7 @@ def jerk_limited(
             duration = quadrature_duration(s, x, u)
             if not np.isfinite(duration):  # s' = 0 between the LP's points
                 chosen.active |= dense.maps.X @ z <= 0.0
+                chosen.fixed = None
             if np.isfinite(duration) and (best is None or duration < best[0]):
                 best = (duration, z)
             x_bar = x
@@ -277,11 +282,13 @@ def jerk_limited(
         if best is None:  # every LP of the round stops the motion somewhere
             _refuse_stop(dense, z)
         z = best[1]
-        grasp_excess = None if grasp is None else dense.grasp_excess(z)
-        grasp_max = None if grasp_excess is None else grasp_excess.max(axis=1) + 1.0
+        x_z, u_z = dense.maps.X @ z, dense.maps.U @ z
+        grasp_over, grasp_max = None, None
+        if grasp is not None:  # the pairs over the contract, each point's worst
+            grasp_over, grasp_max = dense.grasp_screen(x_z, u_z, 1.0 + tolerance)
         set_worst = None
         if pairs is not None:  # the set's worst object at every dense point
-            set_worst = pairs.worst(dense.maps.X @ z, dense.maps.U @ z)
+            set_worst = pairs.worst(x_z, u_z)
             grasp_max = set_worst.ratio
         ratios = dense.ratios(z, limits, grasp_max)
         excess, jerk_excess = largest_excess(ratios), _point_excess(problem, z)
@@ -298,11 +305,12 @@ def jerk_limited(
         chosen.jerk_acceleration = (
             near if previous_near is None else previous_near | near
         )
-        if chosen.rows is not None and grasp_excess is not None:
-            chosen.rows |= grasp_excess > tolerance
+        if chosen.rows is not None and grasp_over is not None:
+            chosen.rows |= grasp_over
         if pairs is not None and set_worst is not None:
             assert set_worst.ranked is not None
             pairs.add(set_worst, set_worst.ranked[0] - 1.0 > tolerance)
+        chosen.fixed = None
         best = None  # the rows changed: the old optimum may break them
     _refuse(problem, excess, jerk_excess)
     x, u = _split(z, len(s))
@@ -476,13 +484,61 @@ def _solve(
     """One LP (module docstring, step 2): z = [x, u].
 
     ``x_bar``, ``x_dense``, ``x_jerk``: the previous profile at the grid,
-    dense and jerk points. The rows other than the jerk's are taken once
-    per point: at the end of a segment only where it is not the next one's
-    start (or where a limit was exceeded).
+    dense and jerk points. Only the jerk rows and the objective change from
+    one LP of a round to the next: the other rows (:func:`_fixed_rows`) are
+    kept in ``chosen.fixed`` until the selection changes.
     """
-    limits, dense, points = problem.limits, problem.dense, problem.jerk
+    limits, points = problem.limits, problem.jerk
     assert limits.jerk is not None
     s, size = problem.s, len(problem.s)
+    if chosen.fixed is None:
+        chosen.fixed = _fixed_rows(problem, chosen)
+    before, after = chosen.fixed
+    index = np.flatnonzero(chosen.jerk_active & points.inner)
+    floor = 1e-6 * max(float(np.max(x_jerk)), 1e-12)
+    jerk_keep = np.ones((len(index), len(limits.jerk)), dtype=bool)
+    if chosen.jerk_keep is not None:  # rows near the limit (where exceeded too)
+        jerk_keep = chosen.jerk_keep[index]
+    jerk = jerk_rows(
+        points.band.take(index), index, _Kind.JERK, points.dq[index],
+        points.ddq[index], points.dddq[index],
+        np.maximum(x_jerk, floor)[index], limits.jerk, jerk_keep,
+    )  # fmt: skip
+    ds = np.diff(s)
+    # Simpson's rule on each segment: T = sum ds / sqrt(x) at its ends and
+    # middle, linearised at the previous profile (d/dx x^-1/2 = -x^-1.5 / 2).
+    middle = problem.middle
+    scale = max(float(np.max(x_bar)), 1e-12)
+    x_middle = np.maximum(x_dense[middle], 1e-3 * scale)
+    width = (np.append(ds, 0.0) + np.insert(ds, 0, 0.0)) / 6.0
+    weight = -problem.X_middle.T @ (4.0 / 6.0 * ds / (2.0 * x_middle**1.5))
+    weight[:size] -= width / (2.0 * np.maximum(x_bar, 1e-3 * scale) ** 1.5)
+    A_ub, b_ub, keys = stacked([*before, jerk, *after], 2 * size)
+    kind = keys >> KIND_SHIFT
+    always = (kind == _Kind.VELOCITY) | (kind == _Kind.POSITIVE)
+    always |= (kind == _Kind.MIDDLE) | (kind == _Kind.BERNSTEIN)
+    z, status = solver.solve(
+        weight / np.max(np.abs(weight)), A_ub, b_ub, keys, *problem.equalities,
+        problem.variable_bounds, always,
+    )  # fmt: skip
+    if z is None:
+        raise PathNotControllableError(
+            f"jerk-limited retiming: no admissible profile ({status})", s=0.0
+        )
+    return z
+
+
+def _fixed_rows(problem: _Problem, chosen: _Selection) -> tuple[list[Rows], list[Rows]]:
+    """The LP rows other than the jerk's: those before them, those after.
+
+    They depend on the selection alone, not on the previous profile. The
+    rows at the dense points are taken once per point: at the end of a
+    segment only where it is not the next one's start (or where a limit was
+    exceeded). After the jerk rows: the velocity and acceleration rows at
+    jerk points where a limit was exceeded, ``x >= 0`` in the middle of
+    each segment and all along it.
+    """
+    limits, dense, points = problem.limits, problem.dense, problem.jerk
     last = len(DENSE) - 1
     repeated = (dense.k == last) & (np.arange(len(dense.s)) < len(dense.s) - 1)
     once = np.flatnonzero(chosen.active & (~repeated | chosen.keep.full))
@@ -508,25 +564,10 @@ def _solve(
             bound = np.where(keep.torque[once], limits.torque - sign * c, np.inf)
             add(_Kind.TORQUE + offset, sign * a, sign * b, bound)
     if chosen.rows is not None and dense.grasp is not None and smp.wrench is not None:
-        mask = chosen.rows[once]
-        a, b, c = (v[once] for v in smp.wrench)
-        F, g = dense.grasp.F, dense.grasp.g
-        bound = np.where(mask, g - c @ F.T, np.inf)
-        add(_Kind.GRASP, a @ F.T, b @ F.T, bound)
+        blocks.append(_grasp_rows_at(dense, once, chosen.rows[once]))
     if chosen.pairs is not None and len(chosen.pairs):
         blocks.append(chosen.pairs.rows(dense.band, once, _Kind.GRASP))
-    index = np.flatnonzero(chosen.jerk_active & points.inner)
-    floor = 1e-6 * max(float(np.max(x_jerk)), 1e-12)
-    jerk_keep = np.ones((len(index), len(limits.jerk)), dtype=bool)
-    if chosen.jerk_keep is not None:  # rows near the limit (where exceeded too)
-        jerk_keep = chosen.jerk_keep[index]
-    blocks.append(
-        jerk_rows(
-            points.band.take(index), index, _Kind.JERK, points.dq[index],
-            points.ddq[index], points.dddq[index],
-            np.maximum(x_jerk, floor)[index], limits.jerk, jerk_keep,
-        )
-    )  # fmt: skip
+    after: list[Rows] = []
     added = np.flatnonzero(chosen.jerk_active)
     near = chosen.jerk_acceleration
     if near is None:
@@ -535,7 +576,7 @@ def _solve(
     if added.size:  # where a limit was exceeded: velocity, acceleration too
         extra = points.band.take(added)
         for sign, offset in ((1.0, 0), (-1.0, 1)):
-            blocks.append(
+            after.append(
                 affine_rows(
                     extra, added, _Kind.JERK_POINT_ACCELERATION + offset,
                     sign * points.dq[added], sign * points.ddq[added],
@@ -543,41 +584,44 @@ def _solve(
                 )
             )  # fmt: skip
         zeros = np.zeros((added.size, 1))
-        blocks.append(
+        after.append(
             affine_rows(
                 extra, added, _Kind.JERK_POINT_VELOCITY, zeros, zeros + 1.0,
                 points.x_cap[added][:, None],
             )
         )  # fmt: skip
-    ds = np.diff(s)
-    # Simpson's rule on each segment: T = sum ds / sqrt(x) at its ends and
-    # middle, linearised at the previous profile (d/dx x^-1/2 = -x^-1.5 / 2).
     middle = problem.middle
-    scale = max(float(np.max(x_bar)), 1e-12)
-    x_middle = np.maximum(x_dense[middle], 1e-3 * scale)
-    width = (np.append(ds, 0.0) + np.insert(ds, 0, 0.0)) / 6.0
-    weight = -problem.X_middle.T @ (4.0 / 6.0 * ds / (2.0 * x_middle**1.5))
-    weight[:size] -= width / (2.0 * np.maximum(x_bar, 1e-3 * scale) ** 1.5)
     zeros = np.zeros((len(middle), 1))
-    blocks.append(  # x >= 0 in the middle of each segment
+    after.append(  # x >= 0 in the middle of each segment
         affine_rows(
             dense.band.take(middle), middle, _Kind.MIDDLE, zeros, zeros - 1.0, zeros
         )
     )
-    blocks.append(problem.bernstein)  # x >= 0 all along each segment
-    A_ub, b_ub, keys = stacked(blocks, 2 * size)
-    kind = keys >> KIND_SHIFT
-    always = (kind == _Kind.VELOCITY) | (kind == _Kind.POSITIVE)
-    always |= (kind == _Kind.MIDDLE) | (kind == _Kind.BERNSTEIN)
-    z, status = solver.solve(
-        weight / np.max(np.abs(weight)), A_ub, b_ub, keys, *problem.equalities,
-        problem.variable_bounds, always,
-    )  # fmt: skip
-    if z is None:
-        raise PathNotControllableError(
-            f"jerk-limited retiming: no admissible profile ({status})", s=0.0
-        )
-    return z
+    after.append(problem.bernstein)  # x >= 0 all along each segment
+    return blocks, after
+
+
+def _grasp_rows_at(dense: DensePoints, once: np.ndarray, mask: np.ndarray) -> Rows:
+    """Grasp rows ``F_r (a u + b x) <= g_r - F_r c`` of the (point, row) pairs ``mask``.
+
+    ``once``: (P,) dense points; ``mask``: (P, R). Only the pairs asked for
+    are made (an LP takes a few percent of them); in the order of
+    :func:`._jerk_rows.affine_rows` (point-major).
+    """
+    assert dense.grasp is not None and dense.samples.wrench is not None
+    p, r = np.nonzero(mask)
+    at = once[p]
+    a, b, c = (v[at] for v in dense.samples.wrench)
+    F = dense.grasp.F[r]
+    alpha = np.einsum("ij,ij->i", a, F)[:, None]
+    beta = np.einsum("ij,ij->i", b, F)[:, None]
+    band = dense.band
+    return Rows(
+        band.cols[at],
+        alpha * band.U[at] + beta * band.X[at],
+        dense.grasp.g[r] - np.einsum("ij,ij->i", c, F),
+        key(_Kind.GRASP, at, r),
+    )
 
 
 def _bernstein(s: np.ndarray, kinds: np.ndarray) -> Rows:

@@ -86,9 +86,7 @@ class WarmLP:
         if self._keys is not None:
             working |= np.isin(keys, self._keys[self._rows != _BASIC])
         order = np.flatnonzero(working)
-        z, status = self._load(
-            c, A_ub[order], b_ub[order], keys[order], A_eq, b_eq, bounds
-        )
+        z, status = self._load(c, A_ub, order, b_ub, keys, A_eq, b_eq, bounds)
         while True:
             if z is None:
                 if working.all():
@@ -96,18 +94,17 @@ class WarmLP:
                     return None, status
                 working[:] = True  # a sub-LP unbounded: take every row
                 order = np.arange(len(b_ub))
-                z, status = self._load(c, A_ub, b_ub, keys, A_eq, b_eq, bounds)
+                z, status = self._load(c, A_ub, order, b_ub, keys, A_eq, b_eq, bounds)
                 continue
             broken = np.flatnonzero(~working & (A_ub @ z > b_ub + FEASIBLE * slack))
             if not broken.size:
                 break
             working[broken] = True
             order = np.concatenate([order, broken])
-            cut = A_ub[broken]
+            start, index, value = _rows_of(A_ub, broken)
             self._highs.addRows(
-                len(broken), np.full(len(broken), -np.inf), b_ub[broken], cut.nnz,
-                cut.indptr[:-1].astype(np.int32), cut.indices.astype(np.int32),
-                cut.data.astype(float),
+                len(broken), np.full(len(broken), -np.inf), b_ub[broken],
+                len(index), start[:-1], index, value,
             )  # fmt: skip
             z, status = self._run()
         # The next LP's basis from this optimum: a variable or row at a
@@ -130,25 +127,34 @@ class WarmLP:
         self,
         c: np.ndarray,
         A_ub: sparse.csr_matrix,
+        order: np.ndarray,
         b_ub: np.ndarray,
         keys: np.ndarray,
         A_eq: sparse.csr_matrix,
         b_eq: np.ndarray,
         bounds: np.ndarray,
     ) -> tuple[np.ndarray | None, str]:
-        """Pass the sub-LP to HiGHS, start it from the last basis or the guess, run."""
-        A = sparse.vstack([A_ub, A_eq]).tocsr()
-        m, n = A.shape
+        """Pass the sub-LP (the rows ``order`` of A_ub, then A_eq) to HiGHS, run.
+
+        It starts from the last basis or the guess.
+        """
+        b_ub, keys = b_ub[order], keys[order]
+        start, index, value = _rows_of(A_ub, order)
+        n = A_ub.shape[1]
+        m = len(order) + A_eq.shape[0]
+        start = np.concatenate([start[:-1], start[-1] + A_eq.indptr[:-1]])
+        index = np.concatenate([index, A_eq.indices]).astype(np.int32)
+        value = np.concatenate([value, A_eq.data]).astype(float)
         lower = np.concatenate([np.full(len(b_ub), -np.inf), b_eq])
         upper = np.concatenate([b_ub, b_eq])
         self._head = len(b_ub)
         self._highs.passModel(
-            n, m, A.nnz, int(highspy.MatrixFormat.kRowwise),
+            n, m, len(index), int(highspy.MatrixFormat.kRowwise),
             int(highspy.ObjSense.kMinimize), 0.0,
             np.asarray(c, dtype=float), np.asarray(bounds[:, 0], dtype=float),
             np.asarray(bounds[:, 1], dtype=float), lower, upper,
-            A.indptr[:-1].astype(np.int32), A.indices.astype(np.int32),
-            A.data.astype(float), np.zeros(n, dtype=np.int32),  # continuous
+            start.astype(np.int32), index, value,
+            np.zeros(n, dtype=np.int32),  # continuous
         )  # fmt: skip
         cols = rows = None
         if self._keys is not None:
@@ -157,7 +163,8 @@ class WarmLP:
             cols, rows = self._cols, np.concatenate([self._row_status(keys), eq])
         elif self._start is not None:  # crash: the rows within GUESS of a bound
             cols = _at_bound(self._start, bounds[:, 0], bounds[:, 1], GUESS)
-            rows = _at_bound(A @ self._start, lower, upper, GUESS)
+            value_at = np.concatenate([(A_ub @ self._start)[order], A_eq @ self._start])
+            rows = _at_bound(value_at, lower, upper, GUESS)
         if cols is not None and rows is not None:
             basis = highspy.HighsBasis()
             basis.col_status = _STATUS[cols].tolist()
@@ -187,6 +194,21 @@ class WarmLP:
         status = np.full(len(keys), _BASIC)
         status[found] = self._rows[order[at[found]]]
         return status
+
+
+def _rows_of(
+    A: sparse.csr_matrix, rows: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The rows ``rows`` of A in CSR form: starts (len(rows) + 1,), indices, values.
+
+    The same arrays as ``A[rows]``'s (entries in their order within a row),
+    without scipy's indexing; indices and starts as int32 (HiGHS's).
+    """
+    counts = np.diff(A.indptr)[rows]
+    start = np.zeros(len(rows) + 1, dtype=np.int64)
+    np.cumsum(counts, out=start[1:])
+    flat = np.repeat(A.indptr[rows] - start[:-1], counts) + np.arange(start[-1])
+    return start.astype(np.int32), A.indices[flat].astype(np.int32), A.data[flat]
 
 
 def _at_bound(

@@ -18,11 +18,10 @@ from collections.abc import Callable
 import numpy as np
 
 from rt_drake.retiming._check import Margin
+from rt_drake.retiming._jerk_kernels import grasp_screen, jerk_ratios
 from rt_drake.retiming._jerk_rows import (
     Band,
     PointMaps,
-    jerk_values,
-    point_maps,
     rest_bound,
 )
 from rt_drake.retiming._jerk_timed_path import Piece
@@ -132,13 +131,13 @@ class DensePoints:
         ds = np.diff(s)[segments]
         at = s[segments] + sigma * ds
         at[k == len(DENSE) - 1] = s[segments + 1][k == len(DENSE) - 1]
-        maps = point_maps(s, kinds, segments, sigma)
+        band = Band.of(s, kinds, segments, sigma)
         return DensePoints(
             s=at,
             k=k,
             samples=sample(at),
-            maps=maps,
-            band=Band.of(maps, segments, len(s)),
+            maps=band.maps(len(s)),
+            band=band,
             grasp=grasp,
         )
 
@@ -152,16 +151,38 @@ class DensePoints:
             torque = np.abs(a * u[:, None] + b * x[:, None] + c) / limits.torque
         return Keep(acc, torque, np.zeros(len(x), dtype=bool))
 
-    def grasp_ratio(self, x: np.ndarray, u: np.ndarray) -> np.ndarray:
-        """``F_r w / g_r`` at every point and row, (P, R)."""
-        assert self.grasp is not None and self.samples.wrench is not None
-        a, b, c = self.samples.wrench
-        w = a * u[:, None] + b * x[:, None] + c
-        return w @ self.grasp.scaled.T
+    def grasp_screen(
+        self,
+        x: np.ndarray,
+        u: np.ndarray,
+        threshold: float,
+        at: np.ndarray | None = None,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Pairs with ``F_r w / g_r >= threshold``, (P, R), and each point's largest.
 
-    def grasp_excess(self, z: np.ndarray) -> np.ndarray:
-        """Relative excess of every grasp row at every point, (P, R)."""
-        return self.grasp_ratio(self.maps.X @ z, self.maps.U @ z) - 1.0
+        ``w = a u + b x + c`` at every point (:func:`._jerk_kernels.grasp_screen`,
+        one compiled pass: the (P, R) ratios are not stored). ``at``: the
+        points to evaluate (the others: no pair, largest -inf); None: all.
+        """
+        assert self.grasp is not None and self.samples.wrench is not None
+        index = np.arange(len(x)) if at is None else at
+        a, b, c = (
+            np.ascontiguousarray(v[index], dtype=float) for v in self.samples.wrench
+        )
+        scaled = np.ascontiguousarray(self.grasp.scaled.T, dtype=float)
+        over = np.zeros((len(x), scaled.shape[1]), dtype=bool)
+        largest = np.full(len(x), -np.inf)
+        some_over = np.empty((len(index), scaled.shape[1]), dtype=bool)
+        some_largest = np.empty(len(index))
+        grasp_screen(
+            a, b, c, np.ascontiguousarray(x[index], dtype=float),
+            np.ascontiguousarray(u[index], dtype=float), scaled, float(threshold),
+            some_over, some_largest,
+        )  # fmt: skip
+        if at is None:
+            return some_over, some_largest
+        over[index], largest[index] = some_over, some_largest
+        return over, largest
 
     def ratios(
         self, z: np.ndarray, limits: JointLimits, grasp: np.ndarray | None = None
@@ -189,7 +210,7 @@ class DensePoints:
             tau = a * u[:, None] + b * x[:, None] + c
             out[Margin.TORQUE] = np.max(np.abs(tau) / limits.torque, axis=1)
         if grasp is None and self.grasp is not None:
-            grasp = np.max(self.grasp_excess(z), axis=1) + 1.0
+            grasp = self.grasp_screen(x, u, np.inf)[1]
         if grasp is not None:
             out[Margin.GRASP] = grasp
         return out
@@ -247,7 +268,7 @@ class JerkPoints:
         at[k == count - 1] = s[segments + 1][k == count - 1]
         own = np.clip(at, s[segments] + 1e-9 * ds, s[segments + 1] - 1e-9 * ds)
         dq = spline(at, 1)
-        maps = point_maps(s, kinds, segments, sigma)
+        band = Band.of(s, kinds, segments, sigma)
         with np.errstate(divide="ignore", over="ignore"):  # q' = 0: no cap
             x_cap = np.min(velocity**2 / dq**2, axis=1)
         return JerkPoints(
@@ -255,20 +276,29 @@ class JerkPoints:
             k=k,
             inner=kinds[segments] == Piece.INTERIOR,
             x_cap=x_cap,
-            dq=dq,
-            ddq=spline(at, 2),
-            dddq=spline(own, 3),
-            maps=maps,
-            band=Band.of(maps, segments, len(s)),
+            dq=np.ascontiguousarray(dq, dtype=float),
+            ddq=np.ascontiguousarray(spline(at, 2), dtype=float),
+            dddq=np.ascontiguousarray(spline(own, 3), dtype=float),
+            maps=band.maps(len(s)),
+            band=band,
             segment=segments,
         )
 
     def per_joint(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
-        """``|jerk_j| / J_j`` at the interior points, (P, n) (0 elsewhere)."""
+        """``|jerk_j| / J_j`` at the interior points, (P, n) (0 elsewhere).
+
+        :func:`._jerk_kernels.jerk_ratios`: :func:`._jerk_rows.jerk_values`
+        with x, u, k from the band, in one compiled pass.
+        """
         assert limits.jerk is not None
-        x, u, k = self.maps.X @ z, self.maps.U @ z, self.maps.K @ z
-        jerk = jerk_values(x, u, k, self.dq, self.ddq, self.dddq) / limits.jerk
-        return np.where(self.inner[:, None], np.abs(jerk), 0.0)
+        out = np.empty(self.dq.shape)
+        band = self.band
+        jerk_ratios(
+            band.cols, band.X, band.U, band.K, np.ascontiguousarray(z, dtype=float),
+            self.dq, self.ddq, self.dddq, np.array(limits.jerk, dtype=float),
+            self.inner, out,
+        )  # fmt: skip
+        return out
 
     def ratio(
         self, z: np.ndarray, limits: JointLimits, bounds: dict[int, tuple[int, float]]

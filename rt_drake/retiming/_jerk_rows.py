@@ -3,7 +3,7 @@
 The LP variables are ``z = [x_0..x_N, u_0..u_N]``: ``x = s'^2`` and the path
 acceleration ``u = s''`` at the grid points (1/s^2). At a point ``sigma`` of
 segment i, ``x``, ``u`` and ``k = du/ds`` are linear in z
-(:mod:`._jerk_timed_path`): :func:`point_maps` gives the sparse rows
+(:mod:`._jerk_timed_path`): :meth:`Band.maps` gives the sparse rows
 ``X z``, ``U z``, ``K z``. Every limit but the jerk is then linear in z, and
 exact at the point:
 
@@ -39,63 +39,8 @@ class PointMaps(NamedTuple):
     K: sparse.csr_matrix
 
 
-def point_maps(
-    s: np.ndarray, kinds: np.ndarray, segment: np.ndarray, sigma: np.ndarray
-) -> PointMaps:
-    """The rows of x, u and k = du/ds at ``sigma`` of ``segment`` (module docstring).
-
-    ``k`` is 0 on START and STOP pieces (their jerk is :func:`rest_bound`'s).
-    """
-    n_var = 2 * len(s)
-    ds = np.diff(s)[segment]
-    i = segment
-    x_i, u_i, u_next = i, len(s) + i, len(s) + i + 1
-    kind = kinds[segment]
-    start, stop = kind == Piece.START, kind == Piece.STOP
-    inner = ~(start | stop)
-    sig = sigma
-    rest = np.where(start, sig, 1.0 - sig)
-    rows = np.arange(len(i))
-    cols_x, vals_x, rows_x = [], [], []
-    cols_u, vals_u, rows_u = [], [], []
-    # Interior: x = x_i + ds ((2 sig - sig^2) u_i + sig^2 u_{i+1}).
-    rows_x += [rows[inner]] * 3
-    cols_x += [x_i[inner], u_i[inner], u_next[inner]]
-    vals_x += [
-        np.ones(inner.sum()),
-        (ds * (2.0 * sig - sig**2))[inner],
-        (ds * sig**2)[inner],
-    ]
-    rows_u += [rows[inner]] * 2
-    cols_u += [u_i[inner], u_next[inner]]
-    vals_u += [(1.0 - sig)[inner], sig[inner]]
-    # Start: x = 1.5 ds u_1 sig^(4/3), u = u_1 sig^(1/3); stop mirrored.
-    edge = start | stop
-    which = np.where(start, u_next, u_i)[edge]
-    sign = np.where(start, 1.0, -1.0)[edge]
-    rows_x.append(rows[edge])
-    cols_x.append(which)
-    vals_x.append(sign * 1.5 * ds[edge] * rest[edge] ** (4.0 / 3.0))
-    rows_u.append(rows[edge])
-    cols_u.append(which)
-    vals_u.append(rest[edge] ** (1.0 / 3.0))
-    shape = (len(i), n_var)
-
-    def matrix(r: list, c: list, v: list) -> sparse.csr_matrix:
-        return sparse.csr_matrix(
-            (np.concatenate(v), (np.concatenate(r), np.concatenate(c))), shape=shape
-        )
-
-    K = matrix(
-        [rows[inner]] * 2,
-        [u_i[inner], u_next[inner]],
-        [-1.0 / ds[inner], 1.0 / ds[inner]],
-    )
-    return PointMaps(matrix(rows_x, cols_x, vals_x), matrix(rows_u, cols_u, vals_u), K)
-
-
 class Band(NamedTuple):
-    """``x``, ``u``, ``k`` at P points as three entries each (the rows of PointMaps).
+    """``x``, ``u``, ``k`` at P points as three entries each.
 
     Each point's x, u and k are linear in the three variables ``cols[p] =
     (x_i, u_i, u_{i+1})`` of its segment i: ``x_p = X[p] . z[cols[p]]``, and
@@ -108,20 +53,50 @@ class Band(NamedTuple):
     K: np.ndarray
 
     @staticmethod
-    def of(maps: PointMaps, segment: np.ndarray, size: int) -> Band:
-        """The band of ``maps`` at points of ``segment`` ((P,)), grid of ``size``."""
+    def of(
+        s: np.ndarray, kinds: np.ndarray, segment: np.ndarray, sigma: np.ndarray
+    ) -> Band:
+        """x, u and k = du/ds at ``sigma`` of ``segment`` (module docstring).
+
+        Interior piece i: ``x = x_i + ds ((2 sig - sig^2) u_i + sig^2
+        u_{i+1})``, ``u = (1 - sig) u_i + sig u_{i+1}``, ``k = (u_{i+1} -
+        u_i) / ds``. Start: ``x = 1.5 ds u_1 sig^(4/3)``, ``u = u_1
+        sig^(1/3)``, ``k`` 0 (its jerk is :func:`rest_bound`'s); a stop
+        mirrored (``sig -> 1 - sig``, on ``u_{N-1}``, x with the sign flipped).
+        """
+        size = len(s)
+        ds = np.diff(s)[segment]
+        kind = kinds[segment]
+        start, stop = kind == Piece.START, kind == Piece.STOP
+        inner = ~(start | stop)
+        sig = sigma
+        X, U, K = (np.zeros((len(segment), 3)) for _ in range(3))
+        X[inner, 0] = 1.0
+        X[inner, 1] = (ds * (2.0 * sig - sig**2))[inner]
+        X[inner, 2] = (ds * sig**2)[inner]
+        U[inner, 1], U[inner, 2] = (1.0 - sig)[inner], sig[inner]
+        K[inner, 1], K[inner, 2] = -1.0 / ds[inner], 1.0 / ds[inner]
+        for edge, rest, column, sign in (
+            (start, sig, 2, 1.0),
+            (stop, 1.0 - sig, 1, -1.0),
+        ):
+            X[edge, column] = sign * 1.5 * ds[edge] * rest[edge] ** (4.0 / 3.0)
+            U[edge, column] = rest[edge] ** (1.0 / 3.0)
         cols = np.column_stack([segment, size + segment, size + segment + 1])
-        out = []
-        for matrix in maps:
-            csr = sparse.csr_matrix(matrix)
-            csr.sum_duplicates()
-            row = np.repeat(np.arange(csr.shape[0]), np.diff(csr.indptr))
-            where = csr.indices[:, None] == cols[row]
-            assert np.all(where.sum(axis=1) == 1), "an entry off the segment's band"
-            values = np.zeros(cols.shape)
-            values[row, np.argmax(where, axis=1)] = csr.data
-            out.append(values)
-        return Band(cols, *out)
+        return Band(cols, X, U, K)
+
+    def maps(self, size: int) -> PointMaps:
+        """The band as sparse (P, 2 ``size``) rows of z (zeros kept)."""
+        P = len(self.cols)
+        indptr = 3 * np.arange(P + 1)
+        indices = self.cols.ravel()
+
+        def matrix(values: np.ndarray) -> sparse.csr_matrix:
+            return sparse.csr_matrix(
+                (values.ravel(), indices, indptr), shape=(P, 2 * size)
+            )
+
+        return PointMaps(matrix(self.X), matrix(self.U), matrix(self.K))
 
     def take(self, index: np.ndarray) -> Band:
         """The band at the points ``index``."""
@@ -282,6 +257,5 @@ __all__ = [
     "stacked",
     "jerk_rows",
     "jerk_values",
-    "point_maps",
     "rest_bound",
 ]

@@ -21,6 +21,7 @@ from rt_drake.retiming import (
     stage_rows as rows,
 )
 from rt_drake.retiming._between_kernels import position_excess
+from rt_drake.retiming._jerk_kernels import grasp_screen, jerk_ratios
 from rt_drake.retiming._joint_path import as_joint_path
 from rt_drake.retiming._robust_rows import (
     Layout,
@@ -71,6 +72,14 @@ def warm_up() -> None:
     segments.enforced_wrenches(coefficients, x, u)
     between.grasp_midpoint_rows(segments, coefficients, F, np.ones(12))
     position_excess(grid, path, path, path, -np.ones(1), np.ones(1), 1e-9)
+    # The jerk-limited retimer's grasp screen: three points, twelve rows.
+    over = np.empty((3, 12), dtype=bool)
+    grasp_screen(wrench, wrench, wrench, grid, grid, normals, 0.5, over, np.empty(3))
+    # Its jerk ratios: three points on one segment (z = [x_0, x_1, u_0, u_1]).
+    cols = np.array([[0, 2, 3]] * 3, dtype=np.int64)
+    entries = np.zeros((3, 3))
+    jerk_ratios(cols, entries, entries, entries, np.ones(4), path, path, path,
+                np.ones(1), np.ones(3, dtype=bool), np.empty((3, 1)))  # fmt: skip
     # The object wrench on a serial chain (rt_drake.dynamics.chain): two joints.
     q, steps = np.zeros((3, 2)), np.tile(np.eye(4), (2, 1, 1))
     z, o = np.empty((3, 2, 3)), np.empty((3, 2, 3))

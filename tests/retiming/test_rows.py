@@ -4,6 +4,8 @@ The compiled kernels are compared with plain numpy on the scenario cup's
 exact polytope (834 rows) and random wrench coefficients.
 """
 
+import dataclasses
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -130,6 +132,9 @@ def test_warm_up_compiles_what_retime_uses(plant, scenario, polytope):
     from rt_drake.retiming import (
         _between_kernels as between_kernels,
     )
+    from rt_drake.retiming import (
+        _jerk_kernels as jerk_kernels,
+    )
 
     kernels = [
         seidel.passes,
@@ -140,6 +145,7 @@ def test_warm_up_compiles_what_retime_uses(plant, scenario, polytope):
         between._lagrange_kernel,
         *(getattr(between_kernels, name) for name in between_kernels.__all__),
         *(getattr(_chain_kernels, name) for name in _chain_kernels.__all__),
+        *(getattr(jerk_kernels, name) for name in jerk_kernels.__all__),
     ]
     warm_up()
     before = [len(kernel.signatures) for kernel in kernels]
@@ -148,4 +154,8 @@ def test_warm_up_compiles_what_retime_uses(plant, scenario, polytope):
     home = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
     limits = JointLimits.from_plant(plant, scenario.robot, torque=True)
     retime(plant, np.array([home, home + 0.3]), limits, grasp)
+    # The jerk-limited retimer's kernels (a curve through a third waypoint).
+    jerk = dataclasses.replace(limits, jerk=20.0 * limits.acceleration)
+    waypoints = np.array([home, home + 0.3, home + [0.5, 0.2, 0.1, 0.0, 0.3, 0.1]])
+    retime(plant, waypoints, jerk, grasp)
     assert [len(kernel.signatures) for kernel in kernels] == before

@@ -1,0 +1,110 @@
+"""Where a jerk-limited retime's CPU goes, on Table I's MOVEs.
+
+Run: ``PYTHONPATH=. nice python benchmarks/bench_jerk_parts.py [--n 20] [--seed 0]``.
+
+The MOVEs and limits are :mod:`bench_jerk`'s (Table I's, shipped jerk
+limits, 100 grid points). Each retime runs ``--repeats`` times with the
+jerk-limited retimer's parts wrapped by thread-CPU timers
+(``time.thread_time``; the machine is shared); per part, the median over
+the retimes of its CPU ms per retime. The parts nest: "LPs (HiGHS)" is
+inside "LP wrapper", which is inside "LP rows and LPs"; "TOPP-RA and the
+rest" is the retime's CPU outside ``jerk_limited``.
+"""
+
+import os
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import argparse  # noqa: E402
+import collections  # noqa: E402
+import functools  # noqa: E402
+import statistics  # noqa: E402
+import time  # noqa: E402
+
+from bench_jerk import planned_moves  # noqa: E402
+
+from rt_drake.model.plant import make_arm_plant  # noqa: E402
+from rt_drake.model.resources import scenarios_dir  # noqa: E402
+from rt_drake.model.scenario import load_scenario  # noqa: E402
+from rt_drake.retiming import (  # noqa: E402
+    JointLimits,
+    _jerk,
+    _jerk_lp,
+    _jerk_points,
+    retime,
+    warm_up,
+)
+
+#: CPU ms of each part in the current retime.
+SPENT: collections.Counter = collections.Counter()
+
+
+def timed(name, function):  # noqa: ANN001, ANN201
+    """``function`` adding its thread CPU ms to ``SPENT[name]``."""
+
+    @functools.wraps(function)
+    def wrapper(*args, **kwargs):  # noqa: ANN002, ANN003, ANN202
+        start = time.thread_time()
+        try:
+            return function(*args, **kwargs)
+        finally:
+            SPENT[name] += 1e3 * (time.thread_time() - start)
+
+    return wrapper
+
+
+def main() -> None:
+    """Print the median CPU ms per part of a jerk-limited retime."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--n", type=int, default=20)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args()
+    scenario = load_scenario(scenarios_dir() / "random_transport_paper.yaml")
+    plant = make_arm_plant(scenario)
+    context = plant.CreateDefaultContext()
+    shipped = JointLimits.from_plant(plant, scenario.robot, jerk=True)
+    warm_up()
+    moves = planned_moves(args.n, args.seed)
+    parts = {
+        "jerk_limited (all but TOPP-RA)": (_jerk, "jerk_limited"),
+        "LP rows and LPs (_solve)": (_jerk, "_solve"),
+        "LP wrapper (WarmLP.solve)": (_jerk_lp.WarmLP, "solve"),
+        "LPs (HiGHS run)": (_jerk_lp.WarmLP, "_run"),
+        "grasp screen": (_jerk_points.DensePoints, "grasp_screen"),
+        "jerk ratios": (_jerk_points.JerkPoints, "per_joint"),
+        "duration by quadrature": (_jerk, "quadrature_duration"),
+    }
+    for name, (owner, attribute) in parts.items():
+        setattr(owner, attribute, timed(name, getattr(owner, attribute)))
+    # The points and the path's coefficients there (Drake): static methods.
+    for name, cls in (
+        ("dense points", _jerk.DensePoints),
+        ("jerk points", _jerk.JerkPoints),
+    ):
+        cls.of = staticmethod(timed(name, cls.of))
+    # retime imports jerk_limited by name: wrap it there too.
+    from rt_drake.retiming import _solve
+
+    _solve.jerk_limited = _jerk.jerk_limited
+    per_part: dict[str, list[float]] = collections.defaultdict(list)
+    for path, grasp in moves:
+        retime(plant, path, shipped, grasp, 100, context=context)  # not timed
+        for _ in range(args.repeats):
+            SPENT.clear()
+            start = time.thread_time()
+            retime(plant, path, shipped, grasp, 100, context=context)
+            total = 1e3 * (time.thread_time() - start)
+            per_part["retime (total)"].append(total)
+            for name in [*parts, "dense points", "jerk points"]:
+                per_part[name].append(SPENT[name])
+            per_part["TOPP-RA and the rest"].append(
+                total - SPENT["jerk_limited (all but TOPP-RA)"]
+            )
+    print(f"{len(moves)} MOVEs x {args.repeats}: median CPU ms per jerk-limited retime")
+    for name, values in per_part.items():
+        print(f"  {name:34s} {statistics.median(values):6.1f}")
+
+
+if __name__ == "__main__":
+    main()
