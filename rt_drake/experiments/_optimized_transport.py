@@ -43,6 +43,7 @@ from rt_drake.shaping import (
     warm_up,
 )
 from rt_drake.shaping.cup_chain import CupChain
+from rt_drake.simulation import OnlineMotions
 
 #: Samples in time of the cup profiles.
 PROFILE_SAMPLES = 200
@@ -58,8 +59,17 @@ def optimized_trial(
     grasp: GraspConstraint,
     rollout_world: Scenario,
     replay_path: Path | None = None,
+    motions: OnlineMotions | None = None,
 ) -> dict[str, Any]:
     """Optimise the MOVE ``spline``, play it, and return the per-trial keys.
+
+    The optimiser compares paths under the acceleration limits; when
+    ``motions`` (the trial's, which retimed ``spline``) retimes a
+    grasp-constrained motion under jerk limits (``robot.jerk_limits``, or
+    the grasp's ``planning.grasp_ramp_s``), the kept path is retimed once
+    more under them, as the cycle does
+    (:meth:`~rt_drake.simulation.OnlineMotions.retime_on_profile`), so that
+    both MOVEs are played under the same limits.
 
     Args:
         scenario: The trial's scenario (its ``planning`` gives tilt and budget).
@@ -69,10 +79,14 @@ def optimized_trial(
         grasp: The grasp constraint it was retimed under.
         rollout_world: The rollout scenario (:func:`._rollout.rollout_scenario`).
         replay_path: Write a Meshcat replay (HTML) of the optimised MOVE here.
+        motions: The trial's motions (None: the optimiser's own retime).
     """
     optimizer, result = optimize_spline(scenario, planner, spline, grasp)
+    retimed = result.retimed
+    if motions is not None and motions.jerk_limited:
+        retimed = motions.retime_on_profile(result.path, grasp, result.retimed)
     q_grasp = spline.q_start
-    trajectory = result.retimed.trajectory
+    trajectory = retimed.trajectory
     critical, sweep = critical_speed(rollout_world, q_grasp, trajectory)
     if replay_path is not None:
         meshcat = StartMeshcat()
@@ -80,7 +94,7 @@ def optimized_trial(
         write_text_atomically(replay_path, meshcat.StaticHtml())
     chain = optimizer.chain
     return {
-        "duration_optimized_s": result.duration,
+        "duration_optimized_s": retimed.duration,
         "success_optimized": sweep[0][1].success,
         "optimize_wall_s": result.wall_s,
         "critical_speed_factor_optimized": critical,
@@ -97,7 +111,7 @@ def optimized_trial(
         "waypoints_optimized": result.path.waypoints.tolist(),
         "cup_profiles": {
             "spline": cup_profile(chain, spline_retimed),
-            "optimized": cup_profile(chain, result.retimed),
+            "optimized": cup_profile(chain, retimed),
         },
     }
 

@@ -227,6 +227,7 @@ def _retimed_trial(
                 move_c.grasp,
                 rollout_world,
                 replay_path,
+                constrained,
             )  # fmt: skip
         )
     return trial

@@ -192,6 +192,16 @@ class OnlineMotions:
         """The planner (its scene holds the objects of the last motion)."""
         return self._planner
 
+    @property
+    def jerk_limited(self) -> bool:
+        """Whether a grasp-constrained motion is retimed under jerk limits.
+
+        The robot's ``robot.jerk_limits`` (when applied) or the grasp's
+        ``planning.grasp_ramp_s``
+        (:func:`~rt_drake.simulation.move_grasp.grasp_limits`).
+        """
+        return self._grasp_limits.jerk is not None
+
     def retime_path(
         self, path: GeometricPath, grasp: GraspConstraint | None
     ) -> RetimeResult:
@@ -234,7 +244,9 @@ class OnlineMotions:
         :func:`~rt_drake.shaping.adaptive_grid` (equal steps of time and of
         the variation of ``s'^2`` along ``profile``, the same path's retime
         under the acceleration limits); if the retimer fails numerically on
-        that grid, on the uniform one (:meth:`retime_path`).
+        that grid, on the uniform one (:meth:`retime_path`). With ``grasp``,
+        under the limits of a grasp-constrained motion, as
+        :meth:`retime_path` (``planning.grasp_ramp_s``).
         """
         grid = adaptive_grid(
             profile.gridpoints, profile.sd, self._gridpoints, ADAPTIVE_WEIGHT
@@ -243,7 +255,7 @@ class OnlineMotions:
             return retime(
                 self._plant,
                 path,
-                self._limits,
+                self._limits if grasp is None else self._grasp_limits,
                 grasp,
                 gridpoints=grid,
                 context=self._context,
@@ -480,7 +492,7 @@ class OnlineMotions:
             result = acceleration_limited = optimized.retimed
             planned_s += optimized.wall_s - optimized.retime_wall_s
             retime_s = optimized.retime_wall_s
-            if self._grasp_limits.jerk is not None:  # the kept path, jerk-limited
+            if self.jerk_limited:  # the kept path, jerk-limited
                 planned_s += retime_s
                 start = time.perf_counter()
                 result = self.retime_on_profile(path, grasp, optimized.retimed)

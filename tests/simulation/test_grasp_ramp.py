@@ -76,11 +76,13 @@ def swing():
     path = GeometricPath.from_waypoints(SWING)
     with_grasp = motions.retime_path(path, grasp)
     without = motions.retime_path(path, None)
-    return scenario, with_grasp, without
+    # The shaped MOVE's retime: on points placed by a profile of the path.
+    on_profile = motions.retime_on_profile(path, grasp, without)
+    return scenario, with_grasp, without, on_profile
 
 
 def test_only_the_grasp_constrained_move_ramps_over_the_cup_period(swing):
-    scenario, with_grasp, without = swing
+    scenario, with_grasp, without, on_profile = swing
     acceleration = JointLimits.from_plant(
         make_arm_plant(scenario), scenario.robot
     ).acceleration
@@ -89,6 +91,8 @@ def test_only_the_grasp_constrained_move_ramps_over_the_cup_period(swing):
     tight = np.minimum(robot_jerk, acceleration / scenario.planning.grasp_ramp_s)
     assert np.all(tight < robot_jerk)
     assert np.all(_max_jerk(with_grasp.trajectory) <= 1.01 * tight)
+    # The shaped MOVE's retime (on the optimiser's profile) ramps as well.
+    assert np.all(_max_jerk(on_profile.trajectory) <= 1.01 * tight)
     # Without the grasp constraint: the robot's jerk only, and it uses more.
     free = _max_jerk(without.trajectory)
     assert np.all(free <= 1.01 * robot_jerk)
