@@ -180,6 +180,15 @@ class WarmLP:
         status = highs.getModelStatus()
         self.iterations += int(highs.getInfo().simplex_iteration_count)
         self.solves += 1
+        if status not in _ANSWERS:
+            # No answer from the warm start (e.g. "Not Set" after a basis it
+            # could not repair, on one Table I MOVE under the bellows
+            # scenario): the same model once more from scratch.
+            highs.clearSolver()
+            highs.run()
+            status = highs.getModelStatus()
+            self.iterations += int(highs.getInfo().simplex_iteration_count)
+            self.solves += 1
         if status != highspy.HighsModelStatus.kOptimal:
             return None, highs.modelStatusToString(status)
         return np.asarray(highs.getSolution().col_value), "Optimal"
@@ -194,6 +203,15 @@ class WarmLP:
         status = np.full(len(keys), _BASIC)
         status[found] = self._rows[order[at[found]]]
         return status
+
+
+#: HiGHS's statuses that answer the LP (the others retry from scratch).
+_ANSWERS = (
+    highspy.HighsModelStatus.kOptimal,
+    highspy.HighsModelStatus.kInfeasible,
+    highspy.HighsModelStatus.kUnbounded,
+    highspy.HighsModelStatus.kUnboundedOrInfeasible,
+)
 
 
 def _rows_of(
