@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from grasp_paths import BACK
 from scipy.optimize import linprog
 
 from rt_drake import load_scenario
@@ -26,14 +27,6 @@ from rt_drake.retiming import (
     retime,
 )
 
-HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
-BACK = np.array(
-    [
-        HOME,
-        HOME + [-0.4, 0.1, -0.2, 0.0, 0.1, -0.5],
-        HOME + [-1.2, -0.1, 0.2, 0, -0.1, -0.8],
-    ]
-)
 CUP = CupParameters(points=4)
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from grasp_paths import BACK, HOME
 from pydrake.trajectories import PiecewisePolynomial
 from scipy.interpolate import CubicSpline
 from scipy.optimize import linprog
@@ -35,16 +36,6 @@ from rt_drake.retiming._samples import sample_path
 from rt_drake.retiming._stop import state_at
 from rt_drake.retiming._stop_pass import grid_constraints, stop_pass
 
-HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
-#: A MOVE-like path on which the notebook's grasp binds (tests/retiming/
-#: test_solve.py: retimed without the grasp, the notebook slips by 20 %).
-BACK = np.array(
-    [
-        HOME,
-        HOME + [-0.4, 0.1, -0.2, 0.0, 0.1, -0.5],
-        HOME + [-1.2, -0.1, 0.2, 0, -0.1, -0.8],
-    ]
-)
 #: Fractions of the MOVE's duration at which the stops begin.
 FRACTIONS = (0.15, 0.45)
 

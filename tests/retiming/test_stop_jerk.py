@@ -14,6 +14,7 @@ import dataclasses
 
 import numpy as np
 import pytest
+from grasp_paths import BACK, HOME
 from pydrake.trajectories import PiecewisePolynomial
 from scipy.interpolate import CubicSpline
 
@@ -30,15 +31,6 @@ from rt_drake.retiming import (
 )
 from rt_drake.retiming._stop import path_state_at
 
-HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
-#: The MOVE-like path of test_stop.py, on which the notebook's grasp binds.
-BACK = np.array(
-    [
-        HOME,
-        HOME + [-0.4, 0.1, -0.2, 0.0, 0.1, -0.5],
-        HOME + [-1.2, -0.1, 0.2, 0, -0.1, -0.8],
-    ]
-)
 #: Jerk limits per second of the acceleration limits (the shipped scenarios').
 JERK_PER_ACCELERATION = 20.0
 

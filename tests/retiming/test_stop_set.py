@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import dataclasses
 
-import numpy as np
 import pytest
+from grasp_paths import BACK
 
 from rt_drake.model.held import held_object_of
 from rt_drake.retiming import (
@@ -21,16 +21,6 @@ from rt_drake.retiming import (
     check_trajectory,
     protective_stop,
     retime,
-)
-
-HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
-#: The MOVE-like path of test_stop.py, on which the notebook's grasp binds.
-BACK = np.array(
-    [
-        HOME,
-        HOME + [-0.4, 0.1, -0.2, 0.0, 0.1, -0.5],
-        HOME + [-1.2, -0.1, 0.2, 0, -0.1, -0.8],
-    ]
 )
 
 
