@@ -11,9 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-import toppra
-import toppra.algorithm
-import toppra.constraint
+from toppra_reference import toppra_duration
 
 from rt_drake import CyclePlanner, JointLimits
 from rt_drake.experiments import cycle_floors
@@ -21,23 +19,6 @@ from rt_drake.model.plant import make_arm_plant
 
 #: Relative slack for toppra's grid (its duration on 2000 points).
 GRID_SLACK = 2e-3
-
-
-def toppra_duration(path, limits: JointLimits) -> float:
-    """Time-optimal duration (s) of ``path`` (q(s), s in [0, 1]) at the limits."""
-    s = np.linspace(0.0, 1.0, 2000)
-    waypoints = path.value(s)
-    spline = toppra.SplineInterpolator(s, waypoints)
-    constraints = [
-        toppra.constraint.JointVelocityConstraint(
-            np.column_stack([-limits.velocity, limits.velocity])
-        ),
-        toppra.constraint.JointAccelerationConstraint(
-            np.column_stack([-limits.acceleration, limits.acceleration])
-        ),
-    ]
-    instance = toppra.algorithm.TOPPRA(constraints, spline, gridpoints=s)
-    return float(instance.compute_trajectory(0.0, 0.0).duration)
 
 
 @pytest.fixture(scope="module")

@@ -4,9 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-import toppra
-import toppra.algorithm
-import toppra.constraint
+from toppra_reference import toppra_duration
 
 from rt_drake.model.plant import make_arm_plant
 from rt_drake.retiming import JointLimits, TimeScaled, check_trajectory
@@ -71,26 +69,6 @@ def test_picks_and_moves_keep_their_limits_between_grid_points(motions, scenario
         np.testing.assert_allclose(
             motion.trajectory.value(t).ravel(), motion.planned.descent[0], atol=1e-9
         )
-
-
-def toppra_duration(path, limits: JointLimits) -> float:
-    """Time-optimal duration (s) of ``path`` at the joint limits: toppra, 2000 points.
-
-    An independent TOPP-RA (the toppra package) on a grid 20 times finer
-    than the cycle's uniform one.
-    """
-    s = np.linspace(0.0, 1.0, 2000)
-    spline = toppra.SplineInterpolator(s, path.value(s))
-    constraints = [
-        toppra.constraint.JointVelocityConstraint(
-            np.column_stack([-limits.velocity, limits.velocity])
-        ),
-        toppra.constraint.JointAccelerationConstraint(
-            np.column_stack([-limits.acceleration, limits.acceleration])
-        ),
-    ]
-    instance = toppra.algorithm.TOPPRA(constraints, spline, gridpoints=s)
-    return float(instance.compute_trajectory(0.0, 0.0).duration)
 
 
 def test_the_pick_is_retimed_within_a_percent_of_a_fine_grid(motions, scenario):
