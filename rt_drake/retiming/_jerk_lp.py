@@ -176,19 +176,18 @@ class WarmLP:
     def _run(self) -> tuple[np.ndarray | None, str]:
         """Run HiGHS on its model: the optimum, or None and the model status."""
         highs = self._highs
-        highs.run()
-        status = highs.getModelStatus()
-        self.iterations += int(highs.getInfo().simplex_iteration_count)
-        self.solves += 1
-        if status not in _ANSWERS:
-            # No answer from the warm start (e.g. "Not Set" after a basis it
-            # could not repair, on one Table I MOVE under the bellows
-            # scenario): the same model once more from scratch.
-            highs.clearSolver()
+        for warm in (True, False):
+            if not warm:
+                # No answer from the warm start (e.g. "Not Set" after a basis
+                # it could not repair, on one Table I MOVE under the bellows
+                # scenario): the same model once more from scratch.
+                highs.clearSolver()
             highs.run()
             status = highs.getModelStatus()
             self.iterations += int(highs.getInfo().simplex_iteration_count)
             self.solves += 1
+            if status in _ANSWERS:
+                break
         if status != highspy.HighsModelStatus.kOptimal:
             return None, highs.modelStatusToString(status)
         return np.asarray(highs.getSolution().col_value), "Optimal"
