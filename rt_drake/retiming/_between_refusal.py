@@ -12,14 +12,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from rt_drake.retiming._between import (
-    Segments,
-    joint_excess_max,
-    refinement_points,
-)
+from rt_drake.retiming._between import refinement_points
 from rt_drake.retiming._check import DEFAULT_TOLERANCE
+from rt_drake.retiming._joint_cuts import joint_excess_max
 from rt_drake.retiming._retime_errors import LimitsBetweenGridPointsError
 from rt_drake.retiming._samples import PathSamples
+from rt_drake.retiming._segments import Segments
 from rt_drake.retiming.limits import JointLimits
 
 

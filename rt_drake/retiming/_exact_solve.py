@@ -16,11 +16,12 @@ import numpy as np
 import toppra
 from toppra.constraint import LinearConstraint
 
-from rt_drake.retiming._between import Segments, interior_rows
 from rt_drake.retiming._grasp_rows import ObjectRows
+from rt_drake.retiming._joint_cuts import interior_rows
 from rt_drake.retiming._retime_errors import PathNotControllableError
 from rt_drake.retiming._robust_grasp import SetRows
 from rt_drake.retiming._samples import PathSamples
+from rt_drake.retiming._segments import Segments
 from rt_drake.retiming.limits import JointLimits
 from rt_drake.retiming.passes import (
     AffineConstraint,

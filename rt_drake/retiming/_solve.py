@@ -59,12 +59,7 @@ from pydrake.systems.framework import Context
 
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.retiming._at_rest import check_torque_at_rest
-from rt_drake.retiming._between import (
-    Segments,
-    joint_cuts,
-    joint_split_points,
-    refinement_points,
-)
+from rt_drake.retiming._between import refinement_points
 from rt_drake.retiming._between_refusal import refuse_excess
 from rt_drake.retiming._exact_solve import (
     joint_constraints,
@@ -77,6 +72,7 @@ from rt_drake.retiming._grasp_rows import (
 )
 from rt_drake.retiming._jerk import check_smooth, jerk_limited
 from rt_drake.retiming._jerk_set import SetGrasp
+from rt_drake.retiming._joint_cuts import joint_cuts, joint_split_points
 from rt_drake.retiming._joint_path import (
     PathLike,
     ToppraPath,
@@ -96,6 +92,7 @@ from rt_drake.retiming._samples import (
     sample_path,
 )
 from rt_drake.retiming._samples import with_points as merge_samples
+from rt_drake.retiming._segments import Segments
 from rt_drake.retiming._set_tables import parameter_columns
 from rt_drake.retiming.grid import bound_steps, initial_grid
 from rt_drake.retiming.limits import (
