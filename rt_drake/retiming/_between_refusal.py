@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from rt_drake.retiming._between import refinement_points
-from rt_drake.retiming._check import DEFAULT_TOLERANCE
+from rt_drake.retiming._check_report import DEFAULT_TOLERANCE
 from rt_drake.retiming._joint_cuts import joint_excess_max
 from rt_drake.retiming._retime_errors import LimitsBetweenGridPointsError
 from rt_drake.retiming._samples import PathSamples

@@ -13,7 +13,7 @@ import dataclasses
 import numpy as np
 
 from rt_drake.dynamics.wrench import PathCoefficients
-from rt_drake.retiming._check import Margin
+from rt_drake.retiming._check_report import Margin
 from rt_drake.retiming._exact_solve import Profile
 from rt_drake.retiming._grasp_rows import ObjectRows
 from rt_drake.retiming._jerk import JerkProfile
