@@ -6,35 +6,43 @@ reuses them on batches of paths:
 
 - :mod:`.limits`: joint limits and the grasp constraint ``F w <= g``, one
   class per source of its rows (:class:`GraspConstraint` given by hand,
-  :class:`CupGrasp`, :class:`ToolGrasp`, :class:`ObjectSetGrasp`);
+  :class:`CupGrasp`, :class:`ToolGrasp`, :class:`ObjectSetGrasp`), from
+  :mod:`.joint_limits` and :mod:`.grasp_constraint` (``_grasp_sets`` builds
+  the rows of the sets, ``_grasp_checks`` checks a cup or tool);
 - :mod:`.stage_rows`: which grasp rows the stage LPs get, and the exactness
   check (compiled);
 - :mod:`.passes` and :mod:`.seidel`: TOPP-RA's passes on precomputed
   constraints, and toppra's seidel LP compiled with numba;
 - :mod:`.grid`: the grid of path parameters.
 
-The rest is private (``_x.py``): ``_solve`` (:func:`retime`,
-:class:`RetimeResult`), ``_at_rest``, ``_grasp_rows``, ``_robust_grasp``,
-``_robust_rows``, ``_set_tables``, ``_set_pairs`` (the grasp of a set of
-objects), ``_between`` (limits held between grid points), ``_samples``,
-``_joint_path`` (any path as ``q(s)``; the path type itself is
+The rest is private (``_x.py``): ``_solve`` (:func:`retime`: its loop of
+solves and refinements), ``_retime_inputs`` (its argument checks),
+``_position_limits``, ``_exact_solve`` (one solve exact for every grasp
+row), ``_retime_result`` (:class:`RetimeResult`), ``_at_rest``,
+``_grasp_rows``, ``_robust_grasp``, ``_robust_rows``, ``_set_tables``,
+``_set_pairs`` (the grasp of a set of objects), ``_between`` (limits held
+between grid points: grasp rows at the midpoints, refinement; ``_segments``
+the sub-points, ``_joint_cuts`` the joint limits' rows and cuts,
+``_between_refusal`` the last word), ``_samples``, ``_joint_path`` (any path
+as ``q(s)``; the path type itself is
 :class:`rt_drake.types.path.GeometricPath`), ``_precompile`` (compiles the
 kernels before anything is timed), ``_timed_path``, ``_time_scaled``,
-``_check`` (dense 1 kHz verification), ``_floor`` (the least time the
-joint limits allow between two configurations, :func:`segment_floor`),
-``_stop`` and ``_stop_pass`` (protective stops along the path), ``_jerk``,
-``_jerk_rows``, ``_jerk_points`` and ``_jerk_timed_path`` (jerk limits: LPs
-after TOPP-RA, and the motion they give), ``_trajectory_file`` (the ``.npz``
-format) and ``_retime_errors`` (typed errors and statuses).
+``_check`` (dense 1 kHz verification; ``_check_report`` its margins),
+``_floor`` (the least time the joint limits allow between two
+configurations, :func:`segment_floor`), ``_stop`` and ``_stop_pass``
+(protective stops along the path), ``_jerk``, ``_jerk_rows``,
+``_jerk_points`` and ``_jerk_timed_path`` (jerk limits: LPs after TOPP-RA,
+and the motion they give), ``_trajectory_file`` (the ``.npz`` format) and
+``_retime_errors`` (typed errors and statuses).
 """
 
-from rt_drake.retiming._check import (
+from rt_drake.retiming._check import check_trajectory
+from rt_drake.retiming._check_report import (
     DEFAULT_TOLERANCE,
     Excess,
     Margin,
     TrajectoryCheck,
     WorstMargin,
-    check_trajectory,
 )
 from rt_drake.retiming._floor import (
     joint_floor,

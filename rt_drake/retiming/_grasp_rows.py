@@ -24,11 +24,11 @@ from rt_drake.retiming import stage_rows as R
 from rt_drake.retiming._at_rest import check_grasp_at_rest
 from rt_drake.retiming._between import (
     ROW_SCREEN,
-    Segments,
     grasp_midpoint_rows,
 )
 from rt_drake.retiming._row_groups import RowGroups
 from rt_drake.retiming._samples import PathSamples
+from rt_drake.retiming._segments import Segments
 from rt_drake.retiming.limits import GraspConstraint
 from rt_drake.retiming.passes import AffineConstraint
 

@@ -17,6 +17,8 @@ import numpy as np
 from rt_drake.dynamics import chain_kernels as _chain_kernels
 from rt_drake.dynamics.wrench import PathCoefficients
 from rt_drake.retiming import _between as between
+from rt_drake.retiming import _joint_cuts as joint_cuts
+from rt_drake.retiming import _segments as sub_points
 from rt_drake.retiming import (
     stage_rows as rows,
 )
@@ -62,10 +64,10 @@ def warm_up() -> None:
         grid, path, 2 * grid[:, None], 2 + 0 * path, grid, torque, coefficients
     )
     limits = JointLimits(np.ones(1), np.ones(1), np.ones(1))
-    segments = between.Segments(samples, grid[[0, -1]], as_joint_path(path))
-    between.interior_rows(segments, limits)
+    segments = sub_points.Segments(samples, grid[[0, -1]], as_joint_path(path))
+    joint_cuts.interior_rows(segments, limits)
     x, u = np.full(3, 0.5), np.zeros(2)
-    between.joint_cuts(segments, x, u, limits, 1e-3)
+    joint_cuts.joint_cuts(segments, x, u, limits, 1e-3)
     between.refinement_points(
         segments, samples, x, u, limits, normals, np.ones(12), 1e-3
     )

@@ -44,11 +44,7 @@ from rt_drake.retiming._at_rest import (
     set_grasp_at_rest,
     set_torque_at_rest,
 )
-from rt_drake.retiming._between import (
-    ROW_SCREEN,
-    Segments,
-    subpoint_x,
-)
+from rt_drake.retiming._between import ROW_SCREEN
 from rt_drake.retiming._grasp_rows import (
     ROW_TOLERANCE,
     Check,
@@ -58,6 +54,7 @@ from rt_drake.retiming._robust_rows import (
     worst_rows,
 )
 from rt_drake.retiming._samples import PathSamples
+from rt_drake.retiming._segments import Segments, subpoint_x
 from rt_drake.retiming._set_pairs import (
     Cut,
     Pairs,

@@ -16,13 +16,13 @@ from typing import NamedTuple
 import numpy as np
 
 from rt_drake.dynamics.wrench import PathCoefficients
-from rt_drake.retiming._between import (
-    SUBPOINTS,
-    Segments,
-)
 from rt_drake.retiming._robust_rows import (
     Layout,
     vertex_weights,
+)
+from rt_drake.retiming._segments import (
+    SUBPOINTS,
+    Segments,
 )
 from rt_drake.retiming.passes import StageRows
 

@@ -18,12 +18,12 @@ from typing import NamedTuple
 import numpy as np
 
 from rt_drake.dynamics.wrench import PathCoefficients
-from rt_drake.retiming._between import (
+from rt_drake.retiming._robust_rows import Layout
+from rt_drake.retiming._segments import (
     MIDDLE,
     SUBPOINTS,
     Segments,
 )
-from rt_drake.retiming._robust_rows import Layout
 from rt_drake.retiming.passes import StageRows
 from rt_drake.uncertainty.inertial_set import ObjectSet
 

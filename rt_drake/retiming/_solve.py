@@ -43,36 +43,28 @@ where cuts do not converge, the segments are split as well. If a limit is
 still exceeded beyond the 1e-3 contract after :data:`MAX_REFINEMENTS`
 refinements, :class:`._retime_errors.LimitsBetweenGridPointsError` says where: the
 retimer never returns a trajectory it knows exceeds a limit.
+
+This module holds the algorithm, :func:`retime`'s loop of solves and
+refinements; :mod:`._retime_inputs` checks its arguments,
+:mod:`._position_limits` the path against the position limits,
+:mod:`._exact_solve` is one solve exact for every grasp row and
+:mod:`._retime_result` assembles :class:`RetimeResult`.
 """
 
 from __future__ import annotations
 
-import dataclasses
-import functools
-from typing import NamedTuple
-
 import numpy as np
-import toppra
 from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import Context
-from toppra.constraint import LinearConstraint
 
-from rt_drake import arguments
 from rt_drake.dynamics.cup_frame import CupFrame
-from rt_drake.dynamics.wrench import PathCoefficients
 from rt_drake.retiming._at_rest import check_torque_at_rest
-from rt_drake.retiming._between import (
-    Segments,
-    interior_rows,
-    joint_cuts,
-    joint_excess_max,
-    joint_split_points,
-    refinement_points,
-)
-from rt_drake.retiming._between_kernels import position_excess
-from rt_drake.retiming._check import (
-    DEFAULT_TOLERANCE,
-    Margin,
+from rt_drake.retiming._between import refinement_points
+from rt_drake.retiming._between_refusal import refuse_excess
+from rt_drake.retiming._exact_solve import (
+    joint_constraints,
+    solve_exact,
+    stacked_cuts,
 )
 from rt_drake.retiming._grasp_rows import (
     ROW_TOLERANCE,
@@ -80,18 +72,19 @@ from rt_drake.retiming._grasp_rows import (
 )
 from rt_drake.retiming._jerk import check_smooth, jerk_limited
 from rt_drake.retiming._jerk_set import SetGrasp
-from rt_drake.retiming._jerk_timed_path import JerkTimedPath
+from rt_drake.retiming._joint_cuts import joint_cuts, joint_split_points
 from rt_drake.retiming._joint_path import (
-    JointPath,
     PathLike,
     ToppraPath,
     as_joint_path,
 )
-from rt_drake.retiming._retime_errors import (
-    LimitsBetweenGridPointsError,
-    PathNotControllableError,
-    RetimeInputError,
-    RetimeStatus,
+from rt_drake.retiming._position_limits import check_position_limits
+from rt_drake.retiming._retime_errors import RetimeInputError
+from rt_drake.retiming._retime_inputs import check_arguments, check_objects
+from rt_drake.retiming._retime_result import (
+    RetimeResult,
+    jerk_result,
+    profile_result,
 )
 from rt_drake.retiming._robust_grasp import SetRows
 from rt_drake.retiming._samples import (
@@ -99,90 +92,24 @@ from rt_drake.retiming._samples import (
     sample_path,
 )
 from rt_drake.retiming._samples import with_points as merge_samples
+from rt_drake.retiming._segments import Segments
 from rt_drake.retiming._set_tables import parameter_columns
-from rt_drake.retiming._timed_path import TimedPath
 from rt_drake.retiming.grid import bound_steps, initial_grid
 from rt_drake.retiming.limits import (
-    GRASP_ATTRIBUTES,
     GraspConstraint,
     JointLimits,
     ObjectSetGrasp,
 )
-from rt_drake.retiming.passes import (
-    AffineConstraint,
-    Engine,
-    StageRows,
-    XBound,
-    reachability,
-    stage_rows,
-)
-from rt_drake.retiming.seidel import kernel_array
+from rt_drake.retiming.passes import Engine, StageRows
 
 #: Relative excess over a limit between grid points that makes the retimer
 #: add a grid point there (the contract, checked at 1 kHz, is 1e-3).
 BETWEEN_TOLERANCE = 5e-4
 #: Rounds of grid refinement at most (each shrinks an overshoot about 4x).
 MAX_REFINEMENTS = 8
-#: Where a non-cubic path is checked against the position limits, in
-#: fractions of each segment.
-_DENSE = np.arange(1, 16) / 16
 #: Rounds of cuts for the joint limits inside segments, at most, per grid;
 #: then the segments still exceeded are split (a refinement).
 MAX_CUT_ROUNDS = 4
-
-
-@dataclasses.dataclass(frozen=True, eq=False)
-class RetimeResult:
-    """A retimed path.
-
-    Attributes:
-        trajectory: q(t) (Drake ``Trajectory``; q', q'' by ``EvalDerivative``);
-            with jerk limits a :class:`~._jerk_timed_path.JerkTimedPath`.
-        duration: s.
-        gridpoints: (N+1,) grid s_i.
-        sd: (N+1,) path velocity ``s'(s_i)``, 1/s (the s'(s) profile).
-        sdd: (N,) constant path acceleration ``s''`` on each segment, 1/s^2;
-            with jerk limits its mean over s, ``(x_{i+1} - x_i) / (2 ds_i)``.
-        margin: (N+1,) smallest relative slack of all constraints at each grid
-            point (1 - |value| / limit; for the grasp ``min (g - F w) / g``),
-            taking the acceleration of the segment that starts there:
-            positive is room left, negative over the limit (as
-            :class:`~._check.TrajectoryCheck`).
-        margins: The same per constraint in force (:attr:`Margin.VELOCITY`,
-            :attr:`Margin.ACCELERATION`, and :attr:`Margin.TORQUE`,
-            :attr:`Margin.GRASP` when limited).
-        status: Always ``RetimeStatus.OK`` (failures raise ``RetimeError``).
-        grasp_rows: Rows of the grasp polytope the stage LPs used (of
-            ``len(grasp.g)``); for a set of objects, (row, vertex) pairs.
-        repairs: Times the exactness check added rows and solved again (in
-            the last solve).
-        refinements: Times points were added to the grid where the torque or
-            grasp was exceeded between grid points.
-        grasp_objects: Objects whose rows the stage LPs used: 1 for one
-            object, the vertex objects of a set (0 without a grasp).
-        cuts: Rounds of cuts between grid points (joint limits; for a set of
-            objects also its grasp and torques).
-        path_acceleration: With jerk limits, (N+1,) ``s''(s_i)`` (continuous,
-            linear in s between grid points; :mod:`._jerk_timed_path`);
-            else None.
-        jerk_lps: With jerk limits, the LPs solved after TOPP-RA (0 without).
-    """
-
-    trajectory: TimedPath | JerkTimedPath
-    duration: float
-    gridpoints: np.ndarray
-    sd: np.ndarray
-    sdd: np.ndarray
-    margin: np.ndarray
-    margins: dict[Margin, np.ndarray]
-    status: RetimeStatus
-    grasp_rows: int
-    repairs: int
-    refinements: int = 0
-    grasp_objects: int = 1
-    cuts: int = 0
-    path_acceleration: np.ndarray | None = None
-    jerk_lps: int = 0
 
 
 def retime(
@@ -241,9 +168,9 @@ def retime(
         LimitsBetweenGridPointsError: a limit is still exceeded between grid
             points, beyond the 1e-3 contract, after the last refinement.
     """
-    _check_arguments(sd_start, sd_end, start_time)
+    check_arguments(sd_start, sd_end, start_time)
     engine = Engine.of(engine)
-    _check_objects(plant, limits, grasp, context, cup)
+    check_objects(plant, limits, grasp, context, cup)
     spline = as_joint_path(path)  # checks the path
     n = spline.num_joints
     if n != plant.num_positions() or n != limits.num_joints:
@@ -292,10 +219,10 @@ def retime(
     refinements = cut_rounds = set_cut_rounds = total_cuts = 0
     cuts: StageRows | None = None
     segments = Segments(samples, knots, spline)
-    joints = _joint_constraints(samples, segments, limits)
+    joints = joint_constraints(samples, segments, limits)
     while True:
         fixed = joints if cuts is None else [*joints, cuts]
-        profile = _solve_exact(
+        profile = solve_exact(
             samples, segments, fixed, family, toppra_spline, sd_start, sd_end, engine
         )
         x, u = profile.x, profile.u
@@ -318,16 +245,17 @@ def retime(
         if not points.size or refinements == MAX_REFINEMENTS:
             new_cuts = joint_cuts(segments, x, u, limits, BETWEEN_TOLERANCE)
             if new_cuts is not None and cut_rounds < MAX_CUT_ROUNDS:
-                cuts = new_cuts if cuts is None else _stacked(cuts, new_cuts)
+                cuts = new_cuts if cuts is None else stacked_cuts(cuts, new_cuts)
                 cut_rounds += 1
                 total_cuts += 1
                 continue
             if new_cuts is None and not points.size:
                 break  # every limit holds between grid points
             if refinements == MAX_REFINEMENTS:
-                _refuse_excess(
-                    segments, samples, x, u, limits, normals, row_max, between
-                )
+                refuse_excess(
+                    segments, samples, x, u, limits, normals, row_max, between,
+                    MAX_REFINEMENTS, MAX_CUT_ROUNDS,
+                )  # fmt: skip
                 break
             # The cuts have not converged: split the segments they are in.
             points = joint_split_points(segments, x, u, limits, BETWEEN_TOLERANCE)
@@ -335,7 +263,7 @@ def retime(
         hold_at_rest(added)
         samples = merge_samples(samples, added)
         segments = Segments(samples, knots, spline)
-        joints = _joint_constraints(samples, segments, limits)
+        joints = joint_constraints(samples, segments, limits)
         refinements += 1
         cuts = None  # made for the old segments
         cut_rounds = set_cut_rounds = 0
@@ -350,159 +278,9 @@ def retime(
             if isinstance(family, SetRows) else None,
             sd_start, sd_end, start_time, BETWEEN_TOLERANCE,
         )  # fmt: skip
-        margins = jerk.margins
-        return RetimeResult(
-            trajectory=jerk.trajectory,
-            duration=jerk.trajectory.duration,
-            gridpoints=jerk.s,
-            sd=np.sqrt(jerk.x),
-            sdd=np.diff(jerk.x) / (2.0 * np.diff(jerk.s)),
-            margin=np.min(np.vstack(list(margins.values())), axis=0),
-            margins=margins,
-            status=RetimeStatus.OK,
-            grasp_rows=jerk.grasp_rows,
-            repairs=0 if family is None else family.repairs,
-            refinements=refinements,
-            grasp_objects=0 if family is None else family.object_count,
-            cuts=total_cuts,
-            path_acceleration=jerk.u,
-            jerk_lps=jerk.lps,
-        )
-    trajectory = TimedPath(spline, s, profile.x, start_time)
-    u = (profile.x[1:] - profile.x[:-1]) / (2.0 * np.diff(s))
-    robust = isinstance(family, SetRows)
-    margins = _margins(
-        limits,
-        samples.dq,
-        samples.ddq,
-        profile.x,
-        u,
-        None if robust else samples.torque,
-    )
-    if robust:
-        assert isinstance(family, SetRows)
-        torque_margin = family.torque_margin(samples, profile.x, u)
-        if torque_margin is not None:
-            margins[Margin.TORQUE] = torque_margin
-    if profile.ratio is not None:
-        margins[Margin.GRASP] = 1.0 - profile.ratio
-    return RetimeResult(
-        trajectory=trajectory,
-        duration=trajectory.duration,
-        gridpoints=s,
-        sd=np.sqrt(np.maximum(profile.x, 0.0)),
-        sdd=u,
-        margin=np.min(np.vstack(list(margins.values())), axis=0),
-        margins=margins,
-        status=RetimeStatus.OK,
-        grasp_rows=0 if family is None else family.row_count,
-        repairs=0 if family is None else family.repairs,
-        refinements=refinements,
-        grasp_objects=0 if family is None else family.object_count,
-        cuts=total_cuts,
-    )
-
-
-def _refuse_excess(
-    segments: Segments,
-    samples: PathSamples,
-    x: np.ndarray,
-    u: np.ndarray,
-    limits: JointLimits,
-    normals: np.ndarray | None,
-    row_max: np.ndarray | None,
-    between: np.ndarray | None,
-) -> None:
-    """Raise if a limit is still exceeded beyond the contract between grid points.
-
-    Called after the last refinement; the contract is a relative excess of
-    :data:`._check.DEFAULT_TOLERANCE`. An excess above
-    :data:`BETWEEN_TOLERANCE` but within the contract is accepted, as the
-    trajectory check accepts it.
-
-    Raises:
-        LimitsBetweenGridPointsError: naming the limit kind and where (s).
-    """
-    joint, s_joint = joint_excess_max(segments, x, u, limits)
-    if joint > DEFAULT_TOLERANCE:
-        raise LimitsBetweenGridPointsError(
-            f"a joint velocity or acceleration exceeds its limit by "
-            f"{100.0 * joint:.2f} % between grid points near s = {s_joint:.4f} "
-            f"after {MAX_REFINEMENTS} refinements and {MAX_CUT_ROUNDS} rounds "
-            f"of cuts",
-            s_joint,
-        )
-    beyond = refinement_points(
-        segments, samples, x, u, limits, normals, row_max, DEFAULT_TOLERANCE,
-        between,
-    )  # fmt: skip
-    if beyond.size:
-        raise LimitsBetweenGridPointsError(
-            f"the grasp or a torque exceeds its limit by more than "
-            f"{100.0 * DEFAULT_TOLERANCE:.1f} % between grid points near "
-            f"s = {beyond[0]:.4f} after {MAX_REFINEMENTS} refinements",
-            float(beyond[0]),
-        )
-
-
-def check_position_limits(
-    plant: MultibodyPlant, samples: PathSamples, path: JointPath
-) -> None:
-    """Raise if the path leaves the plant's joint position limits anywhere.
-
-    For a cubic path, exact: at the grid points, and at the extremes of each
-    joint inside each segment, the roots in (0, 1) of the quadratic
-    ``d q_j(s_i + theta ds_i) / d theta`` (every segment lies inside one
-    cubic piece, :mod:`.grid`; :func:`._between_kernels.position_excess`).
-    For another path, at the grid points and 15 points inside every segment.
-    A tolerance of 1e-9 rad absorbs rounding.
-
-    Raises:
-        RetimeInputError: naming the joint, the value, the limit and s.
-    """
-    lower = plant.GetPositionLowerLimits()
-    upper = plant.GetPositionUpperLimits()
-    s = samples.s
-    if path.cubic:
-        found, j, value, at = position_excess(
-            *(kernel_array(v) for v in (s, samples.q, samples.dq, samples.ddq)),
-            kernel_array(lower),
-            kernel_array(upper),
-            1e-9,
-        )
-    else:
-        where = np.union1d(s, (s[:-1, None] + np.diff(s)[:, None] * _DENSE).ravel())
-        q = path(where)
-        outside = (q < lower - 1e-9) | (q > upper + 1e-9)
-        found = bool(outside.any())
-        if found:
-            i, j = (int(k[0]) for k in np.nonzero(outside))
-            value, at = float(q[i, j]), float(where[i])
-    if not found:
-        return
-    limit = lower[j] if value < lower[j] else upper[j]
-    raise RetimeInputError(
-        f"path leaves the position limits of joint {j + 1} "
-        f"({_joint_name(plant, j)}) at s = {at:.3f}: {value:.4f} rad, "
-        f"limit {limit:.4f} rad",
-        s=float(at),
-    )
-
-
-def _joint_name(plant: MultibodyPlant, position_index: int) -> str:
-    """The name of the joint owning position ``position_index``."""
-    for index in plant.GetJointIndices():
-        joint = plant.get_joint(index)
-        start = joint.position_start()
-        if start <= position_index < start + joint.num_positions():
-            return joint.name()
-    return f"position {position_index}"
-
-
-def _stacked(first: StageRows, second: StageRows) -> StageRows:
-    """Both sets of cuts (side by side)."""
-    return StageRows(
-        *(np.hstack([a, b]) for a, b in zip(first.rows, second.rows, strict=True))
+        return jerk_result(jerk, family, refinements, total_cuts)
+    return profile_result(
+        spline, samples, profile, limits, family, start_time, refinements, total_cuts
     )
 
 
@@ -510,162 +288,6 @@ def _check_torque(samples: PathSamples, limits: JointLimits) -> None:
     """Check that the arm (and one held object) can be held at the samples."""
     if samples.torque is not None and limits.torque is not None:
         check_torque_at_rest(samples.s, samples.torque.c, limits.torque)
-
-
-class _Profile(NamedTuple):
-    """The passes' profile, checked against every grasp row.
-
-    Attributes:
-        x: (N+1,) ``s'^2`` at the grid points; u: (N,) ``s''`` per segment.
-        ratio: With a grasp, ``max_k F_k w / g_k`` (N+1,) at each grid point
-            (the acceleration of the segment that starts there; the last
-            point takes the last one; for a set, the worst object's); else
-            None.
-        screen: With a grasp, what tells the grasp rows where to look between
-            grid points (:class:`~._grasp_rows.Check`); else None.
-    """
-
-    x: np.ndarray
-    u: np.ndarray
-    ratio: np.ndarray | None
-    screen: np.ndarray | None
-
-
-def _joint_constraints(
-    samples: PathSamples, segments: Segments, limits: JointLimits
-) -> list[LinearConstraint]:
-    """The joint limits: at the grid points, and inside segments.
-
-    Velocity and acceleration at the grid points, torques, and the rows of
-    :func:`~._between.interior_rows` inside the segments.
-    """
-    s, dq, ddq = samples.s, samples.dq, samples.ddq
-    n = dq.shape[1]
-    box = np.vstack([np.eye(n), -np.eye(n)])
-    constraints: list[LinearConstraint] = [
-        XBound(np.column_stack([np.zeros_like(s), samples.x_cap])),
-        AffineConstraint(
-            dq, ddq, np.zeros_like(dq), box, np.tile(limits.acceleration, 2)
-        ),
-        interior_rows(segments, limits),
-    ]
-    if (
-        samples.torque is not None
-        and limits.torque is not None
-        and samples.torque_set is None  # a set's torques: with its grasp rows
-    ):
-        constraints.append(
-            AffineConstraint(*samples.torque, box, np.tile(limits.torque, 2))
-        )
-    return constraints
-
-
-def _solve_exact(
-    samples: PathSamples,
-    segments: Segments,
-    fixed: list[LinearConstraint],
-    family: ObjectRows | SetRows | None,
-    spline: toppra.SplineInterpolator | None,
-    sd_start: float,
-    sd_end: float,
-    engine: Engine,
-) -> _Profile:
-    """TOPP-RA with the grasp rows selected, adding missed rows until none.
-
-    ``fixed``: every other constraint (:func:`_joint_constraints`, cuts);
-    ``family``: the grasp rows (:mod:`._grasp_rows`, :mod:`._robust_grasp`).
-    With a grasp the compiled engine projects ``fixed`` once for all the
-    solves.
-    """
-    s = samples.s
-    base = None
-    if family is not None:
-        family.begin()
-        if engine is Engine.COMPILED:
-            base = stage_rows(fixed, np.diff(s))
-    while True:
-        constraints = [] if base is not None else list(fixed)
-        if family is not None:
-            constraints += family.constraints(samples, segments)
-        solution = reachability(constraints, spline, s, sd_start, sd_end, engine, base)
-        if solution.x is None or solution.u is None:
-            if family is not None and family.widen():
-                continue
-            where = float(s[solution.failed_stage or 0])
-            raise PathNotControllableError(
-                f"path not controllable from s = {where:.3f}: no admissible path "
-                f"velocity there reaches the end at s' = {sd_end:g} 1/s within the "
-                "limits",
-                s=where,
-            )
-        if family is None:
-            return _Profile(solution.x, solution.u, None, None)
-        check = family.check(samples, segments, solution.x, solution.u)
-        if not check.added:
-            return _Profile(solution.x, solution.u, check.ratio, check.screen)
-
-
-def _check_arguments(sd_start: float, sd_end: float, start_time: float) -> None:
-    """Refuse NaN, inf or negative path velocities and a NaN start time."""
-    for name, value in (("sd_start", sd_start), ("sd_end", sd_end)):
-        if not (isinstance(value, (int, float, np.number)) and np.isfinite(value)):
-            raise RetimeInputError(f"{name} must be a finite number, got {value!r}")
-        if value < 0.0:
-            raise RetimeInputError(f"{name} must be >= 0 (1/s), got {value!r}")
-    if not (
-        isinstance(start_time, (int, float, np.number)) and np.isfinite(start_time)
-    ):
-        raise RetimeInputError(f"start_time must be finite, got {start_time!r}")
-
-
-def _check_objects(
-    plant: object, limits: object, grasp: object, context: object, cup: object
-) -> None:
-    """Refuse arguments of the wrong type, naming them."""
-    check = functools.partial(
-        arguments.instance, where="retime", error=RetimeInputError
-    )
-    check(plant, "plant", MultibodyPlant)
-    check(limits, "limits", JointLimits)
-    if grasp is not None:
-        arguments.having(
-            grasp,
-            "grasp",
-            "GraspConstraint",
-            GRASP_ATTRIBUTES,
-            where="retime",
-            error=RetimeInputError,
-        )
-    if context is not None:
-        check(context, "context", Context)
-    if cup is not None:
-        check(cup, "cup", CupFrame)
-
-
-def _margins(
-    limits: JointLimits,
-    dq: np.ndarray,
-    ddq: np.ndarray,
-    x: np.ndarray,
-    u: np.ndarray,
-    tau: PathCoefficients | None,
-) -> dict[Margin, np.ndarray]:
-    """Relative slack of the joint constraints at the grid points.
-
-    See RetimeResult; the grasp's comes from the exactness check.
-    """
-    u = np.append(u, u[-1])[:, None]
-    xc = x[:, None]
-    out = {
-        Margin.VELOCITY: 1.0
-        - np.max(np.abs(dq) * np.sqrt(xc) / limits.velocity, axis=1),
-        Margin.ACCELERATION: 1.0
-        - np.max(np.abs(dq * u + ddq * xc) / limits.acceleration, axis=1),
-    }
-    if tau is not None:
-        torque = tau.a * u + tau.b * xc + tau.c
-        out[Margin.TORQUE] = 1.0 - np.max(np.abs(torque) / limits.torque, axis=1)
-    return out
 
 
 __all__ = [

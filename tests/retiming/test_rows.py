@@ -127,13 +127,13 @@ def test_warm_up_compiles_what_retime_uses(plant, scenario, polytope):
         retime,
     )
     from rt_drake.retiming import (
-        _between as between,
-    )
-    from rt_drake.retiming import (
         _between_kernels as between_kernels,
     )
     from rt_drake.retiming import (
         _jerk_kernels as jerk_kernels,
+    )
+    from rt_drake.retiming import (
+        _segments as sub_points,
     )
 
     kernels = [
@@ -142,7 +142,7 @@ def test_warm_up_compiles_what_retime_uses(plant, scenario, polytope):
         row_groups._build,
         row_groups.grouped_ratios,
         rows._rest_and_rays,
-        between._lagrange_kernel,
+        sub_points._lagrange_kernel,
         *(getattr(between_kernels, name) for name in between_kernels.__all__),
         *(getattr(_chain_kernels, name) for name in _chain_kernels.__all__),
         *(getattr(jerk_kernels, name) for name in jerk_kernels.__all__),

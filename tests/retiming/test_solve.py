@@ -43,13 +43,11 @@ from rt_drake.retiming import grid as grid_module
 from rt_drake.retiming import (
     stage_rows as rows,
 )
-from rt_drake.retiming._between import (
-    Segments,
-    grasp_midpoint_rows,
-    interior_rows,
-)
+from rt_drake.retiming._between import grasp_midpoint_rows
+from rt_drake.retiming._joint_cuts import interior_rows
 from rt_drake.retiming._joint_path import as_joint_path
 from rt_drake.retiming._samples import PathSamples
+from rt_drake.retiming._segments import Segments
 from rt_drake.retiming.passes import AffineConstraint
 from rt_drake.types.held_object import HeldObject
 from rt_drake.types.path import drake_path
