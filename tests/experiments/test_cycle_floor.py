@@ -3,14 +3,17 @@
 The planner's own picks (retreat, transit and descent blended in one path)
 and MOVEs of the shipped cycle, as ``rt-drake run`` plans them, retimed at
 the joint limits without the grasp by toppra (an independent TOPP-RA), take
-at least the floor of their segments. The MOVE floor is also checked
-against the per-joint trapezoid written out here.
+at least the floor of their segments, the MOVE's vertical lift and
+set-down lines counted. The MOVE's lines are checked by forward kinematics
+(their tops straight above the grasp and the place, by the planner's
+heights) and its lift against the per-joint ramp written out here.
 """
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
+from pydrake.math import RigidTransform
 from toppra_reference import toppra_duration
 
 from rt_drake import CyclePlanner, JointLimits
@@ -24,7 +27,7 @@ GRID_SLACK = 2e-3
 @pytest.fixture(scope="module")
 def cycle(scenario):
     """The floors and, per object, the planner's pick and MOVE (seed 0)."""
-    floors = cycle_floors(scenario, seed=0)
+    floors = cycle_floors(scenario, seed=0, shaped=False)
     planner = CyclePlanner(scenario, seed=0)
     q = planner.q_home
     plans = []
@@ -51,13 +54,34 @@ def test_no_planned_motion_through_the_lines_beats_its_floor(cycle):
         assert floor.transit_s > 0.0 and floor.descent_s > 0.0
 
 
-def test_the_move_floor_is_the_slowest_joints_trapezoid(cycle):
+def test_the_move_floor_counts_its_vertical_lines(cycle, scenario):
+    """lift_s: the slowest joint's rest-to-free time to the line's top.
+
+    The top is found here by the planner's IK and checked by forward
+    kinematics: the cup ``lines_m[0]`` straight above the grasp, same
+    orientation. Per joint, from rest over d: ``d / v + v / (2 a)`` if
+    ``d >= v^2 / (2 a)``, else ``sqrt(2 d / a)``.
+    """
     floors, plans, limits = cycle
+    planner = CyclePlanner(scenario, seed=0)
     v, a = limits.velocity, limits.acceleration
     for floor, (_, move) in zip(floors, plans, strict=True):
-        d = np.abs(move.q_goal - move.q_start)
+        lift_m, set_down_m = move.lines_m
+        assert lift_m > 0.0 and set_down_m > 0.0
+        X_grasp = planner.scene.cup_pose(move.q_start)
+        X_top = RigidTransform(
+            X_grasp.rotation(), X_grasp.translation() + [0.0, 0.0, lift_m]
+        )
+        q_top = planner.ik.solve(X_top, move.q_start, move.q_start)
+        X_found = planner.scene.cup_pose(q_top)
+        assert np.allclose(X_found.translation(), X_top.translation(), atol=1e-5)
+        d = np.abs(q_top - move.q_start)
         times = [
-            dj / vj + vj / aj if dj >= vj * vj / aj else 2.0 * np.sqrt(dj / aj)
+            dj / vj + vj / (2 * aj)
+            if dj >= vj * vj / (2 * aj)
+            else np.sqrt(2 * dj / aj)
             for dj, vj, aj in zip(d, v, a, strict=True)
         ]
-        assert floor.move_s == pytest.approx(max(times), rel=1e-12)
+        assert floor.lift_s == pytest.approx(max(times), rel=1e-3)  # two IK solves
+        assert floor.move_s == floor.lift_s + floor.carry_s + floor.set_down_s
+        assert floor.carry_s > 0.0 and floor.set_down_s > 0.0
