@@ -1,14 +1,19 @@
 """The first pick's planning, as the cycle's critical path sees it.
 
     python benchmarks/bench_first_pick.py [--scenario FILE] [--repeats 5]
+        [--no-jerk-limits]
     python benchmarks/bench_first_pick.py --compare OLD_TREE NEW_TREE [--rounds 5]
 
-One process per measurement: ``OnlineMotions`` is built (the retimer and
-optimiser kernels warmed up, as the cycle does before its clock starts),
-then the first object's pick from home is planned and retimed, timed with
-``time.process_time`` (CPU) and ``time.perf_counter`` (wall): that call is
-what the cycle's first APPROACH waits for. The same pick repeated in the
-same process (``--repeats``) gives the warm cost. Prints one JSON line.
+One process per measurement: ``OnlineMotions`` is built as ``rt-drake run``
+builds it (the scenario's jerk limits unless --no-jerk-limits; the retimer
+and optimiser kernels warmed up, as the cycle does before its clock
+starts), then the first object's pick from home is planned and retimed,
+timed with ``time.process_time`` (CPU) and ``time.perf_counter`` (wall):
+that call is what the cycle's first APPROACH waits for. The same pick
+repeated in the same process (``--repeats``) gives the warm cost, and its
+stages apart (``warm_*_cpu_s``: the planner's ``plan_pick``, the retime,
+the time at which the retimed pick passes the approach pose). Prints one
+JSON line.
 
 ``--compare`` runs this script alternately with ``PYTHONPATH`` set to two
 source trees (e.g. an export of the previous commit and the worktree),
@@ -28,13 +33,13 @@ import sys
 import time
 
 
-def measure(scenario: str, repeats: int) -> dict:
+def measure(scenario: str, repeats: int, jerk_limits: bool = True) -> dict:
     """CPU and wall seconds of the first pick, and of ``repeats`` more."""
     from rt_drake.model.scenario import load_scenario
-    from rt_drake.simulation.online_motions import OnlineMotions
+    from rt_drake.simulation.online_motions import OnlineMotions, time_at
 
     sc = load_scenario(scenario)
-    motions = OnlineMotions(sc)
+    motions = OnlineMotions(sc, jerk_limits=jerk_limits)
     obj = sc.objects[0]
     cpu, wall = time.process_time(), time.perf_counter()
     first = motions.pick(motions.q_home, obj)
@@ -45,16 +50,33 @@ def measure(scenario: str, repeats: int) -> dict:
         motions.pick(motions.q_home, obj)
         warm_cpu.append(time.process_time() - cpu)
         warm_wall.append(time.perf_counter() - wall)
+    stages: dict[str, list[float]] = {"plan": [], "retime": [], "split": []}
+    for _ in range(repeats):
+        cpu = time.process_time()
+        planned = motions.planner.plan_pick(motions.q_home, obj.name, False)
+        stages["plan"].append(time.process_time() - cpu)
+        cpu = time.process_time()
+        result = motions.retime_free(planned.path.path)
+        stages["retime"].append(time.process_time() - cpu)
+        cpu = time.process_time()
+        time_at(result, planned.s_approach)
+        stages["split"].append(time.process_time() - cpu)
     return {
         "first_cpu_s": first_cpu,
         "first_wall_s": first_wall,
         "first_charged_s": first.times.total_s,
         "warm_cpu_s": statistics.median(warm_cpu) if warm_cpu else None,
         "warm_wall_s": statistics.median(warm_wall) if warm_wall else None,
+        **{
+            f"warm_{k}_cpu_s": statistics.median(v) if v else None
+            for k, v in stages.items()
+        },
     }
 
 
-def compare(trees: list[str], rounds: int, scenario: str, repeats: int) -> None:
+def compare(
+    trees: list[str], rounds: int, scenario: str, repeats: int, flags: list[str]
+) -> None:
     """Alternate processes on each tree; print medians side by side."""
     results: dict[str, list[dict]] = {tree: [] for tree in trees}
     for _ in range(rounds):
@@ -62,7 +84,7 @@ def compare(trees: list[str], rounds: int, scenario: str, repeats: int) -> None:
             env = dict(os.environ, PYTHONPATH=tree, OPENBLAS_NUM_THREADS="1")
             out = subprocess.run(
                 [sys.executable, __file__, "--scenario", scenario]
-                + ["--repeats", str(repeats)],
+                + ["--repeats", str(repeats), *flags],
                 env=env,
                 capture_output=True,
                 text=True,
@@ -90,11 +112,14 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--compare", nargs=2, metavar=("OLD", "NEW"))
     parser.add_argument("--rounds", type=int, default=5)
+    parser.add_argument("--no-jerk-limits", action="store_true")
     args = parser.parse_args()
     if args.compare:
-        compare(args.compare, args.rounds, args.scenario, args.repeats)
+        flags = ["--no-jerk-limits"] if args.no_jerk_limits else []
+        compare(args.compare, args.rounds, args.scenario, args.repeats, flags)
     else:
-        print(json.dumps(measure(args.scenario, args.repeats)))
+        result = measure(args.scenario, args.repeats, not args.no_jerk_limits)
+        print(json.dumps(result))
 
 
 if __name__ == "__main__":
