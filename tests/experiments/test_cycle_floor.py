@@ -19,6 +19,9 @@ from toppra_reference import toppra_duration
 from rt_drake import CyclePlanner, JointLimits
 from rt_drake.experiments import cycle_floors
 from rt_drake.model.plant import make_arm_plant
+from rt_drake.retiming import GraspConstraint
+from rt_drake.shaping import MoveOptimizerOptions, optimize_move
+from rt_drake.simulation.move_grasp import held_object, move_polytope
 
 #: Relative slack for toppra's grid (its duration on 2000 points).
 GRID_SLACK = 2e-3
@@ -40,12 +43,12 @@ def cycle(scenario):
         plans.append((pick, move))
         q = move.q_goal
     plant = make_arm_plant(scenario)
-    return floors, plans, JointLimits.from_plant(plant, scenario.robot)
+    return floors, plans, JointLimits.from_plant(plant, scenario.robot), planner
 
 
 @pytest.mark.slow
 def test_no_planned_motion_through_the_lines_beats_its_floor(cycle):
-    floors, plans, limits = cycle
+    floors, plans, limits, _ = cycle
     assert [f.name for f in floors] == [pick.path.object for pick, _ in plans]
     for floor, (pick, move) in zip(floors, plans, strict=True):
         pick_floor = floor.retreat_s + floor.transit_s + floor.descent_s
@@ -62,7 +65,7 @@ def test_the_move_floor_counts_its_vertical_lines(cycle, scenario):
     orientation. Per joint, from rest over d: ``d / v + v / (2 a)`` if
     ``d >= v^2 / (2 a)``, else ``sqrt(2 d / a)``.
     """
-    floors, plans, limits = cycle
+    floors, plans, limits, _ = cycle
     planner = CyclePlanner(scenario, seed=0)
     v, a = limits.velocity, limits.acceleration
     for floor, (_, move) in zip(floors, plans, strict=True):
@@ -85,3 +88,29 @@ def test_the_move_floor_counts_its_vertical_lines(cycle, scenario):
         assert floor.lift_s == pytest.approx(max(times), rel=1e-3)  # two IK solves
         assert floor.move_s == floor.lift_s + floor.carry_s + floor.set_down_s
         assert floor.carry_s > 0.0 and floor.set_down_s > 0.0
+
+
+@pytest.mark.slow
+def test_a_shaped_move_through_its_short_ends_does_not_beat_its_floor(cycle, scenario):
+    """The last MOVE (the carton's: 0.26 m lines) shaped, its ends 3 cm.
+
+    With ``shaped`` the floor counts each line up to the shaped path's 3 cm
+    vertical ends; that path, retimed by toppra without the grasp, takes
+    at least that floor, while the full lines' floor is above it.
+    """
+    _, plans, limits, planner = cycle
+    obj = scenario.objects[-1]
+    _, move = plans[-1]
+    plant = make_arm_plant(scenario)
+    grasp = GraspConstraint.for_polytope(
+        held_object(obj, move.X_OC), move_polytope(scenario)
+    )
+    options = MoveOptimizerOptions.from_config(scenario.planning)
+    shaped = optimize_move(
+        planner, plant, move.q_start, obj.name, grasp, limits, options, spline=move
+    )
+    assert shaped.improved
+    floor = cycle_floors(scenario, seed=0, shaped=True)[-1]
+    full = cycle_floors(scenario, seed=0, shaped=False)[-1]
+    assert toppra_duration(shaped.path, limits) >= floor.move_s * (1 - GRID_SLACK)
+    assert full.move_s > floor.move_s
