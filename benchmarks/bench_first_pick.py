@@ -3,6 +3,7 @@
     python benchmarks/bench_first_pick.py [--scenario FILE] [--repeats 5]
         [--no-jerk-limits]
     python benchmarks/bench_first_pick.py --compare OLD_TREE NEW_TREE [--rounds 5]
+    python benchmarks/bench_first_pick.py --grids 100 60 30 20 [--repeats 3]
 
 One process per measurement: ``OnlineMotions`` is built as ``rt-drake run``
 builds it (the scenario's jerk limits unless --no-jerk-limits; the retimer
@@ -14,6 +15,12 @@ repeated in the same process (``--repeats``) gives the warm cost, and its
 stages apart (``warm_*_cpu_s``: the planner's ``plan_pick``, the retime,
 the time at which the retimed pick passes the approach pose). Prints one
 JSON line.
+
+``--grids`` retimes the first pick's path (planned once) on uniform grids
+of those sizes instead (the retimer adds the knots and refines each, so
+every grid keeps the limits between its points): the least CPU over
+``--repeats`` and the pick's duration, one JSON line per size. A cheaper
+first retime pays for itself only if it costs less CPU than it adds motion.
 
 ``--compare`` runs this script alternately with ``PYTHONPATH`` set to two
 source trees (e.g. an export of the previous commit and the worktree),
@@ -74,6 +81,36 @@ def measure(scenario: str, repeats: int, jerk_limits: bool = True) -> dict:
     }
 
 
+def grids(scenario: str, sizes: list[int], repeats: int) -> None:
+    """Print the first pick's retime CPU (s) and duration (s) per grid size."""
+    from rt_drake.model.plant import make_arm_plant
+    from rt_drake.model.scenario import load_scenario
+    from rt_drake.retiming import JointLimits, retime
+    from rt_drake.simulation.online_motions import OnlineMotions
+
+    sc = load_scenario(scenario)
+    motions = OnlineMotions(sc, jerk_limits=True)
+    planned = motions.planner.plan_pick(motions.q_home, sc.objects[0].name, False)
+    plant = make_arm_plant(sc)
+    limits = JointLimits.from_plant(plant, sc.robot, jerk=True)
+    for size in sizes:
+        cpu = []
+        for _ in range(max(repeats, 1)):
+            start = time.process_time()
+            result = retime(plant, planned.path.path, limits, None, gridpoints=size)
+            cpu.append(time.process_time() - start)
+        print(
+            json.dumps(
+                {
+                    "gridpoints": size,
+                    "grid_after_refinement": len(result.gridpoints),
+                    "retime_cpu_s": min(cpu),
+                    "duration_s": result.duration,
+                }
+            )
+        )
+
+
 def compare(
     trees: list[str], rounds: int, scenario: str, repeats: int, flags: list[str]
 ) -> None:
@@ -113,8 +150,11 @@ def main() -> None:
     parser.add_argument("--compare", nargs=2, metavar=("OLD", "NEW"))
     parser.add_argument("--rounds", type=int, default=5)
     parser.add_argument("--no-jerk-limits", action="store_true")
+    parser.add_argument("--grids", nargs="+", type=int, metavar="N")
     args = parser.parse_args()
-    if args.compare:
+    if args.grids:
+        grids(args.scenario, args.grids, args.repeats)
+    elif args.compare:
         flags = ["--no-jerk-limits"] if args.no_jerk_limits else []
         compare(args.compare, args.rounds, args.scenario, args.repeats, flags)
     else:
