@@ -13,17 +13,12 @@ motion time into the floor's segments (:func:`rt_drake.experiments.cycle_floors`
 - the MOVE as run (shaped, grasp constraint, jerk limits), and the same
   geometric path retimed again (a) without the grasp, (b) without the jerk
   limits, (c) without either. ``as run - (a)`` is the grasp's price on that
-  path, ``(c) - floor`` the path's (its shape and its vertical ends) at the
-  joint limits alone;
-- the MOVE's floor with its vertical ends (``--end-height``, m, default
-  0.02: every MOVE of the default scenario, spline or shaped, rises and
-  sets down vertically over at least 2 cm): the lift from rest to the top
-  of its end line (top free), the transit between the two lines' tops
-  (joint speeds bounded by the lines' tangents there,
-  :func:`~rt_drake.retiming.junction_speeds`) and the set-down to rest,
-  each bounded by :func:`~rt_drake.retiming.segment_floor` as the pick's
-  retreat, transit and descent are. It is still a lower bound for any MOVE
-  through those lines; the reported floor leaves the ends out.
+  path, ``(c) - floor`` the path's shape at the joint limits alone, against
+  the MOVE's floor, which counts its vertical lift and set-down lines
+  (:mod:`rt_drake.experiments.cycle_floor`: the lift from rest to the top
+  of its line, the carry between the lines' tops, the set-down to rest);
+  "floor without lines" is rest to rest from grasp to place, as the report
+  counted the MOVE before session 4.
 
 Every retime here uses the cycle's grids (adaptive, see
 :mod:`rt_drake.simulation.online_motions`), so the columns compare like
@@ -40,47 +35,15 @@ import dataclasses
 import sys
 
 import numpy as np
-from pydrake.math import RigidTransform
 
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.experiments import cycle_floors
 from rt_drake.model.plant import make_arm_plant
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.model.scenario import load_scenario
-from rt_drake.retiming import JointLimits, junction_speeds, segment_floor
+from rt_drake.retiming import JointLimits, segment_floor
 from rt_drake.shaping import retime_adaptive
 from rt_drake.simulation.online_motions import OnlineMotions, time_at
-
-
-def raised(motions: OnlineMotions, q: np.ndarray, height: float) -> np.ndarray:
-    """The configuration with the cup ``height`` m straight above its pose at q."""
-    X_WC = motions.planner.scene.cup_pose(q)
-    X_up = RigidTransform(X_WC.rotation(), X_WC.translation() + [0.0, 0.0, height])
-    q_up = motions.planner.ik.solve(X_up, q, q)
-    if q_up is None:
-        raise SystemExit(f"no IK {height} m above {q.round(3).tolist()}")
-    return q_up
-
-
-def move_floor_with_ends(
-    motions: OnlineMotions,
-    q_grasp: np.ndarray,
-    q_place: np.ndarray,
-    height: float,
-    limits: JointLimits,
-    jerk: np.ndarray | None,
-) -> float:
-    """Floor (s) of a MOVE that rises and sets down vertically over ``height`` m."""
-    q_up, q_down = raised(motions, q_grasp, height), raised(motions, q_place, height)
-    below_up = raised(motions, q_grasp, height - 0.005)
-    below_down = raised(motions, q_place, height - 0.005)
-    transit = q_down - q_up
-    speed_start = junction_speeds(q_up - below_up, transit, limits)
-    speed_end = junction_speeds(below_down - q_down, -transit, limits)
-    lift = segment_floor(q_grasp, q_up, limits, 0.0, np.inf, jerk)
-    middle = segment_floor(q_up, q_down, limits, speed_start, speed_end, jerk)
-    lower = segment_floor(q_down, q_place, limits, np.inf, 0.0, jerk)
-    return float(lift + middle + lower)
 
 
 def main() -> None:
@@ -88,14 +51,14 @@ def main() -> None:
     parser.add_argument("scenario", nargs="?", default="stack_four_objects")
     parser.add_argument("--no-jerk-limits", action="store_true")
     parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--end-height", type=float, default=0.02)
     args = parser.parse_args()
     scenario = load_scenario(resolve_scenario_path(args.scenario))
     jerk_on = not args.no_jerk_limits and bool(scenario.robot.jerk_limits)
     motions = OnlineMotions(scenario, seed=args.seed, jerk_limits=jerk_on)
     jerk = np.array(scenario.robot.jerk_limits) if jerk_on else None
-    floors = cycle_floors(scenario, args.seed, jerk=jerk)
-    bare_floors = cycle_floors(scenario, args.seed)
+    shaped = scenario.planning.optimize_move
+    floors = cycle_floors(scenario, args.seed, jerk=jerk, shaped=shaped)
+    bare_floors = cycle_floors(scenario, args.seed, shaped=shaped)
     plant = make_arm_plant(scenario)
     cup = CupFrame.of(plant, scenario.robot.cup_frame)
     context = plant.CreateDefaultContext()
@@ -127,9 +90,7 @@ def main() -> None:
         move_nograsp = timed(path, None, jerk_on)
         move_nojerk = timed(path, move.grasp, False)
         move_bare = timed(path, None, False)
-        ends = move_floor_with_ends(
-            motions, q_grasp, move.q_end, args.end_height, limits, jerk
-        )
+        no_lines = segment_floor(q_grasp, move.q_end, limits, 0.0, 0.0, jerk)
         rows.append(
             (
                 obj.name,
@@ -146,7 +107,7 @@ def main() -> None:
                 move_bare,
                 floor.move_s,
                 bare.move_s,
-                ends,
+                no_lines,
                 t_pick + move_s,
                 floor.motion_s,
                 bare.motion_s,
@@ -168,7 +129,7 @@ def main() -> None:
         "neither",
         "floor",
         "floor no jerk",
-        "floor with ends",
+        "floor without lines",
         "motion",
         "floor",
         "floor no jerk",

@@ -38,8 +38,10 @@ with these configurations and limits.
 
 ``rt-drake run`` reports the strict floor of each object (``floor_s``,
 :func:`rt_drake.experiments.cycle_floors`, which bounds the joints' speeds
-at the lines' ends by the lines' tangents instead of setting J1 at rest);
-this study adds the "along the line" figures and the planned durations.
+at the lines' ends by the lines' tangents instead of setting J1 at rest,
+and counts the MOVE's lift and set-down lines as the pick's: its MOVE floor
+is above this study's); this study adds the "along the line" figures and
+the planned durations.
 """
 
 from __future__ import annotations

@@ -194,7 +194,12 @@ def run(args: argparse.Namespace) -> int:
     )
     # the floor under the same limits as the motions: the jerk's too if applied
     jerk = [] if args.no_jerk_limits else scenario.robot.jerk_limits
-    floors = cycle_floors(scenario, args.seed, jerk=np.array(jerk) if jerk else None)
+    floors = cycle_floors(
+        scenario,
+        args.seed,
+        jerk=np.array(jerk) if jerk else None,
+        shaped=optimize and not args.no_grasp_constraint,
+    )
     report = cycle_report(result.records, settings, floors)
     json_path, md_path = write_report(report, args.out)
     replay = args.out / REPLAY_FILE

@@ -18,7 +18,8 @@
   (raised likewise, or by half or a quarter of it if that is out of reach),
   place (X_WO_goal X_OC). What a real cell does: lift out of the bin, transfer, set down
   vertically. A lift or above-place pose that is unreachable or colliding
-  is skipped.
+  is skipped. The path's ``lines_m`` gives the heights of the two vertical
+  lines it runs (the cycle's floor counts them).
 
 Each phase tries the spline through its anchors first and connects them
 (straight edges, IK lines for the vertical moves, RRT-Connect) only if that
@@ -345,7 +346,12 @@ class CyclePlanner:
             lines.append(None)
         anchors.append(q_place)
         lines.append((X_above, X_place) if q_above is not None else None)
-        return through(self.scene, self.ik, anchors, X_OC, attempt, lines)
+        planned = through(self.scene, self.ik, anchors, X_OC, attempt, lines)
+        heights = (
+            0.0 if lift is None and q_lift is None else lift_height,
+            0.0 if q_above is None else fraction * place_height,
+        )
+        return dataclasses.replace(planned, lines_m=heights)
 
     def plan_between(
         self,

@@ -100,6 +100,9 @@ class PlannedPath:
             straight descent (rad, one configuration per ``LINE_STEP``, or
             closer, from the approach pose to the grasp), which a MOVE from
             the same grasp may lift along in reverse; None otherwise.
+        lines_m: MOVE only: the heights (m) of its vertical lift above the
+            grasp and of its vertical set-down above the place, 0.0 where
+            the planner skipped that line; None for the other phases.
     """
 
     phase: Phase
@@ -109,6 +112,7 @@ class PlannedPath:
     X_OC: RigidTransform
     timing: PlanTiming
     descent: np.ndarray | None = None
+    lines_m: tuple[float, float] | None = None
 
     @property
     def q_start(self) -> np.ndarray:

@@ -379,12 +379,13 @@ class OnlineMotions:
         plan_s = time.perf_counter() - start
         start = time.perf_counter()
         result = self.retime_free(planned.path.path)
+        t_approach = time_at(result, planned.s_approach)
         retime_s = time.perf_counter() - start
         reach_s = min(planned.reach_timing.total_s, plan_s)
         parts = (
             PhasePart(
                 Phase.APPROACH,
-                time_at(result, planned.s_approach),
+                t_approach,
                 PlanTimes(plan_s=plan_s - reach_s, retime_s=retime_s),
             ),
             PhasePart(Phase.REACH, result.duration, PlanTimes(plan_s=reach_s)),
@@ -528,8 +529,15 @@ def time_at(result: RetimeResult, s: float) -> float:
     On grid segment i (``s_i <= s <= s_{i+1}``) the path acceleration u_i is
     constant, so with ``d = s - s_i``: ``tau = 2 d / (s'_i + sqrt(s'_i^2 +
     2 u_i d))``, after ``t_i = sum_{k<i} 2 ds_k / (s'_k + s'_{k+1})``.
+    Jerk-limited (u continuous, not constant): at a grid point (a path knot,
+    such as the pick's approach pose) the time the motion passes it, else
+    :meth:`~rt_drake.retiming.JerkTimedPath.time_at` (bisection: 10 ms).
     """
-    if isinstance(result.trajectory, JerkTimedPath):  # u continuous, not constant
+    if isinstance(result.trajectory, JerkTimedPath):
+        grid = result.gridpoints
+        i = int(np.argmin(np.abs(grid - s)))
+        if abs(grid[i] - s) <= 1e-12:
+            return float(result.trajectory.times[i])
         return result.trajectory.time_at(s)
     grid, sd, sdd = result.gridpoints, result.sd, result.sdd
     i = int(np.clip(np.searchsorted(grid, s, side="right") - 1, 0, len(grid) - 2))

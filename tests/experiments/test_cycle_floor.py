@@ -3,19 +3,25 @@
 The planner's own picks (retreat, transit and descent blended in one path)
 and MOVEs of the shipped cycle, as ``rt-drake run`` plans them, retimed at
 the joint limits without the grasp by toppra (an independent TOPP-RA), take
-at least the floor of their segments. The MOVE floor is also checked
-against the per-joint trapezoid written out here.
+at least the floor of their segments, the MOVE's vertical lift and
+set-down lines counted. The MOVE's lines are checked by forward kinematics
+(their tops straight above the grasp and the place, by the planner's
+heights) and its lift against the per-joint ramp written out here.
 """
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
+from pydrake.math import RigidTransform
 from toppra_reference import toppra_duration
 
 from rt_drake import CyclePlanner, JointLimits
 from rt_drake.experiments import cycle_floors
 from rt_drake.model.plant import make_arm_plant
+from rt_drake.retiming import GraspConstraint
+from rt_drake.shaping import MoveOptimizerOptions, optimize_move
+from rt_drake.simulation.move_grasp import held_object, move_polytope
 
 #: Relative slack for toppra's grid (its duration on 2000 points).
 GRID_SLACK = 2e-3
@@ -24,7 +30,7 @@ GRID_SLACK = 2e-3
 @pytest.fixture(scope="module")
 def cycle(scenario):
     """The floors and, per object, the planner's pick and MOVE (seed 0)."""
-    floors = cycle_floors(scenario, seed=0)
+    floors = cycle_floors(scenario, seed=0, shaped=False)
     planner = CyclePlanner(scenario, seed=0)
     q = planner.q_home
     plans = []
@@ -37,12 +43,12 @@ def cycle(scenario):
         plans.append((pick, move))
         q = move.q_goal
     plant = make_arm_plant(scenario)
-    return floors, plans, JointLimits.from_plant(plant, scenario.robot)
+    return floors, plans, JointLimits.from_plant(plant, scenario.robot), planner
 
 
 @pytest.mark.slow
 def test_no_planned_motion_through_the_lines_beats_its_floor(cycle):
-    floors, plans, limits = cycle
+    floors, plans, limits, _ = cycle
     assert [f.name for f in floors] == [pick.path.object for pick, _ in plans]
     for floor, (pick, move) in zip(floors, plans, strict=True):
         pick_floor = floor.retreat_s + floor.transit_s + floor.descent_s
@@ -51,13 +57,60 @@ def test_no_planned_motion_through_the_lines_beats_its_floor(cycle):
         assert floor.transit_s > 0.0 and floor.descent_s > 0.0
 
 
-def test_the_move_floor_is_the_slowest_joints_trapezoid(cycle):
-    floors, plans, limits = cycle
+def test_the_move_floor_counts_its_vertical_lines(cycle, scenario):
+    """lift_s: the slowest joint's rest-to-free time to the line's top.
+
+    The top is found here by the planner's IK and checked by forward
+    kinematics: the cup ``lines_m[0]`` straight above the grasp, same
+    orientation. Per joint, from rest over d: ``d / v + v / (2 a)`` if
+    ``d >= v^2 / (2 a)``, else ``sqrt(2 d / a)``.
+    """
+    floors, plans, limits, _ = cycle
+    planner = CyclePlanner(scenario, seed=0)
     v, a = limits.velocity, limits.acceleration
     for floor, (_, move) in zip(floors, plans, strict=True):
-        d = np.abs(move.q_goal - move.q_start)
+        lift_m, set_down_m = move.lines_m
+        assert lift_m > 0.0 and set_down_m > 0.0
+        X_grasp = planner.scene.cup_pose(move.q_start)
+        X_top = RigidTransform(
+            X_grasp.rotation(), X_grasp.translation() + [0.0, 0.0, lift_m]
+        )
+        q_top = planner.ik.solve(X_top, move.q_start, move.q_start)
+        X_found = planner.scene.cup_pose(q_top)
+        assert np.allclose(X_found.translation(), X_top.translation(), atol=1e-5)
+        d = np.abs(q_top - move.q_start)
         times = [
-            dj / vj + vj / aj if dj >= vj * vj / aj else 2.0 * np.sqrt(dj / aj)
+            dj / vj + vj / (2 * aj)
+            if dj >= vj * vj / (2 * aj)
+            else np.sqrt(2 * dj / aj)
             for dj, vj, aj in zip(d, v, a, strict=True)
         ]
-        assert floor.move_s == pytest.approx(max(times), rel=1e-12)
+        assert floor.lift_s == pytest.approx(max(times), rel=1e-3)  # two IK solves
+        assert floor.move_s == floor.lift_s + floor.carry_s + floor.set_down_s
+        assert floor.carry_s > 0.0 and floor.set_down_s > 0.0
+
+
+@pytest.mark.slow
+def test_a_shaped_move_through_its_short_ends_does_not_beat_its_floor(cycle, scenario):
+    """The last MOVE (the carton's: 0.26 m lines) shaped, its ends 3 cm.
+
+    With ``shaped`` the floor counts each line up to the shaped path's 3 cm
+    vertical ends; that path, retimed by toppra without the grasp, takes
+    at least that floor, while the full lines' floor is above it.
+    """
+    _, plans, limits, planner = cycle
+    obj = scenario.objects[-1]
+    _, move = plans[-1]
+    plant = make_arm_plant(scenario)
+    grasp = GraspConstraint.for_polytope(
+        held_object(obj, move.X_OC), move_polytope(scenario)
+    )
+    options = MoveOptimizerOptions.from_config(scenario.planning)
+    shaped = optimize_move(
+        planner, plant, move.q_start, obj.name, grasp, limits, options, spline=move
+    )
+    assert shaped.improved
+    floor = cycle_floors(scenario, seed=0, shaped=True)[-1]
+    full = cycle_floors(scenario, seed=0, shaped=False)[-1]
+    assert toppra_duration(shaped.path, limits) >= floor.move_s * (1 - GRID_SLACK)
+    assert full.move_s > floor.move_s

@@ -153,8 +153,8 @@ def test_an_empty_cycle_has_no_mean_and_no_picks():
 def test_the_floor_is_set_beside_each_object_and_the_cycle(tmp_path):
     """floor_s = the motion floor + ATTACH + DETACH as run; ratio = total / floor."""
     floors = (
-        ObjectFloor("a", 0.0, 0.6, 0.2, 0.5),
-        ObjectFloor("b", 0.1, 0.55, 0.25, 0.6),
+        ObjectFloor("a", 0.0, 0.6, 0.2, 0.1, 0.3, 0.1),
+        ObjectFloor("b", 0.1, 0.55, 0.25, 0.1, 0.4, 0.1),
     )
     report = cycle_report((_record("a", 0.034), _record("b", 0.0)), None, floors)
     data = json.loads(report.to_json())
@@ -165,7 +165,10 @@ def test_the_floor_is_set_beside_each_object_and_the_cycle(tmp_path):
         expected += entry["exec_s"]["attach"] + entry["exec_s"]["detach"]
         assert entry["floor_s"] == pytest.approx(expected, rel=1e-12)
         assert entry["floor_ratio"] == pytest.approx(entry["total_s"] / expected)
-        assert entry["floor_segments_s"]["move_s"] == floor.move_s
+        segments = entry["floor_segments_s"]
+        assert segments["lift_s"] + segments["carry_s"] + segments["set_down_s"] == (
+            pytest.approx(floor.move_s, rel=1e-12)
+        )
     total_floor = sum(e["floor_s"] for e in data["objects"])
     assert data["floor_s"] == pytest.approx(total_floor, rel=1e-12)
     assert data["floor_ratio"] == pytest.approx(data["total_s"] / total_floor)
