@@ -2,7 +2,8 @@
 
 Run: ``PYTHONPATH=. python benchmarks/bench_stop.py [--paths 6] [--instants 9]``;
 ``--jerk K`` (jerk limits K x the acceleration limits, per second) runs the
-jerk-limited comparison instead (:func:`jerk_main`).
+jerk-limited comparison instead (:func:`jerk_main`); ``--table [PERIOD ...]``
+the stop tables' cost (:func:`table_main`, jerk 20x unless ``--jerk``).
 
 The MOVE-like paths of ``bench_retime.py`` (lift, swing joint 1 by 0.6 to
 1.8 rad, set down; the notebook on the scenario's cup, 100 grid points) are
@@ -76,7 +77,11 @@ def main() -> None:
     parser.add_argument("--instants", type=int, default=9)
     parser.add_argument("--jerk", type=float, default=None)
     parser.add_argument("--sweep", type=int, default=24)
+    parser.add_argument("--table", type=float, nargs="*", default=None)
     args = parser.parse_args()
+    if args.table is not None:
+        table_main(args.paths, args.jerk or 20.0, args.table or [0.01, 0.05])
+        return
     if args.jerk is not None:
         jerk_main(args.paths, args.instants, args.jerk, args.sweep)
         return
@@ -269,6 +274,67 @@ def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
     print(row("jerk margin, MOVE + grasp-aware stop", "jerk_margin", 1.0, "1"))
     left = sum(m < -1e-3 for m in rows["brake_margin"])
     print(f"joint-brake stops leaving the grasp set (margin < -1e-3): {left}/{count}")
+
+
+def table_main(paths: int, factor: float, periods: list[float]) -> None:
+    """CPU of ``stop_table`` per MOVE and per stop, beside the MOVE's retime.
+
+    Jerk limits ``factor`` x the acceleration limits per second, the
+    notebook's grasp; for each period, each path's table, and a
+    ``protective_stop`` computed alone at every third instant of it (its
+    duration beside the table's: the table's search starts from a guess).
+    """
+    import dataclasses
+
+    from rt_drake import stop_table
+
+    scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
+    plant = make_arm_plant(scenario)
+    context = plant.CreateDefaultContext()
+    plain = JointLimits.from_plant(plant, scenario.robot)
+    limits = dataclasses.replace(plain, jerk=factor * plain.acceleration)
+    grasp = GraspConstraint.for_cup(
+        held_object_of(scenario.object("notebook")), scenario.cup
+    )
+    path0 = move_paths(1)[0]
+    warm = retime(plant, path0, limits, grasp)
+    protective_stop(plant, path0, limits, warm, 0.3 * warm.duration, grasp)
+    print("| period | MOVE | duration | retime CPU | table CPU | stops | per stop |")
+    print("|---:|---:|---:|---:|---:|---:|---:|")
+    ratios: list[float] = []
+    alone_cpu: list[float] = []
+    for period in periods:
+        for i, path in enumerate(move_paths(paths)):
+            result, seconds = cpu(lambda p=path: retime(plant, p, limits, grasp))
+            table, table_cpu = cpu(
+                lambda p=path, r=result, h=period: stop_table(
+                    plant, p, limits, r, h, grasp, context=context
+                )
+            )
+            n = len(table.times)
+            print(
+                f"| {period * 1e3:g} ms | {i} | {result.duration:.3f} s | "
+                f"{seconds * 1e3:.0f} ms | {table_cpu:.2f} s | {n} | "
+                f"{table_cpu / n * 1e3:.0f} ms |"
+            )
+            if period != periods[-1]:
+                continue
+            for k in range(1, n - 1, 3):
+                t = float(table.times[k])
+                alone, seconds = cpu(
+                    lambda p=path, r=result, t=t: protective_stop(
+                        plant, p, limits, r, t, grasp, context=context
+                    )
+                )
+                alone_cpu.append(seconds)
+                if alone.duration > 0.0:
+                    ratios.append(table.stops[k].duration / alone.duration)
+    r = np.asarray(ratios)
+    print(
+        f"table stop / stop alone, duration, {len(r)} instants: median "
+        f"{np.median(r):.4f}, min {r.min():.4f}, max {r.max():.4f}; "
+        f"stop alone CPU median {np.median(alone_cpu) * 1e3:.0f} ms"
+    )
 
 
 if __name__ == "__main__":

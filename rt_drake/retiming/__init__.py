@@ -67,6 +67,7 @@ from rt_drake.retiming._stop import (
     joint_brake_stop,
     protective_stop,
 )
+from rt_drake.retiming._stop_table import StopTable, stop_table
 from rt_drake.retiming._time_scaled import TimeScaled
 from rt_drake.retiming._timed_path import TimedPath
 from rt_drake.retiming._trajectory_file import (
@@ -109,6 +110,7 @@ __all__ = [
     "SavedTrajectory",
     "StopNotFoundError",
     "StopResult",
+    "StopTable",
     "TimeScaled",
     "TimedPath",
     "ToolGrasp",
@@ -124,6 +126,7 @@ __all__ = [
     "load_trajectory",
     "path_waypoints_and_knots",
     "protective_stop",
+    "stop_table",
     "rest_to_rest_jerk",
     "retime",
     "sample_trajectory",

@@ -59,6 +59,11 @@ GROWTH = 1.3
 LOWER_START = (0.0, 1e-3, 1e-2)
 #: Bisections of the stop distance between the last failure and a stop.
 BISECTIONS = 4
+#: Relative resolution of the stop distance when the search starts from a
+#: guess (:func:`_walk`); the full search's is ``0.3 / 2^4``, about 0.019.
+RESOLUTION = 0.015
+#: First relative step of the walk from a guess (doubled at each step).
+FIRST_STEP = 0.04
 
 
 class JerkStop(NamedTuple):
@@ -196,14 +201,23 @@ def start_slack(
     return wider, g
 
 
-def jerk_stop(problem: JerkStopProblem, shortest: float, remainder: float) -> JerkStop:
+def jerk_stop(
+    problem: JerkStopProblem,
+    shortest: float,
+    remainder: float,
+    guess: float | None = None,
+) -> JerkStop:
     """The fastest jerk-limited stop found by the module docstring's search.
 
     Args:
         problem: The stop's data.
         shortest: ``L_0``, the acceleration-limited shortest stop distance.
         remainder: Duration (s) of the motion's own rest of the path.
+        guess: A stop distance near the shortest with a stop (a neighbouring
+            instant's): the search walks from it (:func:`_walk`) instead.
     """
+    if guess is not None:
+        return _kept(problem, _walk(problem, shortest, guess), remainder)
     room = 1.0 - problem.s
     tried: list[tuple[float, float]] = []
     found: dict[float, JerkTimedPath] = {}
@@ -226,12 +240,78 @@ def jerk_stop(problem: JerkStopProblem, shortest: float, remainder: float) -> Je
                 high = middle
             else:
                 low = middle
-    if not found:
-        return JerkStop(None, 1.0, tried)
-    best = min(found, key=lambda key: found[key].duration)
-    if found[best].duration >= remainder:
-        return JerkStop(None, 1.0, tried)
-    return JerkStop(found[best], problem.s + best, tried)
+    return _kept(problem, _Found(tried, found), remainder)
+
+
+class _Found(NamedTuple):
+    """Stop distances tried (each with its duration, inf: none) and the stops."""
+
+    tried: list[tuple[float, float]]
+    stops: dict[float, JerkTimedPath]
+
+
+def _kept(problem: JerkStopProblem, found: _Found, remainder: float) -> JerkStop:
+    """The fastest stop found, or the motion's remainder if that is faster."""
+    if not found.stops:
+        return JerkStop(None, 1.0, found.tried)
+    best = min(found.stops, key=lambda key: found.stops[key].duration)
+    if found.stops[best].duration >= remainder:
+        return JerkStop(None, 1.0, found.tried)
+    return JerkStop(found.stops[best], problem.s + best, found.tried)
+
+
+def _walk(problem: JerkStopProblem, shortest: float, guess: float) -> _Found:
+    """Stops from ``guess`` to the shortest distance with one, within RESOLUTION.
+
+    From ``L = guess`` (at least ``shortest``): with a stop there, down by
+    factors ``1 + f, 1 + 2f, 1 + 4f, ...`` (``f`` = :data:`FIRST_STEP`)
+    until a distance without one; without, up by the same factors until
+    one (the path's end caps it); then bisections (geometric) until the
+    last distance without a stop and the first with one are within ``1 +
+    r`` (``r`` = :data:`RESOLUTION`).
+    """
+    room = 1.0 - problem.s
+    found = _Found([], {})
+
+    def attempt(length: float) -> bool:
+        stop = problem.stop(length)
+        found.tried.append((length, np.inf if stop is None else stop.duration))
+        if stop is not None:
+            found.stops[length] = stop
+        return stop is not None
+
+    floor = max(min(shortest, room), MIN_STEP)
+    length = min(max(guess, floor), room)
+    if length >= room - MIN_STEP:
+        return found
+    low: float | None = None
+    high: float | None = None
+    step = FIRST_STEP
+    if attempt(length):
+        high = length
+        while high > floor * (1.0 + 1e-9):
+            candidate = max(high / (1.0 + step), floor)
+            if not attempt(candidate):
+                low = candidate
+                break
+            high, step = candidate, 2.0 * step
+    else:
+        low = length
+        while True:
+            candidate = low * (1.0 + step)
+            if candidate >= room - MIN_STEP:
+                return found
+            if attempt(candidate):
+                high = candidate
+                break
+            low, step = candidate, 2.0 * step
+    while low is not None and high is not None and high / low > 1.0 + RESOLUTION:
+        middle = float(np.sqrt(low * high))
+        if attempt(middle):
+            high = middle
+        else:
+            low = middle
+    return found
 
 
 __all__ = [
@@ -239,6 +319,7 @@ __all__ = [
     "GROWTH",
     "JerkStop",
     "JerkStopProblem",
+    "RESOLUTION",
     "jerk_stop",
     "start_slack",
 ]

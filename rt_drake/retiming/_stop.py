@@ -125,6 +125,27 @@ def protective_stop(
     return _stop(plant, path, limits, result, t, grasp, context, cup, True)
 
 
+def guided_stop(
+    plant: MultibodyPlant,
+    path: PathLike,
+    limits: JointLimits,
+    result: RetimeResult,
+    t: float,
+    grasp: GraspConstraint | None,
+    context: Context | None,
+    cup: CupFrame | None,
+    guess: float | None,
+) -> StopResult:
+    """:func:`protective_stop` with a guess of the stop distance in s.
+
+    With jerk limits, the search over the stop distance walks from
+    ``guess`` (a neighbouring instant's stop distance,
+    :func:`._jerk_stop.jerk_stop`); None, or without jerk limits: exactly
+    :func:`protective_stop`.
+    """
+    return _stop(plant, path, limits, result, t, grasp, context, cup, True, guess)
+
+
 def joint_brake_stop(
     plant: MultibodyPlant,
     path: PathLike,
@@ -156,8 +177,9 @@ def _stop(
     context: Context | None,
     cup: CupFrame | None,
     grasp_aware: bool,
+    guess: float | None = None,
 ) -> StopResult:
-    """Both stops (see the module docstring)."""
+    """Both stops (see the module docstring); ``guess``: see :func:`guided_stop`."""
     _check_objects(plant, limits, result, grasp, context, cup)
     spline = as_joint_path(path)
     if spline.num_joints != limits.num_joints:
@@ -201,7 +223,7 @@ def _stop(
         )  # fmt: skip
         at = 1 if braking.stop_index is None else braking.stop_index
         rest_time = result.trajectory.end_time() - float(t)
-        found = jerk_stop(problem, float(s[at] - s_t), rest_time)
+        found = jerk_stop(problem, float(s[at] - s_t), rest_time, guess)
         return spliced(result, float(t), s_t, sd_t, found, grasp_aware)
     if braking.stop_index is None:
         raise StopNotFoundError(
@@ -349,6 +371,7 @@ __all__ = [
     "STOP_SUBDIVISION",
     "StopNotFoundError",
     "StopResult",
+    "guided_stop",
     "joint_brake_stop",
     "protective_stop",
     "state_at",
