@@ -170,21 +170,24 @@ def ruckig_stop(v: np.ndarray, a: np.ndarray, limits: JointLimits) -> float:
 
 
 def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
-    """Jerk-limited stops beside a sweep over the stop distance and Ruckig.
+    """Jerk-limited stops beside the full search, a sweep and Ruckig.
 
     On the MOVE-like paths, retimed under the grasp with jerk limits
     ``factor`` x the acceleration limits, each stop is compared with the
     fastest of ``sweep`` jerk-limited stops at evenly spaced distances from
     the acceleration-limited shortest one to the path's end (the reference
-    search, with the MOVE's own remainder), and the joint brake with Ruckig's
-    per-joint stops (:func:`ruckig_stop`). CPU time of this thread.
+    search, with the MOVE's own remainder and the stop itself: ``--sweep 0``
+    skips it), the search from the simulated braking's guess with the full
+    search from the acceleration-limited distance (``guided_stop(...,
+    simulate=False)``, session 3's), case by case, and the joint brake with
+    Ruckig's per-joint stops (:func:`ruckig_stop`). CPU time of this thread.
     """
     import dataclasses
 
     from rt_drake.dynamics.cup_frame import CupFrame
     from rt_drake.retiming._jerk_stop import JerkStopProblem
     from rt_drake.retiming._joint_path import as_joint_path
-    from rt_drake.retiming._stop import path_state_at
+    from rt_drake.retiming._stop import guided_stop, path_state_at
 
     scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
     plant = make_arm_plant(scenario)
@@ -203,8 +206,10 @@ def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
         for k in (
             "retime", "stop_cpu", "brake_cpu", "held", "best", "ratio", "brake",
             "ruckig", "brake_ratio", "held_margin", "brake_margin", "jerk_margin",
+            "full_cpu", "full", "vs_full",
         )
     }  # fmt: skip
+    cases: list[str] = []
     for path in move_paths(paths):
         result, seconds = cpu(lambda p=path: retime(plant, p, limits, grasp))
         rows["retime"].append(seconds)
@@ -223,6 +228,20 @@ def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
                 )
             )
             rows["brake_cpu"].append(seconds)
+            full, seconds = cpu(
+                lambda p=path, r=result, t=t: guided_stop(
+                    plant, p, limits, r, t, grasp, context, None, None,
+                    simulate=False,
+                )
+            )  # fmt: skip
+            rows["full_cpu"].append(seconds)
+            rows["full"].append(full.duration)
+            rows["vs_full"].append(held.duration / full.duration)
+            cases.append(
+                f"| {len(cases)} | {t:.3f} | {held.duration:.4f} | "
+                f"{full.duration:.4f} | {held.duration / full.duration:.4f} | "
+                f"{rows['stop_cpu'][-1] * 1e3:.0f} | {seconds * 1e3:.0f} |"
+            )
             s, sd, sdd = path_state_at(result, t)
             problem = JerkStopProblem(
                 plant, spline, limits, grasp, context, cup, t, s, sd, sdd,
@@ -263,7 +282,10 @@ def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
     print(row("jerk-limited retime of the MOVE (CPU)", "retime", 1e3, "ms"))
     print(row("protective_stop, jerk-limited (CPU)", "stop_cpu", 1e3, "ms"))
     print(row("joint_brake_stop, jerk-limited (CPU)", "brake_cpu", 1e3, "ms"))
+    print(row("protective_stop, full search (reference, CPU)", "full_cpu", 1e3, "ms"))
     print(row("grasp-aware stop time", "held", 1.0, "s"))
+    print(row("grasp-aware stop time, full search (reference)", "full", 1.0, "s"))
+    print(row("grasp-aware / full search's", "vs_full", 1.0, "1"))
     print(row(f"fastest of the {sweep}-distance sweep", "best", 1.0, "s"))
     print(row("grasp-aware / sweep's fastest", "ratio", 1.0, "1"))
     print(row("joint-brake stop time", "brake", 1.0, "s"))
@@ -274,6 +296,12 @@ def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
     print(row("jerk margin, MOVE + grasp-aware stop", "jerk_margin", 1.0, "1"))
     left = sum(m < -1e-3 for m in rows["brake_margin"])
     print(f"joint-brake stops leaving the grasp set (margin < -1e-3): {left}/{count}")
+    print()
+    print(
+        "| case | t (s) | stop (s) | full search (s) | ratio | CPU ms | full CPU ms |"
+    )
+    print("|---:|---:|---:|---:|---:|---:|---:|")
+    print("\n".join(cases))
 
 
 def table_main(paths: int, factor: float, periods: list[float]) -> None:

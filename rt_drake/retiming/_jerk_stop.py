@@ -9,7 +9,15 @@ For a stop distance ``L = s_stop - s_t`` the fastest such stop is the
 jerk-limited retime (:func:`._jerk.jerk_limited`: TOPP-RA first, then its
 LPs) of the sub-path ``sigma = (s - s_t) / L`` in [0, 1], from
 ``sigma' = s'_t / L`` with ``sigma'' = s''_t / L`` fixed, to rest. Its
-duration ``T(L)`` is defined from the shortest feasible L on. The search:
+duration ``T(L)`` is defined from the shortest feasible L on, and grows
+with L from there (about 1 % per 1 % of L on the MOVE-like paths of
+``benchmarks/bench_stop.py``), so the stop kept is the one at the shortest
+L found with a stop. Each L tried costs one jerk-limited retime, so the
+search tries few. From a guess (:func:`_walk`; :mod:`._stop` guesses by
+a simulated jerk-limited braking, :mod:`._stop_table` by the previous
+instant's stop): from the guess, down (or up) by growing factors until
+the answer changes, then bisections to :data:`RESOLUTION`. Without a
+guess (the search before guesses, kept as the reference):
 
 1. ``L_0``: the acceleration-limited shortest stop (:mod:`._stop_pass`),
    a lower bound (a jerk limit only removes profiles);

@@ -1,4 +1,10 @@
-"""A first guess of a jerk-limited stop's distance: a 1-D stop along the path.
+"""First guesses of a jerk-limited stop's distance: 1-D stops along the path.
+
+Two guesses: :func:`path_stop_distance`, in closed form, frozen at the
+state at t; :func:`braking_distance`, simulated along the path under the
+grid's own rows (grasp included) and the joint jerk.
+
+The closed form:
 
 Frozen at the state at t (``s_t``, ``v = s'_t``, ``a_0 = s''_t``), the path
 acceleration and jerk each joint allows are ``|q'_j(s_t)| |s''| <= A_j``
@@ -24,6 +30,7 @@ from __future__ import annotations
 import numpy as np
 
 from rt_drake.retiming._joint_path import JointPath
+from rt_drake.retiming._samples import PathSamples
 from rt_drake.retiming.limits import JointLimits
 
 
@@ -83,4 +90,103 @@ def path_stop_distance(
     return axis_stop_distance(sd, sdd, a, j)
 
 
-__all__ = ["axis_stop_distance", "path_stop_distance"]
+#: s: time step of :func:`braking_distance`'s simulation.
+STEP = 2e-3
+#: s: the longest stop :func:`braking_distance` simulates.
+LONGEST = 2.0
+
+
+def braking_distance(
+    samples: PathSamples,
+    d3q: np.ndarray,
+    limits: JointLimits,
+    F: np.ndarray | None,
+    g: np.ndarray | None,
+    sd: float,
+    sdd: float,
+) -> float:
+    """A jerk-limited stop simulated along the path from ``samples.s[0]``.
+
+    The state ``(s, v = s', u = s'')`` is stepped by :data:`STEP` with the
+    path jerk ``w``: the smallest the joint jerk allows, ``|q' w + 3 q'' v
+    u + q^(3) v^3| <= J`` (per joint), with ``u`` kept at or above the grid
+    rows' smallest path acceleration at ``(s, v^2)`` (``alpha u + beta x +
+    gamma <= 0`` with ``alpha < 0``: joint accelerations, torques, grasp
+    rows as :func:`._stop_pass.grid_constraints`, linear in s between grid
+    points); once ``v <= u^2 / (2 w_up)`` (``w_up``: the largest path jerk
+    allowed), ``w = w_up`` (the final ramp to rest, as in the closed
+    form). A guess, not a bound: the rows hold only at the grid points and
+    the ramps are greedy.
+
+    Args:
+        samples: The path at the grid from ``s_t`` on (torques and wrench
+            coefficients as the rows need).
+        d3q: (G, n) the path's third derivative in s at those points.
+        limits: With ``jerk`` set.
+        F: The grasp rows' normals (R, 6), or None.
+        g: Their offsets (R,), or None.
+        sd: ``s'_t`` (1/s).
+        sdd: ``s''_t`` (1/s^2).
+
+    Returns:
+        The distance in s to rest (to the grid's end if it gets there first).
+    """
+    assert limits.jerk is not None
+    alpha, beta, gamma = _rows(samples, limits, F, g)
+    s_grid = samples.s
+    last = len(s_grid) - 2
+    s, v, u = float(s_grid[0]), float(sd), float(sdd)
+    for _ in range(int(LONGEST / STEP)):
+        if v <= 0.0 or s >= s_grid[-1]:
+            break
+        k = min(max(int(np.searchsorted(s_grid, s, side="right")) - 1, 0), last)
+        weight = (s - s_grid[k]) / (s_grid[k + 1] - s_grid[k])
+        dq, ddq, dddq, a_k, b_k, c_k = (
+            (1.0 - weight) * values[k] + weight * values[k + 1]
+            for values in (samples.dq, samples.ddq, d3q, alpha, beta, gamma)
+        )
+        rest = 3.0 * ddq * v * u + dddq * v**3
+        moving = np.abs(dq) > 1e-9
+        low = (-limits.jerk - rest)[moving] / dq[moving]
+        high = (limits.jerk - rest)[moving] / dq[moving]
+        w_low = float(np.max(np.minimum(low, high)))
+        w_high = float(np.min(np.maximum(low, high)))
+        down = a_k < 0.0
+        u_min = float(np.max(-(b_k[down] * v * v + c_k[down]) / a_k[down]))
+        if u < 0.0 and w_high > 0.0 and v <= u * u / (2.0 * w_high):
+            w = w_high
+        else:
+            w = min(w_low, 0.0)
+        s += v * STEP + u * STEP**2 / 2.0 + w * STEP**3 / 6.0
+        v += u * STEP + w * STEP**2 / 2.0
+        u = max(u + w * STEP, min(u_min, 0.0))
+    return min(s, float(s_grid[-1])) - float(s_grid[0])
+
+
+def _rows(
+    samples: PathSamples,
+    limits: JointLimits,
+    F: np.ndarray | None,
+    g: np.ndarray | None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``alpha u + beta x + gamma <= 0`` per grid point: (G, R) each."""
+    dq, ddq = samples.dq, samples.ddq
+    bound = np.broadcast_to(limits.acceleration, dq.shape)
+    parts = [(dq, ddq, -bound), (-dq, -ddq, -bound)]
+    if samples.torque is not None and limits.torque is not None:
+        a, b, c = samples.torque
+        parts += [(a, b, c - limits.torque), (-a, -b, -c - limits.torque)]
+    if F is not None and g is not None and samples.wrench is not None:
+        a, b, c = samples.wrench
+        parts.append((a @ F.T, b @ F.T, c @ F.T - g))
+    alpha, beta, gamma = (np.hstack([part[i] for part in parts]) for i in range(3))
+    return alpha, beta, gamma
+
+
+__all__ = [
+    "LONGEST",
+    "STEP",
+    "axis_stop_distance",
+    "braking_distance",
+    "path_stop_distance",
+]

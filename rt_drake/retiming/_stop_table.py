@@ -14,9 +14,10 @@ most one period).
 Each stop is :func:`._stop.protective_stop`'s at ``t_k``. Under jerk
 limits, the search over the stop distance starts from the previous
 instant's stop distance scaled by the change of a 1-D model's
-(:mod:`._stop_distance`; :func:`._stop.guided_stop`); where the previous
-stop was the MOVE's own remainder (in its final braking), so is the next.
-Without jerk limits each stop is computed alone (a few ms).
+(:mod:`._stop_distance`; :func:`._stop.guided_stop`), and from a simulated
+jerk-limited braking's (as a stop computed alone) at the first instant and
+after the MOVE's own remainder. Without jerk limits each stop is computed
+alone (a few ms).
 """
 
 from __future__ import annotations
@@ -131,7 +132,7 @@ def stop_table(
             assert limits.jerk is not None
             s, sd, sdd = path_state_at(result, float(t))
             model = path_stop_distance(spline, limits, s, sd, sdd)
-            guess = _guess(previous, s, model)
+            guess = _guess(previous, model)
         stop = guided_stop(
             plant, path, limits, result, float(t), grasp, context, cup, guess
         )
@@ -140,23 +141,20 @@ def stop_table(
     return StopTable(times, tuple(stops), period)
 
 
-def _guess(
-    previous: tuple[StopResult, float] | None, s: float, model: float
-) -> float | None:
+def _guess(previous: tuple[StopResult, float] | None, model: float) -> float | None:
     """The previous instant's stop distance, scaled by the 1-D model's change.
 
     ``L_k = L_{k-1} m_k / m_{k-1}`` with ``m`` the 1-D stop distance of
     :mod:`._stop_distance` (it follows the MOVE's own path acceleration,
-    which the stop distance depends on most); None: at rest there. Where
-    the previous stop was the MOVE's own remainder, the path's end.
+    which the stop distance depends on most); None (the stop's own guess,
+    the simulated braking's) at the first instant, after a stop at rest or
+    after the MOVE's own remainder.
     """
     if previous is None:
         return None
     stop, model_before = previous
-    if stop.s_stop <= stop.s_start or model_before <= 0.0 or model <= 0.0:
+    if not stop.s_start < stop.s_stop < 1.0 or model_before <= 0.0 or model <= 0.0:
         return None
-    if stop.s_stop >= 1.0:
-        return 1.0 - s
     return (stop.s_stop - stop.s_start) * model / model_before
 
 

@@ -11,7 +11,9 @@ import numpy as np
 import pytest
 from ruckig import ControlInterface, InputParameter, Result, Ruckig, Trajectory
 
-from rt_drake.retiming._stop_distance import axis_stop_distance
+from rt_drake.retiming import JointLimits
+from rt_drake.retiming._samples import PathSamples
+from rt_drake.retiming._stop_distance import axis_stop_distance, braking_distance
 
 
 def _ruckig_distance(v: float, a0: float, a: float, j: float) -> float:
@@ -40,3 +42,30 @@ def test_the_axis_stop_distance_is_ruckigs(seed):
 
 def test_at_rest_the_distance_is_zero():
     assert axis_stop_distance(0.0, 0.0, 5.0, 50.0) == 0.0
+
+
+def test_the_simulated_braking_on_a_straight_line_is_the_closed_form():
+    """q(s) = q0 + s d: q'' = q''' = 0, so the path's acceleration and jerk
+    bounds are the tightest joint's, ``min_j limit_j / |d_j|``, and the
+    simulation (steps of 2 ms) lands on the closed-form distance."""
+    d = np.array([0.6, -0.3, 0.4, 0.2, -0.5, 0.7])
+    acceleration = np.array([3.0, 3.0, 4.0, 5.0, 5.0, 6.0])
+    limits = JointLimits(np.full(6, 3.0), acceleration, jerk=20.0 * acceleration)
+    s = np.linspace(0.0, 1.0, 101)
+    samples = PathSamples(
+        s=s,
+        q=s[:, None] * d,
+        dq=np.tile(d, (len(s), 1)),
+        ddq=np.zeros((len(s), 6)),
+        x_cap=np.full(len(s), np.inf),
+        torque=None,
+        wrench=None,
+    )
+    a = float(np.min(acceleration / np.abs(d)))
+    j = float(np.min(limits.jerk / np.abs(d)))
+    for v, a0 in ((1.0, 0.0), (2.0, 0.5 * a), (1.5, -0.5 * a)):
+        expected = axis_stop_distance(v, a0, a, j)
+        got = braking_distance(
+            samples, np.zeros((len(s), 6)), limits, None, None, v, a0
+        )
+        assert got == pytest.approx(expected, rel=0.02)

