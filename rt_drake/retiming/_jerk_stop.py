@@ -48,6 +48,7 @@ from pydrake.systems.framework import Context
 
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.retiming._jerk import jerk_limited
+from rt_drake.retiming._jerk_set import SetGrasp
 from rt_drake.retiming._jerk_timed_path import JerkTimedPath
 from rt_drake.retiming._joint_path import JointPath
 from rt_drake.retiming._retime_errors import (
@@ -55,10 +56,13 @@ from rt_drake.retiming._retime_errors import (
     PathNotControllableError,
 )
 from rt_drake.retiming._samples import PathSamples, sample_path
+from rt_drake.retiming._set_slack import set_slack
+from rt_drake.retiming._set_tables import parameter_columns
 from rt_drake.retiming._solve import BETWEEN_TOLERANCE, retime
 from rt_drake.retiming._sub_path import stop_grid, sub_path
 from rt_drake.retiming.grid import MIN_STEP
-from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming.limits import GraspConstraint, JointLimits, ObjectSetGrasp
+from rt_drake.retiming.stage_rows import normalised_rows
 
 #: Factor between successive stop distances tried until a stop is found.
 GROWTH = 1.3
@@ -94,7 +98,9 @@ class JerkStopProblem:
 
     Attributes:
         plant, spline, limits, grasp, context, cup: As for the retime
-            (``limits.jerk`` set; grasp of one object or None).
+            (``limits.jerk`` set; grasp of one object, of a set of objects
+            (without torque limits: every object's rows, :mod:`._jerk_set`,
+            the start widened by :mod:`._set_slack`), or None).
         t: s, when the stop begins.
         s: ``s_t``; sd: ``s'_t`` (1/s, > 0); sdd: ``s''_t`` (1/s^2).
         own: The motion's grid points (those after ``s_t`` are kept in each
@@ -123,20 +129,29 @@ class JerkStopProblem:
         sub = sub_path(self.spline, self.s, self.s + length)
         grid = stop_grid(self.own, self.s, length)
         sd, sdd = self.sd / length, self.sdd / length
-        held = None if self.grasp is None else self.grasp.held
+        robust = self.grasp is not None and self.grasp.is_robust
+        columns = layout = None
+        if robust:  # every object of the set: its parameter columns
+            assert isinstance(self.grasp, ObjectSetGrasp)
+            columns, layout = parameter_columns(self.grasp.objects)
+        held = None if self.grasp is None or robust else self.grasp.held
         torque = self.limits.torque is not None
         F = None if self.grasp is None else self.grasp.F
         g = None if self.grasp is None else self.grasp.g
         start = sample_path(
             self.plant, sub, np.zeros(1), self.limits.velocity, torque, held,
-            self.context, self.cup,
+            self.context, self.cup, columns,
         )  # fmt: skip
         limits, g = start_slack(start, sd * sd, sdd, self.limits, F, g)
+        objects = None
+        if layout is not None and F is not None and g is not None:
+            g = set_slack(start, sd * sd, sdd, F, g, layout)
+            objects = SetGrasp(normalised_rows(F, g), layout)
 
         def sample(s: np.ndarray) -> PathSamples:
             return sample_path(
                 self.plant, sub, s, limits.velocity, torque, held, self.context,
-                self.cup,
+                self.cup, columns,
             )  # fmt: skip
 
         wider = None
@@ -163,7 +178,8 @@ class JerkStopProblem:
         for x_bar in (np.minimum(x_topp, x_move / length**2), x_topp):
             try:
                 profile = jerk_limited(
-                    sub, sample, topp.gridpoints, x_bar, limits, F, g, None, sd, 0.0,
+                    sub, sample, topp.gridpoints, x_bar, limits,
+                    None if robust else F, None if robust else g, objects, sd, 0.0,
                     self.t, BETWEEN_TOLERANCE, sdd_start=sdd,
                 )  # fmt: skip
                 break

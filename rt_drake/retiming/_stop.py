@@ -26,7 +26,8 @@ along the same path ``q(s)``, never leaving it.
 A grasp of a set of objects (``ObjectSetGrasp``): step 1 brakes under the
 nominal object's rows (a stop no longer than the set's), step 2 retimes
 under every object of the set (the retimer's exact set rows), and the
-candidates grow from there until the whole set holds.
+candidates grow from there until the whole set holds. With jerk limits
+too, the jerk-limited stops hold every object's rows (as the retimer's).
 
 With jerk limits (``limits.jerk``) the stop is :mod:`._jerk_stop`'s instead:
 from the MOVE's own ``(s, s', s'')`` at t, the path acceleration continuous
@@ -114,8 +115,8 @@ def protective_stop(
         result: The retimed trajectory.
         t: When the stop begins, s, in ``[start_time, end_time]`` of
             ``result.trajectory``.
-        grasp: Its grasp (one held object, or a set of objects without
-            jerk limits); None: no object.
+        grasp: Its grasp (one held object, or a set of objects: with jerk
+            limits, not with torque limits too); None: no object.
         context: Scratch context of ``plant``.
         cup: The cup frame C (default: the plant's ``suction_cup``).
 
@@ -126,7 +127,7 @@ def protective_stop(
     Raises:
         RetimeInputError: ``t`` not a finite number inside the trajectory,
             a malformed argument, or a grasp of a set of objects with
-            jerk limits.
+            jerk and torque limits.
         StopNotFoundError: the state at t cannot be brought to rest within
             the path (not for a trajectory this retimer made).
     """
@@ -374,11 +375,12 @@ def _check_objects(
             error=RetimeInputError,
         )  # fmt: skip
         jerk = isinstance(limits, JointLimits) and limits.jerk is not None
-        if getattr(grasp, "is_robust", False) and jerk:
+        torque = isinstance(limits, JointLimits) and limits.torque is not None
+        if getattr(grasp, "is_robust", False) and jerk and torque:
             raise RetimeInputError(
-                "stop: jerk limits with the grasp of a set of objects are not "
-                "supported for a stop (retime supports them): stop without them "
-                "(limits.jerk None)"
+                "stop: jerk limits with the grasp of a set of objects and torque "
+                "limits are not supported (as for retime): stop without torque "
+                "limits or without jerk limits (limits.jerk None)"
             )
     if context is not None:
         check(context, "context", Context)
