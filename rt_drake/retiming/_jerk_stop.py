@@ -121,10 +121,12 @@ class JerkStopProblem:
     own: np.ndarray
     own_x: np.ndarray
 
-    def stop(self, length: float) -> JerkTimedPath | None:
+    def stop(self, length: float, thorough: bool = True) -> JerkTimedPath | None:
         """The fastest jerk-limited stop to rest at ``s + length`` (None: none).
 
-        In sigma, ``x_sigma = x_s / L^2`` and ``u_sigma = u_s / L``.
+        In sigma, ``x_sigma = x_s / L^2`` and ``u_sigma = u_s / L``. Not
+        ``thorough``: the LPs linearised at the first profile only (the
+        module docstring's), not again at TOPP-RA's alone.
         """
         sub = sub_path(self.spline, self.s, self.s + length)
         grid = stop_grid(self.own, self.s, length)
@@ -175,7 +177,8 @@ class JerkStopProblem:
         x_topp = topp.sd**2
         x_move = np.interp(self.s + length * topp.gridpoints, self.own, self.own_x)
         profile = None
-        for x_bar in (np.minimum(x_topp, x_move / length**2), x_topp):
+        linearisations = [np.minimum(x_topp, x_move / length**2), x_topp]
+        for x_bar in linearisations[: 2 if thorough else 1]:
             try:
                 profile = jerk_limited(
                     sub, sample, topp.gridpoints, x_bar, limits,
@@ -241,7 +244,10 @@ def jerk_stop(
             instant's): the search walks from it (:func:`_walk`) instead.
     """
     if guess is not None:
-        return _kept(problem, _walk(problem, shortest, guess), remainder)
+        walked = _walk(problem, shortest, guess)
+        if walked.stops:
+            return _kept(problem, walked, remainder)
+        # None found with one linearisation: the full search, thorough.
     room = 1.0 - problem.s
     tried: list[tuple[float, float]] = []
     found: dict[float, JerkTimedPath] = {}
@@ -292,13 +298,17 @@ def _walk(problem: JerkStopProblem, shortest: float, guess: float) -> _Found:
     until a distance without one; without, up by the same factors until
     one (the path's end caps it); then bisections (geometric) until the
     last distance without a stop and the first with one are within ``1 +
-    r`` (``r`` = :data:`RESOLUTION`).
+    r`` (``r`` = :data:`RESOLUTION`). Each distance is tried with the LPs
+    linearised once (not ``thorough``: on the cases of
+    ``benchmarks/bench_stop.py`` the second linearisation never found a
+    stop the first missed, and a distance without a stop cost both); if
+    none has a stop, :func:`jerk_stop` runs the full, thorough search.
     """
     room = 1.0 - problem.s
     found = _Found([], {})
 
     def attempt(length: float) -> bool:
-        stop = problem.stop(length)
+        stop = problem.stop(length, thorough=False)
         found.tried.append((length, np.inf if stop is None else stop.duration))
         if stop is not None:
             found.stops[length] = stop
