@@ -129,7 +129,8 @@ def braking_distance(
         sdd: ``s''_t`` (1/s^2).
 
     Returns:
-        The distance in s to rest (to the grid's end if it gets there first).
+        The distance in s to rest (to the grid's end if it gets there
+        first; where q' = 0, the distance so far).
     """
     assert limits.jerk is not None
     alpha, beta, gamma = _rows(samples, limits, F, g)
@@ -147,12 +148,16 @@ def braking_distance(
         )
         rest = 3.0 * ddq * v * u + dddq * v**3
         moving = np.abs(dq) > 1e-9
+        if not moving.any():  # q' = 0: no path jerk bound to brake with
+            break
         low = (-limits.jerk - rest)[moving] / dq[moving]
         high = (limits.jerk - rest)[moving] / dq[moving]
         w_low = float(np.max(np.minimum(low, high)))
         w_high = float(np.min(np.maximum(low, high)))
         down = a_k < 0.0
-        u_min = float(np.max(-(b_k[down] * v * v + c_k[down]) / a_k[down]))
+        u_min = -np.inf
+        if down.any():
+            u_min = float(np.max(-(b_k[down] * v * v + c_k[down]) / a_k[down]))
         if u < 0.0 and w_high > 0.0 and v <= u * u / (2.0 * w_high):
             w = w_high
         else:
