@@ -22,7 +22,10 @@ objects), ``_between`` (limits held between grid points), ``_samples``,
 kernels before anything is timed), ``_timed_path``, ``_time_scaled``,
 ``_check`` (dense 1 kHz verification), ``_floor`` (the least time the
 joint limits allow between two configurations, :func:`segment_floor`),
-``_stop`` and ``_stop_pass`` (protective stops along the path), ``_jerk``,
+``_stop`` and ``_stop_pass`` (protective stops along the path), ``_jerk_stop``,
+``_stop_distance`` and ``_set_slack`` (jerk-limited stops: the search over
+the stop distance and its first guess), ``_stop_table`` (stops computed
+ahead, :func:`stop_table`), ``_jerk``,
 ``_jerk_rows``, ``_jerk_points`` and ``_jerk_timed_path`` (jerk limits: LPs
 after TOPP-RA, and the motion they give), ``_trajectory_file`` (the ``.npz``
 format) and ``_retime_errors`` (typed errors and statuses).
