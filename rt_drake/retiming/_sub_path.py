@@ -35,17 +35,15 @@ def sub_path(spline: JointPath, start: float, end: float) -> JointPath:
     return JointPath(evaluate, breaks, spline.cubic, spline.num_joints)
 
 
-def stop_grid(
-    own: np.ndarray, start: float, length: float, points: int = STOP_GRIDPOINTS
-) -> np.ndarray:
+def stop_grid(own: np.ndarray, start: float, length: float) -> np.ndarray:
     """Grid in sigma of a stop from ``start`` over ``length``.
 
-    ``points`` uniform points and the motion's own grid points ``own`` (in
-    s) inside, none closer than ``MIN_STEP``; it ends at 1.
+    :data:`STOP_GRIDPOINTS` uniform points and the motion's own grid points
+    ``own`` (in s) inside, none closer than ``MIN_STEP``; it ends at 1.
     """
     own = np.asarray(own, dtype=float)
     own = (own[(own > start) & (own < start + length)] - start) / length
-    grid = np.unique(np.concatenate([np.linspace(0, 1, points), own]))
+    grid = np.unique(np.concatenate([np.linspace(0, 1, STOP_GRIDPOINTS), own]))
     grid = grid[np.concatenate([[True], np.diff(grid) > MIN_STEP])]
     grid[-1] = 1.0
     return grid
