@@ -2,7 +2,8 @@
 
 Run: ``PYTHONPATH=. python benchmarks/bench_stop.py [--paths 6] [--instants 9]``;
 ``--jerk K`` (jerk limits K x the acceleration limits, per second) runs the
-jerk-limited comparison instead (:func:`jerk_main`).
+jerk-limited comparison instead (:func:`jerk_main`); ``--table [PERIOD ...]``
+the stop tables' cost (:func:`table_main`, jerk 20x unless ``--jerk``).
 
 The MOVE-like paths of ``bench_retime.py`` (lift, swing joint 1 by 0.6 to
 1.8 rad, set down; the notebook on the scenario's cup, 100 grid points) are
@@ -76,7 +77,11 @@ def main() -> None:
     parser.add_argument("--instants", type=int, default=9)
     parser.add_argument("--jerk", type=float, default=None)
     parser.add_argument("--sweep", type=int, default=24)
+    parser.add_argument("--table", type=float, nargs="*", default=None)
     args = parser.parse_args()
+    if args.table is not None:
+        table_main(args.paths, args.jerk or 20.0, args.table or [0.01, 0.05])
+        return
     if args.jerk is not None:
         jerk_main(args.paths, args.instants, args.jerk, args.sweep)
         return
@@ -165,21 +170,24 @@ def ruckig_stop(v: np.ndarray, a: np.ndarray, limits: JointLimits) -> float:
 
 
 def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
-    """Jerk-limited stops beside a sweep over the stop distance and Ruckig.
+    """Jerk-limited stops beside the full search, a sweep and Ruckig.
 
     On the MOVE-like paths, retimed under the grasp with jerk limits
     ``factor`` x the acceleration limits, each stop is compared with the
     fastest of ``sweep`` jerk-limited stops at evenly spaced distances from
     the acceleration-limited shortest one to the path's end (the reference
-    search, with the MOVE's own remainder), and the joint brake with Ruckig's
-    per-joint stops (:func:`ruckig_stop`). CPU time of this thread.
+    search, with the MOVE's own remainder and the stop itself: ``--sweep 0``
+    skips it), the search from the simulated braking's guess with the full
+    search from the acceleration-limited distance (``guided_stop(...,
+    simulate=False)``, session 3's), case by case, and the joint brake with
+    Ruckig's per-joint stops (:func:`ruckig_stop`). CPU time of this thread.
     """
     import dataclasses
 
     from rt_drake.dynamics.cup_frame import CupFrame
     from rt_drake.retiming._jerk_stop import JerkStopProblem
     from rt_drake.retiming._joint_path import as_joint_path
-    from rt_drake.retiming._stop import path_state_at
+    from rt_drake.retiming._stop import guided_stop, path_state_at
 
     scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
     plant = make_arm_plant(scenario)
@@ -198,8 +206,10 @@ def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
         for k in (
             "retime", "stop_cpu", "brake_cpu", "held", "best", "ratio", "brake",
             "ruckig", "brake_ratio", "held_margin", "brake_margin", "jerk_margin",
+            "full_cpu", "full", "vs_full",
         )
     }  # fmt: skip
+    cases: list[str] = []
     for path in move_paths(paths):
         result, seconds = cpu(lambda p=path: retime(plant, p, limits, grasp))
         rows["retime"].append(seconds)
@@ -218,6 +228,20 @@ def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
                 )
             )
             rows["brake_cpu"].append(seconds)
+            full, seconds = cpu(
+                lambda p=path, r=result, t=t: guided_stop(
+                    plant, p, limits, r, t, grasp, context, None, None,
+                    simulate=False,
+                )
+            )  # fmt: skip
+            rows["full_cpu"].append(seconds)
+            rows["full"].append(full.duration)
+            rows["vs_full"].append(held.duration / full.duration)
+            cases.append(
+                f"| {len(cases)} | {t:.3f} | {held.duration:.4f} | "
+                f"{full.duration:.4f} | {held.duration / full.duration:.4f} | "
+                f"{rows['stop_cpu'][-1] * 1e3:.0f} | {seconds * 1e3:.0f} |"
+            )
             s, sd, sdd = path_state_at(result, t)
             problem = JerkStopProblem(
                 plant, spline, limits, grasp, context, cup, t, s, sd, sdd,
@@ -258,7 +282,10 @@ def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
     print(row("jerk-limited retime of the MOVE (CPU)", "retime", 1e3, "ms"))
     print(row("protective_stop, jerk-limited (CPU)", "stop_cpu", 1e3, "ms"))
     print(row("joint_brake_stop, jerk-limited (CPU)", "brake_cpu", 1e3, "ms"))
+    print(row("protective_stop, full search (reference, CPU)", "full_cpu", 1e3, "ms"))
     print(row("grasp-aware stop time", "held", 1.0, "s"))
+    print(row("grasp-aware stop time, full search (reference)", "full", 1.0, "s"))
+    print(row("grasp-aware / full search's", "vs_full", 1.0, "1"))
     print(row(f"fastest of the {sweep}-distance sweep", "best", 1.0, "s"))
     print(row("grasp-aware / sweep's fastest", "ratio", 1.0, "1"))
     print(row("joint-brake stop time", "brake", 1.0, "s"))
@@ -269,6 +296,73 @@ def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
     print(row("jerk margin, MOVE + grasp-aware stop", "jerk_margin", 1.0, "1"))
     left = sum(m < -1e-3 for m in rows["brake_margin"])
     print(f"joint-brake stops leaving the grasp set (margin < -1e-3): {left}/{count}")
+    print()
+    print(
+        "| case | t (s) | stop (s) | full search (s) | ratio | CPU ms | full CPU ms |"
+    )
+    print("|---:|---:|---:|---:|---:|---:|---:|")
+    print("\n".join(cases))
+
+
+def table_main(paths: int, factor: float, periods: list[float]) -> None:
+    """CPU of ``stop_table`` per MOVE and per stop, beside the MOVE's retime.
+
+    Jerk limits ``factor`` x the acceleration limits per second, the
+    notebook's grasp; for each period, each path's table, and a
+    ``protective_stop`` computed alone at every third instant of it (its
+    duration beside the table's: the table's search starts from a guess).
+    """
+    import dataclasses
+
+    from rt_drake import stop_table
+
+    scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
+    plant = make_arm_plant(scenario)
+    context = plant.CreateDefaultContext()
+    plain = JointLimits.from_plant(plant, scenario.robot)
+    limits = dataclasses.replace(plain, jerk=factor * plain.acceleration)
+    grasp = GraspConstraint.for_cup(
+        held_object_of(scenario.object("notebook")), scenario.cup
+    )
+    path0 = move_paths(1)[0]
+    warm = retime(plant, path0, limits, grasp)
+    protective_stop(plant, path0, limits, warm, 0.3 * warm.duration, grasp)
+    print("| period | MOVE | duration | retime CPU | table CPU | stops | per stop |")
+    print("|---:|---:|---:|---:|---:|---:|---:|")
+    ratios: list[float] = []
+    alone_cpu: list[float] = []
+    for period in periods:
+        for i, path in enumerate(move_paths(paths)):
+            result, seconds = cpu(lambda p=path: retime(plant, p, limits, grasp))
+            table, table_cpu = cpu(
+                lambda p=path, r=result, h=period: stop_table(
+                    plant, p, limits, r, h, grasp, context=context
+                )
+            )
+            n = len(table.times)
+            print(
+                f"| {period * 1e3:g} ms | {i} | {result.duration:.3f} s | "
+                f"{seconds * 1e3:.0f} ms | {table_cpu:.2f} s | {n} | "
+                f"{table_cpu / n * 1e3:.0f} ms |"
+            )
+            if period != periods[-1]:
+                continue
+            for k in range(1, n - 1, 3):
+                t = float(table.times[k])
+                alone, seconds = cpu(
+                    lambda p=path, r=result, t=t: protective_stop(
+                        plant, p, limits, r, t, grasp, context=context
+                    )
+                )
+                alone_cpu.append(seconds)
+                if alone.duration > 0.0:
+                    ratios.append(table.stops[k].duration / alone.duration)
+    r = np.asarray(ratios)
+    print(
+        f"table stop / stop alone, duration, {len(r)} instants: median "
+        f"{np.median(r):.4f}, min {r.min():.4f}, max {r.max():.4f}; "
+        f"stop alone CPU median {np.median(alone_cpu) * 1e3:.0f} ms"
+    )
 
 
 if __name__ == "__main__":

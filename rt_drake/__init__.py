@@ -30,7 +30,8 @@ contact > types > errors.
   ``GraspConstraint``, ``check_trajectory``, ``TrajectoryCheck``,
   ``save_trajectory``, ``load_trajectory``, ``sample_trajectory``;
   protective stops along the path: ``protective_stop`` (keeps the grasp),
-  ``joint_brake_stop`` (joints brake at their limits), ``StopResult``;
+  ``joint_brake_stop`` (joints brake at their limits), ``StopResult``,
+  ``stop_table`` (stops computed ahead, ``StopTable.at(t)``);
 - planning: ``CyclePlanner``, ``PlannedPath``, ``GeometricPath``; MOVE
   path optimisation: ``MoveOptimizer``, ``MoveOptimizerOptions``,
   ``OptimizedMove``;
@@ -92,6 +93,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
         SavedTrajectory,
         StopNotFoundError,
         StopResult,
+        StopTable,
         TrajectoryCheck,
         check_trajectory,
         joint_brake_stop,
@@ -101,6 +103,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
         retime,
         sample_trajectory,
         save_trajectory,
+        stop_table,
     )
     from rt_drake.shaping import (
         MoveOptimizer,
@@ -155,8 +158,10 @@ _LAZY: dict[str, str] = {
     "RetimeResult": "rt_drake.retiming",
     "StopNotFoundError": "rt_drake.retiming",
     "StopResult": "rt_drake.retiming",
+    "StopTable": "rt_drake.retiming",
     "joint_brake_stop": "rt_drake.retiming",
     "protective_stop": "rt_drake.retiming",
+    "stop_table": "rt_drake.retiming",
     "SavedTrajectory": "rt_drake.retiming",
     "TrajectoryCheck": "rt_drake.retiming",
     "check_trajectory": "rt_drake.retiming",
@@ -206,6 +211,7 @@ __all__ = [
     "SharedLoadSet",
     "StopNotFoundError",
     "StopResult",
+    "StopTable",
     "TooLargeError",
     "ToolParameters",
     "ToolWrenchSet",
@@ -226,6 +232,7 @@ __all__ = [
     "object_wrench",
     "path_waypoints_and_knots",
     "protective_stop",
+    "stop_table",
     "retime",
     "run_cycle",
     "sample_trajectory",

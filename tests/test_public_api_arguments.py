@@ -54,6 +54,7 @@ from rt_drake import (
     run_cycle,
     sample_trajectory,
     save_trajectory,
+    stop_table,
     tool_wrench_polytope,
     worst_cup_polytope,
 )
@@ -274,6 +275,13 @@ CASES = [
     ("joint_brake_stop",
      lambda e: joint_brake_stop(e.plant, PATH, "fast", e.result, 0.1),
      ["stop: limits must be a JointLimits", "got str 'fast'"]),
+    ("stop_table", lambda e: stop_table(e.plant, PATH, e.limits, e.result, 0.0),
+     ["stop_table: period must be a finite number > 0", "got float 0.0"]),
+    ("stop_table", lambda e: stop_table(e.plant, PATH, e.limits, None, 0.01),
+     ["stop_table: result must be a RetimeResult", "got None"]),
+    ("stop_table",
+     lambda e: stop_table(e.plant, PATH, e.limits, e.result, 10.0).at(-1.0),
+     ["stop table: t must be a finite number in [0", "got float -1.0"]),
     ("check_trajectory", lambda e: check_trajectory(e.plant, None, e.limits),
      ["check_trajectory: trajectory must be a Trajectory", "got None"]),
     ("check_trajectory",
@@ -385,6 +393,7 @@ NOT_CALLED = {
     "RetimeResult",
     "SavedTrajectory",
     "StopResult",  # built by protective_stop and joint_brake_stop
+    "StopTable",  # built by stop_table
     "Scenario",  # built by load_scenario, which checks every key
     "TimedPath",  # built by retime
     "JerkTimedPath",  # built by retime with jerk limits

@@ -27,6 +27,7 @@ PRINTS = {
         "grasp-aware stop within every limit: True",
         "joint brake grasp margin: -",
         "MOVE and stop within every limit, jerk included: True",
+        "table: 9 stops; trip at 0.234 s -> stop at 0.300 s",
     ],
     "docs/guides/cycle-floor.md": ["whetstone_box 1.190 s of motion at least"],
     "docs/reference/cli.md": ["True", ", 6) scene"],

@@ -30,10 +30,13 @@ kernels before anything is timed), ``_timed_path``, ``_time_scaled``,
 ``_check`` (dense 1 kHz verification; ``_check_report`` its margins),
 ``_floor`` (the least time the joint limits allow between two
 configurations, :func:`segment_floor`), ``_stop`` and ``_stop_pass``
-(protective stops along the path), ``_jerk``, ``_jerk_rows``,
-``_jerk_points`` and ``_jerk_timed_path`` (jerk limits: LPs after TOPP-RA,
-and the motion they give), ``_trajectory_file`` (the ``.npz`` format) and
-``_retime_errors`` (typed errors and statuses).
+(protective stops along the path), ``_jerk_stop``, ``_stop_distance`` and
+``_set_slack`` (jerk-limited stops: the search over the stop distance and
+its first guess), ``_stop_table`` (stops computed ahead,
+:func:`stop_table`), ``_jerk``, ``_jerk_rows``, ``_jerk_points`` and
+``_jerk_timed_path`` (jerk limits: LPs after TOPP-RA, and the motion they
+give), ``_trajectory_file`` (the ``.npz`` format) and ``_retime_errors``
+(typed errors and statuses).
 """
 
 from rt_drake.retiming._check import check_trajectory
@@ -75,6 +78,7 @@ from rt_drake.retiming._stop import (
     joint_brake_stop,
     protective_stop,
 )
+from rt_drake.retiming._stop_table import StopTable, stop_table
 from rt_drake.retiming._time_scaled import TimeScaled
 from rt_drake.retiming._timed_path import TimedPath
 from rt_drake.retiming._trajectory_file import (
@@ -117,6 +121,7 @@ __all__ = [
     "SavedTrajectory",
     "StopNotFoundError",
     "StopResult",
+    "StopTable",
     "TimeScaled",
     "TimedPath",
     "ToolGrasp",
@@ -132,6 +137,7 @@ __all__ = [
     "load_trajectory",
     "path_waypoints_and_knots",
     "protective_stop",
+    "stop_table",
     "rest_to_rest_jerk",
     "retime",
     "sample_trajectory",

@@ -9,7 +9,15 @@ For a stop distance ``L = s_stop - s_t`` the fastest such stop is the
 jerk-limited retime (:func:`._jerk.jerk_limited`: TOPP-RA first, then its
 LPs) of the sub-path ``sigma = (s - s_t) / L`` in [0, 1], from
 ``sigma' = s'_t / L`` with ``sigma'' = s''_t / L`` fixed, to rest. Its
-duration ``T(L)`` is defined from the shortest feasible L on. The search:
+duration ``T(L)`` is defined from the shortest feasible L on, and grows
+with L from there (about 1 % per 1 % of L on the MOVE-like paths of
+``benchmarks/bench_stop.py``), so the stop kept is the one at the shortest
+L found with a stop. Each L tried costs one jerk-limited retime, so the
+search tries few. From a guess (:func:`_walk`; :mod:`._stop` guesses by
+a simulated jerk-limited braking, :mod:`._stop_table` by the previous
+instant's stop): from the guess, down (or up) by growing factors until
+the answer changes, then bisections to :data:`RESOLUTION`. Without a
+guess (the search before guesses, kept as the reference):
 
 1. ``L_0``: the acceleration-limited shortest stop (:mod:`._stop_pass`),
    a lower bound (a jerk limit only removes profiles);
@@ -40,6 +48,7 @@ from pydrake.systems.framework import Context
 
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.retiming._jerk import jerk_limited
+from rt_drake.retiming._jerk_set import SetGrasp
 from rt_drake.retiming._jerk_timed_path import JerkTimedPath
 from rt_drake.retiming._joint_path import JointPath
 from rt_drake.retiming._retime_errors import (
@@ -47,10 +56,13 @@ from rt_drake.retiming._retime_errors import (
     PathNotControllableError,
 )
 from rt_drake.retiming._samples import PathSamples, sample_path
+from rt_drake.retiming._set_slack import set_slack
+from rt_drake.retiming._set_tables import parameter_columns
 from rt_drake.retiming._solve import BETWEEN_TOLERANCE, retime
 from rt_drake.retiming._sub_path import stop_grid, sub_path
 from rt_drake.retiming.grid import MIN_STEP
-from rt_drake.retiming.limits import GraspConstraint, JointLimits
+from rt_drake.retiming.limits import GraspConstraint, JointLimits, ObjectSetGrasp
+from rt_drake.retiming.stage_rows import normalised_rows
 
 #: Factor between successive stop distances tried until a stop is found.
 GROWTH = 1.3
@@ -59,6 +71,11 @@ GROWTH = 1.3
 LOWER_START = (0.0, 1e-3, 1e-2)
 #: Bisections of the stop distance between the last failure and a stop.
 BISECTIONS = 4
+#: Relative resolution of the stop distance when the search starts from a
+#: guess (:func:`_walk`); the full search's is ``0.3 / 2^4``, about 0.019.
+RESOLUTION = 0.015
+#: First relative step of the walk from a guess (doubled at each step).
+FIRST_STEP = 0.04
 
 
 class JerkStop(NamedTuple):
@@ -81,7 +98,9 @@ class JerkStopProblem:
 
     Attributes:
         plant, spline, limits, grasp, context, cup: As for the retime
-            (``limits.jerk`` set; grasp of one object or None).
+            (``limits.jerk`` set; grasp of one object, of a set of objects
+            (without torque limits: every object's rows, :mod:`._jerk_set`,
+            the start widened by :mod:`._set_slack`), or None).
         t: s, when the stop begins.
         s: ``s_t``; sd: ``s'_t`` (1/s, > 0); sdd: ``s''_t`` (1/s^2).
         own: The motion's grid points (those after ``s_t`` are kept in each
@@ -102,28 +121,39 @@ class JerkStopProblem:
     own: np.ndarray
     own_x: np.ndarray
 
-    def stop(self, length: float) -> JerkTimedPath | None:
+    def stop(self, length: float, thorough: bool = True) -> JerkTimedPath | None:
         """The fastest jerk-limited stop to rest at ``s + length`` (None: none).
 
-        In sigma, ``x_sigma = x_s / L^2`` and ``u_sigma = u_s / L``.
+        In sigma, ``x_sigma = x_s / L^2`` and ``u_sigma = u_s / L``. Not
+        ``thorough``: the LPs linearised at the first profile only (the
+        module docstring's), not again at TOPP-RA's alone.
         """
         sub = sub_path(self.spline, self.s, self.s + length)
         grid = stop_grid(self.own, self.s, length)
         sd, sdd = self.sd / length, self.sdd / length
-        held = None if self.grasp is None else self.grasp.held
+        robust = self.grasp is not None and self.grasp.is_robust
+        columns = layout = None
+        if robust:  # every object of the set: its parameter columns
+            assert isinstance(self.grasp, ObjectSetGrasp)
+            columns, layout = parameter_columns(self.grasp.objects)
+        held = None if self.grasp is None or robust else self.grasp.held
         torque = self.limits.torque is not None
         F = None if self.grasp is None else self.grasp.F
         g = None if self.grasp is None else self.grasp.g
         start = sample_path(
             self.plant, sub, np.zeros(1), self.limits.velocity, torque, held,
-            self.context, self.cup,
+            self.context, self.cup, columns,
         )  # fmt: skip
         limits, g = start_slack(start, sd * sd, sdd, self.limits, F, g)
+        objects = None
+        if layout is not None and F is not None and g is not None:
+            g = set_slack(start, sd * sd, sdd, F, g, layout)
+            objects = SetGrasp(normalised_rows(F, g), layout)
 
         def sample(s: np.ndarray) -> PathSamples:
             return sample_path(
                 self.plant, sub, s, limits.velocity, torque, held, self.context,
-                self.cup,
+                self.cup, columns,
             )  # fmt: skip
 
         wider = None
@@ -147,10 +177,12 @@ class JerkStopProblem:
         x_topp = topp.sd**2
         x_move = np.interp(self.s + length * topp.gridpoints, self.own, self.own_x)
         profile = None
-        for x_bar in (np.minimum(x_topp, x_move / length**2), x_topp):
+        linearisations = [np.minimum(x_topp, x_move / length**2), x_topp]
+        for x_bar in linearisations[: 2 if thorough else 1]:
             try:
                 profile = jerk_limited(
-                    sub, sample, topp.gridpoints, x_bar, limits, F, g, None, sd, 0.0,
+                    sub, sample, topp.gridpoints, x_bar, limits,
+                    None if robust else F, None if robust else g, objects, sd, 0.0,
                     self.t, BETWEEN_TOLERANCE, sdd_start=sdd,
                 )  # fmt: skip
                 break
@@ -196,14 +228,26 @@ def start_slack(
     return wider, g
 
 
-def jerk_stop(problem: JerkStopProblem, shortest: float, remainder: float) -> JerkStop:
+def jerk_stop(
+    problem: JerkStopProblem,
+    shortest: float,
+    remainder: float,
+    guess: float | None = None,
+) -> JerkStop:
     """The fastest jerk-limited stop found by the module docstring's search.
 
     Args:
         problem: The stop's data.
         shortest: ``L_0``, the acceleration-limited shortest stop distance.
         remainder: Duration (s) of the motion's own rest of the path.
+        guess: A stop distance near the shortest with a stop (a neighbouring
+            instant's): the search walks from it (:func:`_walk`) instead.
     """
+    if guess is not None:
+        walked = _walk(problem, shortest, guess)
+        if walked.stops:
+            return _kept(problem, walked, remainder)
+        # None found with one linearisation: the full search, thorough.
     room = 1.0 - problem.s
     tried: list[tuple[float, float]] = []
     found: dict[float, JerkTimedPath] = {}
@@ -226,12 +270,82 @@ def jerk_stop(problem: JerkStopProblem, shortest: float, remainder: float) -> Je
                 high = middle
             else:
                 low = middle
-    if not found:
-        return JerkStop(None, 1.0, tried)
-    best = min(found, key=lambda key: found[key].duration)
-    if found[best].duration >= remainder:
-        return JerkStop(None, 1.0, tried)
-    return JerkStop(found[best], problem.s + best, tried)
+    return _kept(problem, _Found(tried, found), remainder)
+
+
+class _Found(NamedTuple):
+    """Stop distances tried (each with its duration, inf: none) and the stops."""
+
+    tried: list[tuple[float, float]]
+    stops: dict[float, JerkTimedPath]
+
+
+def _kept(problem: JerkStopProblem, found: _Found, remainder: float) -> JerkStop:
+    """The fastest stop found, or the motion's remainder if that is faster."""
+    if not found.stops:
+        return JerkStop(None, 1.0, found.tried)
+    best = min(found.stops, key=lambda key: found.stops[key].duration)
+    if found.stops[best].duration >= remainder:
+        return JerkStop(None, 1.0, found.tried)
+    return JerkStop(found.stops[best], problem.s + best, found.tried)
+
+
+def _walk(problem: JerkStopProblem, shortest: float, guess: float) -> _Found:
+    """Stops from ``guess`` to the shortest distance with one, within RESOLUTION.
+
+    From ``L = guess`` (at least ``shortest``): with a stop there, down by
+    factors ``1 + f, 1 + 2f, 1 + 4f, ...`` (``f`` = :data:`FIRST_STEP`)
+    until a distance without one; without, up by the same factors until
+    one (the path's end caps it); then bisections (geometric) until the
+    last distance without a stop and the first with one are within ``1 +
+    r`` (``r`` = :data:`RESOLUTION`). Each distance is tried with the LPs
+    linearised once (not ``thorough``: on the cases of
+    ``benchmarks/bench_stop.py`` the second linearisation never found a
+    stop the first missed, and a distance without a stop cost both); if
+    none has a stop, :func:`jerk_stop` runs the full, thorough search.
+    """
+    room = 1.0 - problem.s
+    found = _Found([], {})
+
+    def attempt(length: float) -> bool:
+        stop = problem.stop(length, thorough=False)
+        found.tried.append((length, np.inf if stop is None else stop.duration))
+        if stop is not None:
+            found.stops[length] = stop
+        return stop is not None
+
+    floor = max(min(shortest, room), MIN_STEP)
+    length = min(max(guess, floor), room)
+    if length >= room - MIN_STEP:
+        return found
+    low: float | None = None
+    high: float | None = None
+    step = FIRST_STEP
+    if attempt(length):
+        high = length
+        while high > floor * (1.0 + 1e-9):
+            candidate = max(high / (1.0 + step), floor)
+            if not attempt(candidate):
+                low = candidate
+                break
+            high, step = candidate, 2.0 * step
+    else:
+        low = length
+        while True:
+            candidate = low * (1.0 + step)
+            if candidate >= room - MIN_STEP:
+                return found
+            if attempt(candidate):
+                high = candidate
+                break
+            low, step = candidate, 2.0 * step
+    while low is not None and high is not None and high / low > 1.0 + RESOLUTION:
+        middle = float(np.sqrt(low * high))
+        if attempt(middle):
+            high = middle
+        else:
+            low = middle
+    return found
 
 
 __all__ = [
@@ -239,6 +353,7 @@ __all__ = [
     "GROWTH",
     "JerkStop",
     "JerkStopProblem",
+    "RESOLUTION",
     "jerk_stop",
     "start_slack",
 ]

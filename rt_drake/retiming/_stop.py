@@ -26,12 +26,15 @@ along the same path ``q(s)``, never leaving it.
 A grasp of a set of objects (``ObjectSetGrasp``): step 1 brakes under the
 nominal object's rows (a stop no longer than the set's), step 2 retimes
 under every object of the set (the retimer's exact set rows), and the
-candidates grow from there until the whole set holds.
+candidates grow from there until the whole set holds. With jerk limits
+too, the jerk-limited stops hold every object's rows (as the retimer's).
 
 With jerk limits (``limits.jerk``) the stop is :mod:`._jerk_stop`'s instead:
 from the MOVE's own ``(s, s', s'')`` at t, the path acceleration continuous
 there, the jerk-limited retime of the sub-path over a searched stop
-distance; step 1 gives its lower bound. The whole motion is then a
+distance; step 1 gives its lower bound, a jerk-limited braking simulated
+on step 1's samples (:func:`._stop_distance.braking_distance`, times
+:data:`GUESS_FACTOR`) the distance the search starts from. The whole motion is then a
 :class:`._spliced_path.SplicedPath` (the MOVE up to t, then the stop).
 
 :func:`joint_brake_stop` is what robots do today: each joint brakes as hard
@@ -61,8 +64,9 @@ from rt_drake.retiming._retime_errors import (
     RetimeError,
     RetimeInputError,
 )
-from rt_drake.retiming._samples import sample_path
+from rt_drake.retiming._samples import PathSamples, sample_path
 from rt_drake.retiming._solve import RetimeResult, retime
+from rt_drake.retiming._stop_distance import braking_distance
 from rt_drake.retiming._stop_pass import REST_X, StopPass, grid_constraints, stop_pass
 from rt_drake.retiming._stop_result import (
     STANDSTILL_S,
@@ -76,6 +80,11 @@ from rt_drake.retiming._sub_path import STOP_GRIDPOINTS, stop_grid, sub_path
 from rt_drake.retiming.grid import MIN_STEP
 from rt_drake.retiming.limits import GRASP_ATTRIBUTES, GraspConstraint, JointLimits
 
+#: The jerk-limited stop's search starts from this factor times the simulated
+#: braking distance (:func:`._stop_distance.braking_distance`), which fell
+#: 3-50 % short of the stop distance found (median 13 %) on the MOVE-like
+#: paths of ``benchmarks/bench_stop.py``.
+GUESS_FACTOR = 1.1
 #: Parts each grid segment up to the first stop point is split into, for a
 #: second braking pass (a stop at most a fine step longer than the shortest).
 STOP_SUBDIVISION = 4
@@ -106,8 +115,8 @@ def protective_stop(
         result: The retimed trajectory.
         t: When the stop begins, s, in ``[start_time, end_time]`` of
             ``result.trajectory``.
-        grasp: Its grasp (one held object, or a set of objects without
-            jerk limits); None: no object.
+        grasp: Its grasp (one held object, or a set of objects: with jerk
+            limits, not with torque limits too); None: no object.
         context: Scratch context of ``plant``.
         cup: The cup frame C (default: the plant's ``suction_cup``).
 
@@ -118,11 +127,38 @@ def protective_stop(
     Raises:
         RetimeInputError: ``t`` not a finite number inside the trajectory,
             a malformed argument, or a grasp of a set of objects with
-            jerk limits.
+            jerk and torque limits.
         StopNotFoundError: the state at t cannot be brought to rest within
             the path (not for a trajectory this retimer made).
     """
     return _stop(plant, path, limits, result, t, grasp, context, cup, True)
+
+
+def guided_stop(
+    plant: MultibodyPlant,
+    path: PathLike,
+    limits: JointLimits,
+    result: RetimeResult,
+    t: float,
+    grasp: GraspConstraint | None,
+    context: Context | None,
+    cup: CupFrame | None,
+    guess: float | None,
+    *,
+    simulate: bool = True,
+) -> StopResult:
+    """:func:`protective_stop` with a guess of the stop distance in s.
+
+    With jerk limits, the search over the stop distance walks from
+    ``guess`` (a neighbouring instant's stop distance,
+    :func:`._jerk_stop.jerk_stop`); None: from the simulated braking's, or,
+    if not ``simulate``, the full search from ``L_0`` (the reference
+    ``benchmarks/bench_stop.py`` compares with). Without jerk limits:
+    exactly :func:`protective_stop`.
+    """
+    return _stop(
+        plant, path, limits, result, t, grasp, context, cup, True, guess, simulate
+    )
 
 
 def joint_brake_stop(
@@ -156,8 +192,10 @@ def _stop(
     context: Context | None,
     cup: CupFrame | None,
     grasp_aware: bool,
+    guess: float | None = None,
+    simulate: bool = True,
 ) -> StopResult:
-    """Both stops (see the module docstring)."""
+    """Both stops (see the module docstring); ``guess``: see :func:`guided_stop`."""
     _check_objects(plant, limits, result, grasp, context, cup)
     spline = as_joint_path(path)
     if spline.num_joints != limits.num_joints:
@@ -179,19 +217,20 @@ def _stop(
     held = None if grasp is None else grasp.held
     F, g = (None, None) if grasp is None else (grasp.F, grasp.g)
 
-    def brake(s: np.ndarray) -> StopPass:
+    def brake(s: np.ndarray) -> tuple[StopPass, PathSamples]:
         samples = sample_path(
             plant, spline, s, limits.velocity, limits.torque is not None, held,
             context, cup,
         )  # fmt: skip
-        return stop_pass(grid_constraints(samples, limits, F, g), s, sd_t * sd_t)
+        rows = grid_constraints(samples, limits, F, g)
+        return stop_pass(rows, s, sd_t * sd_t), samples
 
     s = np.concatenate([[s_t], s_grid[s_grid > s_t + MIN_STEP]])
-    braking = brake(s)
+    braking, ahead = brake(s)
     if braking.stop_index is not None:  # again, on a finer grid up to there
         index = braking.stop_index
         head = subdivided(s[: index + 1], STOP_SUBDIVISION)
-        fine = brake(head)  # rest at s[index] reachable: its controllable sets
+        fine, _ = brake(head)  # rest at s[index] reachable: its controllable sets
         if fine.stop_index is not None:
             s, braking = np.concatenate([head, s[index + 1 :]]), fine
     if limits.jerk is not None:
@@ -201,7 +240,12 @@ def _stop(
         )  # fmt: skip
         at = 1 if braking.stop_index is None else braking.stop_index
         rest_time = result.trajectory.end_time() - float(t)
-        found = jerk_stop(problem, float(s[at] - s_t), rest_time)
+        if guess is None and simulate:  # the simulated jerk-limited braking's
+            simulated = braking_distance(
+                ahead, spline(ahead.s, 3), limits, F, g, sd_t, sdd_t
+            )
+            guess = GUESS_FACTOR * simulated if simulated > 0.0 else None
+        found = jerk_stop(problem, float(s[at] - s_t), rest_time, guess)
         return spliced(result, float(t), s_t, sd_t, found, grasp_aware)
     if braking.stop_index is None:
         raise StopNotFoundError(
@@ -331,11 +375,12 @@ def _check_objects(
             error=RetimeInputError,
         )  # fmt: skip
         jerk = isinstance(limits, JointLimits) and limits.jerk is not None
-        if getattr(grasp, "is_robust", False) and jerk:
+        torque = isinstance(limits, JointLimits) and limits.torque is not None
+        if getattr(grasp, "is_robust", False) and jerk and torque:
             raise RetimeInputError(
-                "stop: jerk limits with the grasp of a set of objects are not "
-                "supported for a stop (retime supports them): stop without them "
-                "(limits.jerk None)"
+                "stop: jerk limits with the grasp of a set of objects and torque "
+                "limits are not supported (as for retime): stop without torque "
+                "limits or without jerk limits (limits.jerk None)"
             )
     if context is not None:
         check(context, "context", Context)
@@ -346,9 +391,11 @@ def _check_objects(
 __all__ = [
     "STANDSTILL_S",
     "STOP_GRIDPOINTS",
+    "GUESS_FACTOR",
     "STOP_SUBDIVISION",
     "StopNotFoundError",
     "StopResult",
+    "guided_stop",
     "joint_brake_stop",
     "protective_stop",
     "state_at",
