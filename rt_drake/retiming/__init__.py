@@ -23,7 +23,8 @@ kernels before anything is timed), ``_timed_path``, ``_time_scaled``,
 ``_check`` (dense 1 kHz verification), ``_floor`` (the least time the
 joint limits allow between two configurations, :func:`segment_floor`),
 ``_stop`` and ``_stop_pass`` (protective stops along the path), ``_jerk``,
-``_jerk_rows``, ``_jerk_points`` and ``_jerk_timed_path`` (jerk limits: LPs
+``_jerk_problem``, ``_jerk_smooth``, ``_jerk_rows``, ``_jerk_points`` and
+``_jerk_timed_path`` (jerk limits: LPs
 after TOPP-RA, and the motion they give), ``_trajectory_file`` (the ``.npz``
 format) and ``_retime_errors`` (typed errors and statuses).
 """
