@@ -68,7 +68,7 @@ def main() -> None:
     moves = planned_moves(args.n, args.seed)
     parts = {
         "jerk_limited (all but TOPP-RA)": (_jerk, "jerk_limited"),
-        "LP rows and LPs (_solve)": (_jerk, "_solve"),
+        "LP rows and LPs (solve_lp)": (_jerk, "solve_lp"),
         "LP wrapper (WarmLP.solve)": (_jerk_lp.WarmLP, "solve"),
         "LPs (HiGHS run)": (_jerk_lp.WarmLP, "_run"),
         "grasp screen": (_jerk_points.DensePoints, "grasp_screen"),

@@ -33,10 +33,11 @@ configurations, :func:`segment_floor`), ``_stop`` and ``_stop_pass``
 (protective stops along the path), ``_jerk_stop``, ``_stop_distance`` and
 ``_set_slack`` (jerk-limited stops: the search over the stop distance and
 its first guess), ``_stop_table`` (stops computed ahead,
-:func:`stop_table`), ``_jerk``, ``_jerk_rows``, ``_jerk_points`` and
-``_jerk_timed_path`` (jerk limits: LPs after TOPP-RA, and the motion they
-give), ``_trajectory_file`` (the ``.npz`` format) and ``_retime_errors``
-(typed errors and statuses).
+:func:`stop_table`), ``_jerk``, ``_jerk_problem`` (one LP of the jerk
+pass), ``_jerk_smooth`` (the path's smoothness check), ``_jerk_rows``,
+``_jerk_points`` and ``_jerk_timed_path`` (jerk limits: LPs after TOPP-RA,
+and the motion they give), ``_trajectory_file`` (the ``.npz`` format) and
+``_retime_errors`` (typed errors and statuses).
 """
 
 from rt_drake.retiming._check import check_trajectory

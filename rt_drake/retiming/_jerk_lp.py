@@ -3,12 +3,14 @@
 Consecutive LPs of a retime (:mod:`._jerk`) differ little: the jerk rows'
 coefficients move with the previous profile, and rows are added between
 rounds. Each row carries a key (:func:`._jerk_rows.key`); the next LP starts
-from the previous optimal basis, matched row by row through the keys (new
-rows basic, i.e. their slack in the basis; the columns keep their status).
-HiGHS takes such a basis as an "alien" one and repairs its count and rank,
-so a warm LP takes a few dual simplex iterations instead of several
-hundred. Rows enter as cutting planes (:meth:`WarmLP.solve`): an LP first
-takes those tight at its start, then those its optimum breaks. The LP is
+from the previous optimal basis (HiGHS's basic variables, each nonbasic one
+at its bound), matched row by row through the keys (new rows basic, i.e.
+their slack in the basis; the columns keep their status). The rows a sub-LP
+leaves out were basic, so the count stays right and HiGHS takes the basis
+as it is (no "alien" repair); a warm LP takes a few dual simplex iterations
+instead of several hundred. Rows enter as cutting planes
+(:meth:`WarmLP.solve`): an LP first takes those tight at its start, then
+those its optimum breaks. The LP is
 
     minimise c z  subject to  A_ub z <= b_ub,  A_eq z = b_eq,  lower <= z <= upper.
 """
@@ -107,18 +109,22 @@ class WarmLP:
                 len(index), start[:-1], index, value,
             )  # fmt: skip
             z, status = self._run()
-        # The next LP's basis from this optimum: a variable or row at a
-        # bound is nonbasic there (at a degenerate vertex too many are;
-        # HiGHS repairs an alien basis's count and rank).
+        # The next LP's basis: this optimum's, HiGHS's basic variables and
+        # the bound each nonbasic one is at. The model's rows: the first
+        # sub-LP's inequalities, the equalities, then the cuts added
+        # (``order`` lists the inequalities likewise).
         assert z is not None
-        # The model's rows: the first sub-LP's inequalities, the equalities,
-        # then the cuts added (``order`` lists the inequalities likewise).
-        row_value = np.asarray(self._highs.getSolution().row_value)
         head, eq = self._head, len(b_eq)
-        ub_value = np.concatenate([row_value[:head], row_value[head + eq :]])
-        self._rows = _at_bound(ub_value, np.full(len(order), -np.inf), b_ub[order])
-        self._eq = _at_bound(row_value[head : head + eq], b_eq, b_eq)
-        self._cols = _at_bound(z, bounds[:, 0], bounds[:, 1])
+        # (highspy's stubs omit getBasicVariables: the binding has it)
+        basic = np.asarray(self._highs.getBasicVariables()[1])  # type: ignore[attr-defined]
+        row_value = np.asarray(self._highs.getSolution().row_value)
+        row_lower = np.full(len(row_value), -np.inf)
+        row_upper = np.concatenate([b_ub[order[:head]], b_eq, b_ub[order[head:]]])
+        row_lower[head : head + eq] = b_eq
+        rows = _status(row_value, row_lower, row_upper, -1 - basic[basic < 0])
+        self._rows = np.concatenate([rows[:head], rows[head + eq :]])
+        self._eq = rows[head : head + eq]
+        self._cols = _status(z, bounds[:, 0], bounds[:, 1], basic[basic >= 0])
         self._keys = keys[order]
         self._start = z
         return z, status
@@ -169,7 +175,11 @@ class WarmLP:
             basis = highspy.HighsBasis()
             basis.col_status = _STATUS[cols].tolist()
             basis.row_status = _STATUS[rows].tolist()
-            basis.alien = True
+            # A basis carried over keeps its count (the rows left out were
+            # basic, new ones are): HiGHS takes it as it is. The crash start
+            # (or a count gone wrong) is "alien": HiGHS repairs it.
+            basic = np.count_nonzero(rows == _BASIC) + np.count_nonzero(cols == _BASIC)
+            basis.alien = self._keys is None or basic != m
             self._highs.setBasis(basis)
         return self._run()
 
@@ -184,7 +194,7 @@ class WarmLP:
                 highs.clearSolver()
             highs.run()
             status = highs.getModelStatus()
-            self.iterations += int(highs.getInfo().simplex_iteration_count)
+            self.iterations += int(highs.getInfoValue("simplex_iteration_count")[1])
             self.solves += 1
             if status in _ANSWERS:
                 break
@@ -226,6 +236,23 @@ def _rows_of(
     np.cumsum(counts, out=start[1:])
     flat = np.repeat(A.indptr[rows] - start[:-1], counts) + np.arange(start[-1])
     return start.astype(np.int32), A.indices[flat].astype(np.int32), A.data[flat]
+
+
+def _status(
+    value: np.ndarray, lower: np.ndarray, upper: np.ndarray, basic: np.ndarray
+) -> np.ndarray:
+    """Basis status codes of a basis: 1 for ``basic`` (indices), else its bound.
+
+    A nonbasic variable or row is at the nearer of its bounds (0 lower, 2
+    upper); 3 (zero) if it has none.
+    """
+    with np.errstate(invalid="ignore"):
+        status = np.where(value - lower <= upper - value, 0, 2)
+    status[np.isinf(lower) & np.isinf(upper)] = 3
+    status[np.isinf(lower) & np.isfinite(upper)] = 2
+    status[np.isfinite(lower) & np.isinf(upper)] = 0
+    status[basic] = _BASIC
+    return status
 
 
 def _at_bound(

@@ -83,3 +83,43 @@ def test_a_warm_start_without_an_answer_is_solved_from_scratch():
     z = _solve(lp, c, A, b, E, e, bounds, every_row=True)
     assert fake.skipped
     assert c @ z == pytest.approx(_reference(c, A, b, E, e, bounds), abs=1e-7)
+
+
+class _RecordsBasis:
+    """HiGHS that records each basis it is given (and whether it is alien)."""
+
+    def __init__(self, highs):
+        self._highs, self.given = highs, []
+
+    def setBasis(self, basis):  # noqa: N802 (HiGHS's name)
+        self.given.append(basis.alien)
+        return self._highs.setBasis(basis)
+
+    def __getattr__(self, name):
+        return getattr(self._highs, name)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_the_carried_basis_is_highs_own_and_needs_no_repair(seed):
+    lp = WarmLP()
+    recorder = _RecordsBasis(lp._highs)
+    lp._highs = recorder
+    c, A, b, E, e, bounds = _problem(seed)
+    _solve(lp, c, A, b, E, e, bounds)
+    # HiGHS's own statuses at the optimum (the enum, not the carried codes):
+    # the same basic set, and each nonbasic column at the same bound.
+    basis = lp._highs.getBasis()
+    highs_cols = np.array([int(v) for v in basis.col_status])
+    assert np.array_equal(highs_cols, lp._cols)
+    assert (
+        np.count_nonzero(highs_cols == 1)
+        + np.count_nonzero(np.array([int(v) for v in basis.row_status]) == 1)
+        == lp._highs.getNumRow()
+    )
+    # The same LP again from the carried basis: taken as it is (not alien)
+    # and already optimal (no simplex iteration).
+    before = lp.iterations
+    z = _solve(lp, c, A, b, E, e, bounds)
+    assert recorder.given[-1] is False
+    assert lp.iterations == before
+    assert c @ z == pytest.approx(_reference(c, A, b, E, e, bounds), abs=1e-7)

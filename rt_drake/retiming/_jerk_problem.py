@@ -1,0 +1,322 @@
+"""The jerk-limited retimer's LP, one step of its sequence (:mod:`._jerk`).
+
+The variables are ``z = [x_0..x_N, u_0..u_N]`` (``x = s'^2``, ``u = s''``
+at the grid points; 1/s^2). :class:`Problem` holds what is fixed for one
+retime (the points, the equalities ``x_{i+1} - x_i - ds_i (u_i + u_{i+1})
+= 0``, the Bernstein rows ``x_i + ds_i u_i >= 0`` and the bounds of z);
+:class:`Selection` which points and rows the next LP takes (it grows
+between rounds). :func:`solve_lp` makes the LP at the previous profile
+``xbar``: maximise the first-order decrease of the duration ``T = sum ds /
+sqrt(x)`` (Simpson's rule on each segment) under the rows of
+:mod:`._jerk_rows` (the jerk rows linearised at ``xbar``), and solves it
+with :class:`._jerk_lp.WarmLP`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import enum
+
+import numpy as np
+from scipy import sparse
+
+from rt_drake.retiming._jerk_lp import WarmLP
+from rt_drake.retiming._jerk_points import (
+    DENSE,
+    JERK_DENSE,
+    DensePoints,
+    JerkPoints,
+    Keep,
+)
+from rt_drake.retiming._jerk_rows import (
+    KIND_SHIFT,
+    Rows,
+    affine_rows,
+    jerk_rows,
+    key,
+    stacked,
+)
+from rt_drake.retiming._jerk_set import SetPairs
+from rt_drake.retiming._jerk_timed_path import Piece
+from rt_drake.retiming._retime_errors import PathNotControllableError
+from rt_drake.retiming.limits import JointLimits
+
+
+class Kind(enum.IntEnum):
+    """The kinds of LP rows, for their keys (a sign's rows: kind and kind + 1)."""
+
+    VELOCITY = 0
+    POSITIVE = 1
+    ACCELERATION = 2
+    TORQUE = 4
+    GRASP = 6
+    JERK = 7
+    JERK_POINT_ACCELERATION = 9
+    JERK_POINT_VELOCITY = 11
+    MIDDLE = 12
+    BERNSTEIN = 13
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Problem:
+    """What the LPs are built from (fixed for one retime)."""
+
+    s: np.ndarray
+    kinds: np.ndarray
+    dense: DensePoints
+    jerk: JerkPoints
+    limits: JointLimits
+    bounds: dict[int, tuple[int, float]]
+    middle: np.ndarray
+    X_middle: sparse.csr_matrix
+    bernstein: Rows
+    equalities: tuple[sparse.csr_matrix, np.ndarray]
+    variable_bounds: np.ndarray
+
+
+@dataclasses.dataclass
+class Selection:
+    """Which points and rows the next LP takes (grows between rounds)."""
+
+    active: np.ndarray
+    rows: np.ndarray | None
+    keep: Keep
+    jerk_active: np.ndarray
+    jerk_keep: np.ndarray | None = None
+    jerk_acceleration: np.ndarray | None = None
+    pairs: SetPairs | None = None
+    #: The LP rows other than the jerk's (:func:`_fixed_rows`), while the
+    #: selection is unchanged; None: to be made.
+    fixed: tuple[list[Rows], list[Rows]] | None = None
+
+
+def solve_lp(
+    problem: Problem,
+    chosen: Selection,
+    solver: WarmLP,
+    x_bar: np.ndarray,
+    x_dense: np.ndarray,
+    x_jerk: np.ndarray,
+) -> np.ndarray:
+    """One LP (module docstring, step 2): z = [x, u].
+
+    ``x_bar``, ``x_dense``, ``x_jerk``: the previous profile at the grid,
+    dense and jerk points. Only the jerk rows and the objective change from
+    one LP of a round to the next: the other rows (:func:`_fixed_rows`) are
+    kept in ``chosen.fixed`` until the selection changes.
+    """
+    limits, points = problem.limits, problem.jerk
+    assert limits.jerk is not None
+    s, size = problem.s, len(problem.s)
+    if chosen.fixed is None:
+        chosen.fixed = _fixed_rows(problem, chosen)
+    before, after = chosen.fixed
+    index = np.flatnonzero(chosen.jerk_active & points.inner)
+    floor = 1e-6 * max(float(np.max(x_jerk)), 1e-12)
+    jerk_keep = np.ones((len(index), len(limits.jerk)), dtype=bool)
+    if chosen.jerk_keep is not None:  # rows near the limit (where exceeded too)
+        jerk_keep = chosen.jerk_keep[index]
+    jerk = jerk_rows(
+        points.band.take(index), index, Kind.JERK, points.dq[index],
+        points.ddq[index], points.dddq[index],
+        np.maximum(x_jerk, floor)[index], limits.jerk, jerk_keep,
+    )  # fmt: skip
+    ds = np.diff(s)
+    # Simpson's rule on each segment: T = sum ds / sqrt(x) at its ends and
+    # middle, linearised at the previous profile (d/dx x^-1/2 = -x^-1.5 / 2).
+    middle = problem.middle
+    scale = max(float(np.max(x_bar)), 1e-12)
+    x_middle = np.maximum(x_dense[middle], 1e-3 * scale)
+    width = (np.append(ds, 0.0) + np.insert(ds, 0, 0.0)) / 6.0
+    weight = -problem.X_middle.T @ (4.0 / 6.0 * ds / (2.0 * x_middle**1.5))
+    weight[:size] -= width / (2.0 * np.maximum(x_bar, 1e-3 * scale) ** 1.5)
+    A_ub, b_ub, keys = stacked([*before, jerk, *after], 2 * size)
+    kind = keys >> KIND_SHIFT
+    always = (kind == Kind.VELOCITY) | (kind == Kind.POSITIVE)
+    always |= (kind == Kind.MIDDLE) | (kind == Kind.BERNSTEIN)
+    z, status = solver.solve(
+        weight / np.max(np.abs(weight)), A_ub, b_ub, keys, *problem.equalities,
+        problem.variable_bounds, always,
+    )  # fmt: skip
+    if z is None:
+        raise PathNotControllableError(
+            f"jerk-limited retiming: no admissible profile ({status})", s=0.0
+        )
+    return z
+
+
+def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Rows], list[Rows]]:
+    """The LP rows other than the jerk's: those before them, those after.
+
+    They depend on the selection alone, not on the previous profile. The
+    rows at the dense points are taken once per point: at the end of a
+    segment only where it is not the next one's start (or where a limit was
+    exceeded). After the jerk rows: the velocity and acceleration rows at
+    jerk points where a limit was exceeded, ``x >= 0`` in the middle of
+    each segment and all along it.
+    """
+    limits, dense, points = problem.limits, problem.dense, problem.jerk
+    last = len(DENSE) - 1
+    repeated = (dense.k == last) & (np.arange(len(dense.s)) < len(dense.s) - 1)
+    once = np.flatnonzero(chosen.active & (~repeated | chosen.keep.full))
+    band = dense.band.take(once)
+    smp = dense.samples
+    dq, ddq = smp.dq[once], smp.ddq[once]
+    blocks: list[Rows] = []
+
+    def add(kind: int, alpha: np.ndarray, beta: np.ndarray, bound: np.ndarray) -> None:
+        blocks.append(affine_rows(band, once, kind, alpha, beta, bound))
+
+    zeros = np.zeros((len(once), 1))
+    add(Kind.VELOCITY, zeros, zeros + 1.0, smp.x_cap[once][:, None])
+    inside = ((dense.k[once] > 0) & (dense.k[once] < last))[:, None]
+    add(Kind.POSITIVE, zeros, zeros - 1.0, np.where(inside, 0.0, np.inf))  # x >= 0
+    keep = chosen.keep
+    acceleration = np.where(keep.acceleration[once], limits.acceleration, np.inf)
+    for sign, offset in ((1.0, 0), (-1.0, 1)):
+        add(Kind.ACCELERATION + offset, sign * dq, sign * ddq, acceleration)
+        if smp.torque is not None and limits.torque is not None:
+            assert keep.torque is not None
+            a, b, c = (v[once] for v in smp.torque)
+            bound = np.where(keep.torque[once], limits.torque - sign * c, np.inf)
+            add(Kind.TORQUE + offset, sign * a, sign * b, bound)
+    if chosen.rows is not None and dense.grasp is not None and smp.wrench is not None:
+        blocks.append(_grasp_rows_at(dense, once, chosen.rows[once]))
+    if chosen.pairs is not None and len(chosen.pairs):
+        blocks.append(chosen.pairs.rows(dense.band, once, Kind.GRASP))
+    after: list[Rows] = []
+    added = np.flatnonzero(chosen.jerk_active)
+    near = chosen.jerk_acceleration
+    if near is None:
+        near = np.zeros(points.dq.shape, dtype=bool)
+    added = added[~np.isin(points.k[added], (0, len(JERK_DENSE) - 1))]
+    if added.size:  # where a limit was exceeded: velocity, acceleration too
+        extra = points.band.take(added)
+        for sign, offset in ((1.0, 0), (-1.0, 1)):
+            after.append(
+                affine_rows(
+                    extra, added, Kind.JERK_POINT_ACCELERATION + offset,
+                    sign * points.dq[added], sign * points.ddq[added],
+                    np.where(near[added], limits.acceleration, np.inf),
+                )
+            )  # fmt: skip
+        zeros = np.zeros((added.size, 1))
+        after.append(
+            affine_rows(
+                extra, added, Kind.JERK_POINT_VELOCITY, zeros, zeros + 1.0,
+                points.x_cap[added][:, None],
+            )
+        )  # fmt: skip
+    middle = problem.middle
+    zeros = np.zeros((len(middle), 1))
+    after.append(  # x >= 0 in the middle of each segment
+        affine_rows(
+            dense.band.take(middle), middle, Kind.MIDDLE, zeros, zeros - 1.0, zeros
+        )
+    )
+    after.append(problem.bernstein)  # x >= 0 all along each segment
+    return blocks, after
+
+
+def _grasp_rows_at(dense: DensePoints, once: np.ndarray, mask: np.ndarray) -> Rows:
+    """Grasp rows ``F_r (a u + b x) <= g_r - F_r c`` of the (point, row) pairs ``mask``.
+
+    ``once``: (P,) dense points; ``mask``: (P, R). Only the pairs asked for
+    are made (an LP takes a few percent of them); in the order of
+    :func:`._jerk_rows.affine_rows` (point-major).
+    """
+    assert dense.grasp is not None and dense.samples.wrench is not None
+    p, r = np.nonzero(mask)
+    at = once[p]
+    a, b, c = (v[at] for v in dense.samples.wrench)
+    F = dense.grasp.F[r]
+    alpha = np.einsum("ij,ij->i", a, F)[:, None]
+    beta = np.einsum("ij,ij->i", b, F)[:, None]
+    band = dense.band
+    return Rows(
+        band.cols[at],
+        alpha * band.U[at] + beta * band.X[at],
+        dense.grasp.g[r] - np.einsum("ij,ij->i", c, F),
+        key(Kind.GRASP, at, r),
+    )
+
+
+def bernstein_rows(s: np.ndarray, kinds: np.ndarray) -> Rows:
+    """Rows ``-(x_i + ds_i u_i) <= 0`` of the interior segments.
+
+    ``x(sigma)`` on segment i is the quadratic with Bernstein coefficients
+    ``x_i``, ``x_i + ds_i u_i``, ``x_{i+1}``: the middle one >= 0 (and the
+    ends >= 0, > 0 in the interior of the path) keeps x > 0 all along it,
+    so the motion never stops inside a segment.
+    """
+    size = len(s)
+    inner = np.flatnonzero(kinds == Piece.INTERIOR)
+    values = np.zeros((len(inner), 3))
+    values[:, 0], values[:, 1] = -1.0, -np.diff(s)[inner]
+    return Rows(
+        np.column_stack([inner, size + inner, size + inner + 1]),
+        values,
+        np.zeros(len(inner)),
+        key(Kind.BERNSTEIN, inner, np.zeros(len(inner), dtype=int)),
+    )
+
+
+def variable_bounds(
+    s: np.ndarray,
+    kinds: np.ndarray,
+    rest: dict[int, tuple[int, float]],
+    sd_start: float,
+    sd_end: float,
+    sdd_start: float | None = None,
+) -> np.ndarray:
+    """Bounds of z: x >= 0, the ends' x, ``u_0`` if given, the end pieces' u."""
+    size = len(s)
+    lower = np.full(2 * size, -np.inf)
+    upper = np.full(2 * size, np.inf)
+    lower[:size] = 0.0
+    lower[0] = upper[0] = float(sd_start) ** 2
+    lower[size - 1] = upper[size - 1] = float(sd_end) ** 2
+    if sdd_start is not None:  # u_0 given (sd_start > 0: no START piece)
+        lower[size] = upper[size] = float(sdd_start)
+    for segment, (variable, most) in rest.items():
+        if kinds[segment] == Piece.START:  # u_0 = 0, 0 <= u_1 <= most
+            lower[size] = upper[size] = 0.0
+            lower[variable], upper[variable] = 0.0, most
+        else:  # u_N = 0, -most <= u_{N-1} <= 0
+            lower[2 * size - 1] = upper[2 * size - 1] = 0.0
+            lower[variable], upper[variable] = -most, 0.0
+    return np.column_stack([lower, upper])
+
+
+def continuity(
+    s: np.ndarray, kinds: np.ndarray
+) -> tuple[sparse.csr_matrix, np.ndarray]:
+    """``x_{i+1} - x_i - ds_i (u_i + u_{i+1}) = 0`` (and the rest pieces' relations)."""
+    size = len(s)
+    ds = np.diff(s)
+    i = np.arange(len(kinds))
+    # Interior: x_{i+1}, x_i, u_i, u_{i+1}; the rest pieces use two of them.
+    c = np.column_stack([i + 1, i, size + i, size + i + 1])
+    v = np.column_stack([np.ones_like(ds), -np.ones_like(ds), -ds, -ds])
+    start, stop = kinds == Piece.START, kinds == Piece.STOP
+    v[start] = np.column_stack(
+        [np.ones(start.sum()), 0 * ds[start], 0 * ds[start], -1.5 * ds[start]]
+    )  # x_1 = 1.5 ds u_1
+    v[stop] = np.column_stack(
+        [0 * ds[stop], np.ones(stop.sum()), 1.5 * ds[stop], 0 * ds[stop]]
+    )  # x_{N-1} = -1.5 ds u_{N-1}
+    r = np.repeat(i, 4)
+    c, v = c.ravel(), v.ravel()
+    A = sparse.csr_matrix((v, (r, c)), shape=(len(kinds), 2 * size))
+    return A, np.zeros(len(kinds))
+
+
+__all__ = [
+    "Kind",
+    "Problem",
+    "Selection",
+    "bernstein_rows",
+    "continuity",
+    "solve_lp",
+    "variable_bounds",
+]
