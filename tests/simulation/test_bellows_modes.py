@@ -27,6 +27,9 @@ from pydrake.multibody.tree import (
 from scipy.linalg import eigh
 
 from rt_drake.model.cup_physics import BellowsCup, load_bellows_cup
+from rt_drake.model.held import held_object_of
+from rt_drake.model.resources import resolve_scenario_path
+from rt_drake.model.scenario import load_scenario
 from rt_drake.simulation import held_inertia, mode_periods, tool_stiffness
 from rt_drake.types.held_object import HeldObject
 
@@ -173,3 +176,22 @@ def test_stiffness_inertia_and_periods_match_drakes_bushings(cup, X_TCs):
     # each mode shape solves K v = (2 pi / T)^2 M v
     for T, v in zip(periods, modes.T, strict=True):
         np.testing.assert_allclose(K @ v, (2 * np.pi / T) ** 2 * M @ v, atol=1e-8)
+
+
+@pytest.mark.parametrize(
+    "name", ["carton_two_cups_bellows", "carton_two_cups_bellows_20n"]
+)
+def test_the_two_cup_scenarios_ramp_over_the_tools_longest_mode(cup, name):
+    scenario = load_scenario(resolve_scenario_path(name))
+    X_TCs = [
+        RigidTransform(RotationMatrix(m.R_TC), m.p_TC)
+        for m in scenario.tool_parameters().cups
+    ]
+    assert len(X_TCs) == 2
+    held = held_object_of(scenario.objects[0])
+    periods, _ = mode_periods(
+        tool_stiffness(cup, X_TCs), held_inertia(held, cup, X_TCs)
+    )
+    assert scenario.planning.grasp_ramp_s == pytest.approx(periods[0], abs=1e-3)
+    # one cup alone would give 0.97 s (torsion): the pair is far stiffer
+    assert periods[0] < 0.4
