@@ -21,21 +21,27 @@ time"), at most ``1 + 0.217`` for ``x >= 1`` (at ``pi x = 4.493``, where
 1 / 1.217 = 0.178`` keeps the overshoot in the grasp set; the tool prints
 that ``planning.grasp_margin``.
 
-T_n is the longest period of the bellows' modes with each object of the
-scenario: axial and lateral ``T = 2 pi sqrt((m + m_lip) / k)``, tilt and
-torsion ``T = 2 pi sqrt(I / k)`` with I the object's moment of inertia about
-the lip's axes (its centre of mass moved to the cup origin). Prints the
-periods, the ``planning.grasp_ramp_s`` line (s) and the grasp-constrained
-MOVE's jerk limits it gives (rad/s^3) for the scenario's acceleration limits
-(the URDF's when the scenario gives none).
+T_n is the longest period of the modes of the held object on the tool's
+bellows (:mod:`rt_drake.simulation._bellows_modes`): the eigenvalues of the
+tool's 6 x 6 stiffness, every cup's bushing in parallel at its pose X_TC
+(two cups 2 d apart stiffen torsion by ``2 k_lateral d^2`` and tilt across
+the pair by ``2 k_axial d^2``), against the spatial inertia of the object
+and the lips about the tool frame. For one cup these are the axial,
+lateral, tilt and torsion periods ``2 pi sqrt(m / k)`` and ``2 pi sqrt(I /
+k)``, coupled where the centre of mass lies off the cup. An object with an
+uncertainty set (``objects[].uncertainty``) gives the longest period over
+the corners of its set that are bodies. Prints the periods (longest
+first), the ``planning.grasp_ramp_s`` line (s) and the grasp-constrained
+MOVE's jerk limits it gives (rad/s^3) for the scenario's acceleration
+limits (the URDF's when the scenario gives none).
 """
 
 from __future__ import annotations
 
 import argparse
-import math
 
 import numpy as np
+from pydrake.math import RigidTransform, RotationMatrix
 
 from rt_drake.model.cup_physics import DEFAULT_BELLOWS_CUP, load_bellows_cup
 from rt_drake.model.held import held_object_of
@@ -43,6 +49,8 @@ from rt_drake.model.plant import make_arm_plant, robot_position_indices
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.model.scenario import load_scenario
 from rt_drake.retiming import JointLimits
+from rt_drake.simulation import held_inertia, mode_periods, tool_stiffness
+from rt_drake.uncertainty.object_samples import ObjectInertia, corners
 
 
 def main() -> None:
@@ -54,31 +62,41 @@ def main() -> None:
     scenario = load_scenario(resolve_scenario_path(args.scenario))
     cup = load_bellows_cup(args.cup)
     plant = make_arm_plant(scenario)
-    periods: dict[str, float] = {}
+    X_TCs = [
+        mount_pose(mount.R_TC, mount.p_TC) for mount in scenario.tool_parameters().cups
+    ]
+    K = tool_stiffness(cup, X_TCs)
+    longest = 0.0
     for obj in scenario.objects:
-        held = held_object_of(obj)
-        p = held.p_CoScm_C
-        I_Co = held.I_Scm_C + held.mass * (p @ p * np.eye(3) - np.outer(p, p))
-        total = held.mass + cup.lip_mass
-        for axis, inertia, k in (
-            ("axial", total, cup.axial_stiffness),
-            ("lateral", total, cup.lateral_stiffness),
-            ("tilt", max(I_Co[0, 0], I_Co[1, 1]), cup.tilt_stiffness),
-            ("torsion", I_Co[2, 2], cup.torsion_stiffness),
-        ):
-            T = 2 * math.pi * math.sqrt(inertia / k)
-            periods[f"{axis} ({obj.name})"] = T
-    period = max(periods.values())
+        helds = [held_object_of(obj)]
+        if obj.uncertainty is not None and not obj.uncertainty.is_zero():
+            X_OC = obj.grasp.GetDeterministicValue()
+            sample = corners(ObjectInertia.of_model(obj), obj.uncertainty)
+            helds += [o.held(X_OC) for o in sample]
+        periods = [mode_periods(K, held_inertia(h, cup, X_TCs))[0] for h in helds]
+        nominal, worst = periods[0], max(periods, key=lambda T: T[0])
+        line = ", ".join(f"{1e3 * T:.0f}" for T in nominal)
+        print(f"modes ({obj.name}, {len(X_TCs)} cup(s)): {line} ms")
+        if len(periods) > 1:
+            print(
+                f"  longest over the {len(periods) - 1} corners of its set: "
+                f"{1e3 * worst[0]:.0f} ms"
+            )
+        longest = max(longest, worst[0])
     limits = JointLimits.from_plant(plant, scenario.robot)
     robot = plant.GetModelInstanceByName(scenario.robot.model_instance)
     assert len(robot_position_indices(plant, robot)) == len(limits.acceleration)
-    jerk = np.asarray(limits.acceleration) / period
-    print("periods: " + ", ".join(f"{k} {v * 1e3:.0f} ms" for k, v in periods.items()))
-    print(f"longest: {period * 1e3:.0f} ms")
-    print(f"  grasp_ramp_s: {period:.3f}")
+    jerk = np.asarray(limits.acceleration) / longest
+    print(f"longest: {longest * 1e3:.0f} ms")
+    print(f"  grasp_ramp_s: {longest:.3f}")
     print(f"  grasp_margin: {overshoot_margin():.3f}")
     values = ", ".join(f"{j:.1f}" for j in jerk)
     print(f"its grasp-constrained jerk limits, rad/s^3 (before robot's): [{values}]")
+
+
+def mount_pose(R_TC: np.ndarray, p_TC: np.ndarray) -> RigidTransform:
+    """X_TC of a cup mount."""
+    return RigidTransform(RotationMatrix(R_TC), p_TC)
 
 
 def overshoot_margin() -> float:

@@ -256,11 +256,6 @@ def run_robust_transport(args: argparse.Namespace) -> int:
         raise InputError(
             "--robust plays the planner's spline MOVEs: it does not take --optimize"
         )
-    if args.cup_physics is not None:
-        raise InputError(
-            "--robust does not take --cup-physics yet: give the scenario's "
-            "cup_physics key instead"
-        )
     path = resolve_scenario_path(args.scenario)
     output_directory(args.out, "--out", ROBUST_FILES, {"scenario file": path})
     results = _timed_trials(
@@ -273,6 +268,8 @@ def run_robust_transport(args: argparse.Namespace) -> int:
             object_name=args.object,
             workers=args.workers,
             progress=progress,
+            cup_physics=args.cup_physics,
+            jerk_limits=not args.no_jerk_limits,
         ),
     )
     written = write_robust_report(results, args.out)

@@ -76,13 +76,25 @@ def robust_trial(
     X_WO_start: RigidTransform,
     X_WO_goal: RigidTransform,
     seed: int,
+    jerk_limits: bool = False,
 ) -> dict[str, Any]:
-    """Plan one transport, retime it nominal and robust, play both (true object)."""
+    """Plan one transport, retime it nominal and robust, play both (true object).
+
+    Every retime holds the grasp: under the scenario's
+    ``planning.grasp_ramp_s`` when it gives one, and its
+    ``robot.jerk_limits`` too with ``jerk_limits``. The physics is the
+    scenario's ``cup_physics``.
+    """
     obj = scenario.object(object_name)
     uncertainty = _uncertainty(obj)
     trial = transport_scenario(scenario, object_name, X_WO_start, X_WO_goal)
     motions = OnlineMotions(
-        trial, grasp_constraint=True, seed=seed + index, robust=False, optimize=False
+        trial,
+        grasp_constraint=True,
+        seed=seed + index,
+        robust=False,
+        optimize=False,
+        jerk_limits=jerk_limits,
     )
     planned_obj = trial.objects[0]
     approach = motions.approach(motions.q_home, planned_obj)
@@ -150,7 +162,8 @@ def true_object_world(
     The true object is drawn from the set's hardest corners
     (:func:`~rt_drake.uncertainty.object_samples.hardest_corner`, one draw of ``rng``);
     the cup is the worst of its range (``friction_min``,
-    ``suction_force_min``).
+    ``suction_force_min``) under ``cup_physics: rim``; a bellows cup is its
+    catalogue's, whatever the planner's cup.
 
     Returns:
         The rollout scenario (arm at ``q_grasp``), the object inertias to
@@ -198,14 +211,15 @@ def _pose_list(X: RigidTransform) -> list[float]:
 
 def _trial_job(args: tuple) -> dict[str, Any]:
     """One trial in a worker: scenarios do not pickle, so it is loaded again."""
-    path, object_name, index, X_start, X_goal, seed = args
+    path, object_name, index, X_start, X_goal, seed, cup, jerk = args
     return robust_trial(
-        load_scenario(path),
+        load_scenario(path).with_cup_physics(cup),
         object_name,
         index,
         RigidTransform(X_start),
         RigidTransform(X_goal),
         seed,
+        jerk,
     )
 
 
@@ -216,10 +230,15 @@ def run_robust_transport_experiment(
     object_name: str | None = None,
     workers: int = 1,
     progress: Callable[[int, int], None] | None = None,
+    cup_physics: str | None = None,
+    jerk_limits: bool = False,
 ) -> dict[str, Any]:
     """Run n trials (in ``workers`` processes); return results and a summary.
 
     ``progress(done, n)`` is called as each trial finishes (and with 0 first).
+    ``cup_physics``: play the trials with this cup (``rim`` or ``bellows``;
+    None: the scenario's ``cup_physics.kind``); the results name it. With
+    ``jerk_limits``, every retime keeps the scenario's ``robot.jerk_limits``.
 
     Raises:
         InputError: fewer than one trial or one worker.
@@ -227,10 +246,13 @@ def run_robust_transport_experiment(
             an object without an uncertainty set.
     """
     scenario, name = transport_inputs(scenario_path, n, workers, object_name)
+    scenario = scenario.with_cup_physics(cup_physics)
     _uncertainty(scenario.object(name))
     pairs = sample_transports(scenario, n, seed)
+    kind = scenario.cup_physics.kind
     jobs = [
         (str(scenario_path), name, i, X_s.GetAsMatrix4(), X_g.GetAsMatrix4(), seed)
+        + (kind, jerk_limits)
         for i, (X_s, X_g) in enumerate(pairs)
     ]
     trials = run_trials(_trial_job, jobs, workers, progress)
@@ -240,6 +262,10 @@ def run_robust_transport_experiment(
         "object": name,
         "seed": seed,
         "n": n,
+        "cup_physics": kind,
+        "jerk_limits": jerk_limits,
+        "grasp_ramp_s": scenario.planning.grasp_ramp_s,
+        "grasp_margin": scenario.planning.grasp_margin,
         "uncertainty": dataclasses.asdict(obj.uncertainty),
         "cup": {
             "friction_min": scenario.cup.friction_min,

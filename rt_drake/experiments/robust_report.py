@@ -68,6 +68,19 @@ def summary_lines(results: dict[str, Any]) -> list[str]:
     ]
 
 
+def _cup_physics_words(results: dict[str, Any]) -> str:
+    """The simulated cup and the grasp's ramp and margin, in words."""
+    kind = results.get("cup_physics", "rim")
+    words = [f"{kind} (cup_physics)"]
+    if results.get("grasp_ramp_s") is not None:
+        words.append(f"grasp ramp {results['grasp_ramp_s']:g} s")
+    if results.get("grasp_margin"):
+        words.append(f"grasp margin {results['grasp_margin']:g}")
+    if results.get("jerk_limits"):
+        words.append("the robot's jerk limits")
+    return ", ".join(words)
+
+
 def write_robust_report(results: dict[str, Any], out_dir: Path) -> list[Path]:
     """Write results.json, robustness.png and report.md; return the paths.
 
@@ -94,11 +107,13 @@ def write_robust_report(results: dict[str, Any], out_dir: Path) -> list[Path]:
         f"principal moments +-{100 * u['inertia']:.3g} %; cup: "
         + (", ".join(ranges) if ranges else "friction and suction known")
         + ".",
+        f"Simulated cup: {_cup_physics_words(results)}.",
         "Each path is retimed for the nominal object and for every object of",
         "the set, and both are played in the cycle's physics with the same true",
         "object, drawn from the set's hardest corners (heaviest, largest",
         "moments, centre of mass at a random corner), on the worst cup of the",
-        "range. ok: it moved less than 5 mm and 3 deg on the cup. Price: robust",
+        "range (the rim cup; a bellows cup is its catalogue's).",
+        "ok: it moved less than 5 mm and 3 deg on the cup. Price: robust",
         "/ nominal duration. Tightness: robust duration / the duration that",
         "holds a dense sample of the set (its corners that are bodies and 200",
         "random bodies),",

@@ -10,11 +10,18 @@
 - :mod:`.online_motions`: the planner plus retimer as the online motion
   source (``OnlineMotions``).
 - :mod:`._retimer_system`: the retimer as a LeafSystem (``Retimer``).
+- :mod:`._bellows_modes`: the natural periods of an object on a tool of
+  bellows cups (``tool_stiffness``, ``held_inertia``, ``mode_periods``).
 - :mod:`._cycle_runner`: station + sequencer, simulated to the end
   (``run_cycle``).
 """
 
 from rt_drake.model.vacuum import VacuumTimeout
+from rt_drake.simulation._bellows_modes import (
+    held_inertia,
+    mode_periods,
+    tool_stiffness,
+)
 from rt_drake.simulation._cycle_runner import (
     CycleResult,
     CycleTimeout,
@@ -66,7 +73,10 @@ __all__ = [
     "SuctionCup",
     "VacuumTimeout",
     "build_cycle",
+    "held_inertia",
     "held_object",
+    "mode_periods",
     "pose_difference",
     "run_cycle",
+    "tool_stiffness",
 ]

@@ -86,8 +86,10 @@ def test_robust_experiment_writes_both_plans_per_trial(tmp_path):
     assert t["duration_robust_s"] > t["duration_nominal_s"]
     assert 1.0 <= t["tightness"] <= 1.03
     assert results["summary"]["success_robust"] == 1
+    assert results["cup_physics"] == "rim"  # the scenario's, named
     assert (out / "robustness.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert "| 0 | 0.661 |" in (out / "report.md").read_text()
+    report = (out / "report.md").read_text()
+    assert "| 0 | 0.661 |" in report and "Simulated cup: rim (cup_physics)" in report
 
 
 def test_robust_experiment_needs_an_uncertainty_set(tmp_path, capsys):
