@@ -19,7 +19,11 @@ thread's CPU ms (spline planning excluded; ``plan`` is that), the paths
 scored, the largest cup tilt and, with ``--discretization``, the loss of the
 optimised and the spline path's retimes against 1000 uniform points (%).
 ``--evaluations N`` sets the search's budget in paths scored (default: the
-options' ``max_evaluations``, 200); no clock enters the search.
+options' ``max_evaluations``); no clock enters the search. ``--sigma``
+sets CMA-ES's initial step size. ``--kto FILE`` compares with the offline
+KTO reference's JSON (``tools/kto_reference.py --json``, same scenario, n
+and seed): the medians of ``opt/100`` and of the KTO's ``kto/100`` over the
+transports whose KTO path is valid, and the gap (shaped / KTO - 1).
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/bench_optimize.py --n 20 --seed 0
     OPENBLAS_NUM_THREADS=1 python benchmarks/bench_optimize.py \\
@@ -160,6 +164,8 @@ def main() -> None:
     parser.add_argument("--starts", type=int, default=None)
     parser.add_argument("--search-gridpoints", type=int, default=None)
     parser.add_argument("--discretization", action="store_true")
+    parser.add_argument("--sigma", type=float, default=None)
+    parser.add_argument("--kto", type=Path, default=None)
     parser.add_argument("--json", type=Path, default=None)
     args = parser.parse_args()
 
@@ -171,6 +177,7 @@ def main() -> None:
         max_evaluations=args.evaluations or defaults.max_evaluations,
         starts=defaults.starts if args.starts is None else args.starts,
         search_gridpoints=args.search_gridpoints or defaults.search_gridpoints,
+        sigma=args.sigma or defaults.sigma,
     )
     optimizer = MoveOptimizer(setup.plant, setup.limits, options, setup.cup)
     plant, limits = setup.plant, setup.limits
@@ -246,9 +253,41 @@ def main() -> None:
         )
         text += f"; discretization loss max {summary['loss_pct_max']:+.2f} %"
     print(text)
+    if args.kto:
+        summary.update(kto_gap(rows, args.kto))
+        print(
+            f"against the KTO reference on its {summary['kto_count']} valid "
+            f"transports: opt/100 {summary['kto_shaped_100']:.4f}, kto/100 "
+            f"{summary['kto_100']:.4f}, gap {100 * summary['kto_gap']:+.2f} %"
+        )
     if args.json:
         args.json.parent.mkdir(parents=True, exist_ok=True)
         args.json.write_text(json.dumps({"rows": rows, "summary": summary}, indent=1))
+
+
+def kto_gap(rows: list[dict], path: Path) -> dict:
+    """Medians of ``opt/100`` and the KTO's ``kto/100`` on the same transports.
+
+    Over the transports of ``rows`` whose KTO path in the JSON at ``path``
+    is valid; both ratios have the same denominator (the spline path at 100
+    points, checked equal to 1e-9 s). ``kto_gap``: shaped median / KTO
+    median - 1.
+    """
+    reference = {
+        r["index"]: r for r in json.loads(path.read_text())["rows"] if r["valid"]
+    }
+    common = [r for r in rows if r["index"] in reference]
+    for r in common:
+        spline = reference[r["index"]]["spline100_s"]
+        assert abs(r["spline100_s"] - spline) < 1e-9, (r["index"], spline)
+    shaped = float(np.median([r["ratio_100"] for r in common]))
+    kto = float(np.median([reference[r["index"]]["kto_ratio_100"] for r in common]))
+    return {
+        "kto_count": len(common),
+        "kto_shaped_100": shaped,
+        "kto_100": kto,
+        "kto_gap": shaped / kto - 1.0,
+    }
 
 
 if __name__ == "__main__":

@@ -1,7 +1,8 @@
 """Offline reference for issue 13: Drake's KinematicTrajectoryOptimization (KTO).
 
 How far is the shaped MOVE (:class:`rt_drake.shaping.MoveOptimizer`, its
-defaults: 200 paths scored) from a richer path family's local optimum? For
+defaults: 240 paths scored, step 0.2) from a richer path family's local
+optimum? For
 chosen transports of ``bench_optimize.py``'s setup (same transports, seeds,
 planner, held object and grasp constraint; each transport planned and
 shaped alone, its planner seeded ``seed + index`` as the benchmark does),

@@ -122,8 +122,8 @@ class RandomTransport:
 
 #: Candidate paths the MOVE optimiser scores per MOVE by default (its search
 #: budget; a median of 0.13-0.14 s of CPU on Table I's transports,
-#: BENCHMARKS.md "Fast by default").
-MOVE_EVALUATIONS = 200
+#: BENCHMARKS.md "The shaped MOVE against the KTO reference").
+MOVE_EVALUATIONS = 240
 
 
 @dataclasses.dataclass

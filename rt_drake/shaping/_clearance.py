@@ -35,6 +35,8 @@ from rt_drake.shaping.cup_chain import CupChain
 
 #: Sphere spacing along a row or grid, in sphere radii.
 SPACING = 1.5
+#: m, what :meth:`ClearanceModel.swept` adds to its cap above ``floor``.
+FLOOR_SLACK = 1e-9
 
 
 def _spheres(shape, X_CG: RigidTransform) -> list[tuple[np.ndarray, float]]:
@@ -126,12 +128,38 @@ class ClearanceModel:
             )
             X_WG = X_WB @ X_BG
             boxes.append((X_WG.rotation().matrix(), X_WG.translation(), half))
+        self._set(chain, spheres, boxes)
+
+    @classmethod
+    def of_shapes(
+        cls,
+        chain: CupChain | None,
+        spheres: list[tuple[np.ndarray, float]],
+        boxes: list[tuple[np.ndarray, np.ndarray, np.ndarray]],
+    ) -> ClearanceModel:
+        """The model of given spheres and boxes, without a scene.
+
+        Args:
+            chain: Kinematics for :meth:`clearance` (None: poses only).
+            spheres: ``(centre in C (3,) m, radius m)``.
+            boxes: ``(R_WB (3, 3), p_WB (3,) m, half sizes (3,) m)``.
+        """
+        model = cls.__new__(cls)
+        model._set(chain, spheres, boxes)
+        return model
+
+    def _set(
+        self,
+        chain: CupChain | None,
+        spheres: list[tuple[np.ndarray, float]],
+        boxes: list[tuple[np.ndarray, np.ndarray, np.ndarray]],
+    ) -> None:
         self._chain = chain
-        self.centres_C = np.array([c for c, _ in spheres]).reshape(-1, 3)
-        self.radii = np.array([r for _, r in spheres])
-        self.box_R = np.array([b[0] for b in boxes]).reshape(-1, 3, 3)
-        self.box_p = np.array([b[1] for b in boxes]).reshape(-1, 3)
-        self.box_half = np.array([b[2] for b in boxes]).reshape(-1, 3)
+        self.centres_C = np.array([c for c, _ in spheres], float).reshape(-1, 3)
+        self.radii = np.array([r for _, r in spheres], float)
+        self.box_R = np.array([b[0] for b in boxes], float).reshape(-1, 3, 3)
+        self.box_p = np.array([b[1] for b in boxes], float).reshape(-1, 3)
+        self.box_half = np.array([b[2] for b in boxes], float).reshape(-1, 3)
         self._reach = float(
             (np.linalg.norm(self.centres_C, axis=1) + self.radii).max(initial=0.0)
         )
@@ -142,7 +170,11 @@ class ClearanceModel:
         return float(np.linalg.norm(self.centres_C, axis=1).max(initial=0.0))
 
     def swept(
-        self, R_WC: np.ndarray, p_WC: np.ndarray, cutoff: float = 0.05
+        self,
+        R_WC: np.ndarray,
+        p_WC: np.ndarray,
+        cutoff: float = 0.05,
+        floor: float | None = None,
     ) -> np.ndarray:
         """A lower bound (m) of the clearance between consecutive cup poses.
 
@@ -153,17 +185,30 @@ class ClearanceModel:
         that the motion between them is nearly straight), and the clearance
         is 1-Lipschitz in the position, so at any pose in between it is at
         least ``min(d_i, d_{i+1}) - delta_i / 2``.
+
+        With ``floor``, the pose clearances are capped at ``min(cutoff, floor
+        + max_i delta_i / 2 + e)`` (e: :data:`FLOOR_SLACK`, above rounding)
+        instead of ``cutoff``: a bound the cap lowers is still above
+        ``floor``, so the bounds below ``floor`` (and which segments have
+        one) are those of ``cutoff`` alone, and the sphere-box kernel skips
+        more boxes (its broad phase prunes at the cap).
         """
-        d = self.clearance_at(R_WC, p_WC, cutoff)
         step = np.linalg.norm(np.diff(p_WC, axis=-2), axis=-1)
         trace = np.einsum("...ij,...ij->...", R_WC[..., :-1, :, :], R_WC[..., 1:, :, :])
         theta = np.arccos(np.clip(0.5 * (trace - 1.0), -1.0, 1.0))
         delta = step + self.reach * theta
+        if floor is not None:
+            top = floor + 0.5 * float(delta.max(initial=0.0)) + FLOOR_SLACK
+            cutoff = min(cutoff, top)
+        d = self.clearance_at(R_WC, p_WC, cutoff)
         return np.minimum(d[..., :-1], d[..., 1:]) - 0.5 * delta
 
     def clearance(self, q: np.ndarray, cutoff: float = 0.05) -> np.ndarray:
         """Clearance (m) at configurations q (..., n), capped at ``cutoff``."""
-        return self.clearance_at(*self._chain.cup_pose(q), cutoff)
+        if self._chain is None:
+            raise ValueError("ClearanceModel.of_shapes(None, ...) has no kinematics")
+        R_WC, p_WC = self._chain.cup_pose(q)
+        return self.clearance_at(R_WC, p_WC, cutoff)
 
     def clearance_at(
         self, R_WC: np.ndarray, p_WC: np.ndarray, cutoff: float = 0.05

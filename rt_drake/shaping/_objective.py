@@ -113,7 +113,7 @@ class Objective:
         knots = chord_knots_batch(W)
         inner = (self.s > knots[:, ends, None]) & (self.s < knots[:, -1 - ends, None])
         inner = inner[:, :-1] & inner[:, 1:]  # segments between inner samples
-        d = self.clearance.swept(R_WC, p_WC, self.cutoff)
+        d = self.clearance.swept(R_WC, p_WC, self.cutoff, floor=self.threshold)
         deficit = self.threshold - np.where(inner, d, np.inf).min(axis=1)
         penalty += np.where(deficit > 0.0, 0.5 + 20.0 * deficit, 0.0)
         values = np.where(rejected, REJECTED, durations) + penalty

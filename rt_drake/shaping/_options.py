@@ -69,7 +69,10 @@ class MoveOptimizerOptions:
             path's corners are tried.
         joint_scale: rad per unit of the search's parameters (one for all
             joints, or one per joint).
-        sigma: CMA-ES's initial step size (units of the parameters).
+        sigma: CMA-ES's initial step size (units of the parameters; 0.2
+            and 240 paths, against 0.5 and 200 before, brought the shaped
+            MOVE from 1.9-2.8 % to 1.5-2.0 % of the KTO reference solved
+            from the earlier paths, BENCHMARKS.md).
         search_gridpoints: Points of the search's TOPP-RA grid.
         search_grid_weight: Where they are: at equal steps of the measure
             of :func:`~._finish.adaptive_grid` with this weight w (1: equal
@@ -92,7 +95,7 @@ class MoveOptimizerOptions:
     vertical_points: int = 2
     via_points: int = 2
     joint_scale: float | tuple[float, ...] = 0.1
-    sigma: float = 0.5
+    sigma: float = 0.2
     search_gridpoints: int = 24
     search_grid_weight: float | None = 1.0
     final_gridpoints: int = 400
