@@ -10,8 +10,11 @@ is at least its value at T, ``f(L) = f0 exp(-L / tau_r)``.
 
 The lead is the largest L for which the object's wrench ``w(t)`` (the cup
 on the object, frame C, ``[torque; force]``), sampled at ``RATE_HZ`` over
-``[T - L, T]``, stays in the cup's wrench set for that force, shrunk by the
-grasp margin: ``F w <= g(f(L))`` with the rows of ``grasp_at(f(L))``
+``[T - L, T]`` and on both sides of every knot of the motion in that
+window (the retime's grid times, where ``s''`` and so the wrench jump,
+which the 1 kHz samples can straddle), stays in the cup's
+wrench set for that force, shrunk by the grasp margin: ``F w <= g(f(L))``
+with the rows of ``grasp_at(f(L))``
 (:func:`~rt_drake.contact.with_suction_force` translates the set; the
 MOVE's own rows are those of ``f0``). A larger L both lowers ``f(L)`` and
 lengthens the window, so "holds" is monotone in L and a bisection over
@@ -41,6 +44,8 @@ RATE_HZ = 1000.0
 LEAD_TAUS = 3.0
 #: Halvings of the bisection (resolution ``LEAD_TAUS tau_r / 2^LEAD_STEPS``).
 LEAD_STEPS = 10
+#: s: how far each side of a knot its one-sided wrench is sampled.
+KNOT_SIDE_S = 1e-9
 
 
 def release_lead(
@@ -52,6 +57,7 @@ def release_lead(
     release_tau_s: float,
     context: Context | None = None,
     cup: CupFrame | None = None,
+    knots: np.ndarray | None = None,
 ) -> float:
     """The largest lead L (s) before ``trajectory``'s end at which the valve may close.
 
@@ -64,10 +70,18 @@ def release_lead(
         release_tau_s: ``tau_r``, s, the release's time constant.
         context: Scratch context of ``plant``.
         cup: The cup frame C of ``plant``.
+        knots: s, times at which the motion's acceleration may jump (a
+            retimed path's grid times); each in the window is also sampled
+            ``KNOT_SIDE_S`` before and after it.
     """
-    t1 = trajectory.end_time()
-    longest = min(LEAD_TAUS * release_tau_s, t1 - trajectory.start_time())
+    t0, t1 = trajectory.start_time(), trajectory.end_time()
+    longest = min(LEAD_TAUS * release_tau_s, t1 - t0)
     times = np.append(np.arange(t1 - longest, t1, 1.0 / RATE_HZ), t1)
+    if knots is not None:
+        inside = np.asarray(knots, dtype=float)
+        inside = inside[inside >= t1 - longest]
+        sides = np.concatenate([inside - KNOT_SIDE_S, inside + KNOT_SIDE_S])
+        times = np.unique(np.concatenate([times, np.clip(sides, t0, t1)]))
     q = np.array([trajectory.value(t).ravel() for t in times])
     v, vdot = (
         np.array([trajectory.EvalDerivative(t, k).ravel() for t in times])
@@ -92,4 +106,4 @@ def release_lead(
     return low
 
 
-__all__ = ["LEAD_STEPS", "LEAD_TAUS", "RATE_HZ", "release_lead"]
+__all__ = ["KNOT_SIDE_S", "LEAD_STEPS", "LEAD_TAUS", "RATE_HZ", "release_lead"]

@@ -80,6 +80,7 @@ from rt_drake.retiming import (
     ObjectSetGrasp,
     RetimeError,
     RetimeResult,
+    TimedPath,
     TimeScaled,
     retime,
     warm_up,
@@ -449,6 +450,7 @@ class OnlineMotions:
             vacuum.release_tau_s,
             self._context,
             self._cup,
+            knots=_knots(move.trajectory),
         )
         if lead <= 0.0:
             return move
@@ -521,6 +523,17 @@ class OnlineMotions:
             guarantee=guarantee,
             grasp_price_s=price,
         )
+
+
+def _knots(trajectory: object) -> np.ndarray | None:
+    """Times (s) at which a retimed motion passes its grid points.
+
+    There its acceleration may jump (TOPP-RA's piecewise-constant s''); None
+    for a motion without a grid.
+    """
+    if isinstance(trajectory, TimedPath | JerkTimedPath):
+        return trajectory.times
+    return None
 
 
 def time_at(result: RetimeResult, s: float) -> float:
