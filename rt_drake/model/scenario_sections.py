@@ -122,7 +122,7 @@ class RandomTransport:
 
 #: Candidate paths the MOVE optimiser scores per MOVE by default (its search
 #: budget; a median of 0.13-0.14 s of CPU on Table I's transports,
-#: BENCHMARKS.md "The shaped MOVE against the KTO reference").
+#: BENCHMARKS.md "The KTO reference").
 MOVE_EVALUATIONS = 240
 
 
