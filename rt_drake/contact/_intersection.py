@@ -1,0 +1,66 @@
+"""The intersection of a wrench polytope with more half-spaces: rows and vertices.
+
+``P' = {w : F w <= g} ∩ {w : A w <= b}``, both with the zero wrench strictly
+inside (g > 0, b > 0), is computed by Qhull's half-space intersection
+(scipy's ``HalfspaceIntersection``, the dual convex hull) in scaled
+coordinates ``S w = [torque / r; force]`` (all in N, so the rows are well
+conditioned). The vertices are Qhull's intersection points, merged when
+closer than :data:`MERGE` (relative); a row is kept only when it is a facet:
+the vertices on it (``F_j v >= g_j - tol``) span a 5-dimensional affine
+hull. The result is a minimal H-representation and its vertices.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial import HalfspaceIntersection
+
+from rt_drake.errors import InputError
+
+#: Relative distance below which two intersection points are one vertex, and
+#: a vertex lies on a row.
+MERGE = 1e-9
+#: Singular value (relative) below which the vertices on a row are degenerate.
+RANK_TOLERANCE = 1e-9
+
+
+def intersect(
+    F: np.ndarray, g: np.ndarray, scale: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Return ``(F', g', vertices)`` of ``{w : F w <= g}`` (a bounded polytope).
+
+    Args:
+        F: (rows, 6) rows in raw wrench units (redundant rows allowed).
+        g: (rows,) offsets, all > 0 (the zero wrench strictly inside).
+        scale: (6,) the diagonal S of the scaled coordinates.
+
+    Returns:
+        F' unit rows (one per facet), g' and the (count, 6) vertices, in raw
+        wrench units.
+    """
+    if np.any(g <= 0.0):
+        raise InputError("intersect: the zero wrench must be strictly inside (g > 0)")
+    scaled = F / scale  # F w = (F S^-1)(S w)
+    norms = np.linalg.norm(scaled, axis=1)
+    scaled, offsets = scaled / norms[:, None], g / norms
+    hull = HalfspaceIntersection(
+        np.hstack([scaled, -offsets[:, None]]), np.zeros(F.shape[1])
+    )
+    points = hull.intersections
+    size = max(float(np.abs(points).max()), 1.0)
+    _, first = np.unique(np.round(points / (MERGE * size)), axis=0, return_index=True)
+    points = points[np.sort(first)]
+    on_row = scaled @ points.T >= offsets[:, None] - MERGE * size
+    keep = [j for j in range(len(F)) if _is_facet(points[on_row[j]], F.shape[1])]
+    rows = scaled[keep] * scale  # back to raw units, then unit rows
+    row_norms = np.linalg.norm(rows, axis=1)
+    return rows / row_norms[:, None], offsets[keep] / row_norms, points / scale
+
+
+def _is_facet(points: np.ndarray, dimension: int) -> bool:
+    """Whether ``points`` span an affine hull of ``dimension - 1``."""
+    if len(points) < dimension:
+        return False
+    spread = points[1:] - points[0]
+    singular = np.linalg.svd(spread, compute_uv=False)
+    return bool(singular[dimension - 2] > RANK_TOLERANCE * max(singular[0], 1.0))
