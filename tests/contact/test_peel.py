@@ -32,8 +32,10 @@ from rt_drake.contact.peel import PEEL_SIDES
 from rt_drake.contact.tool import ToolParameterError, ToolParameters
 from rt_drake.contact.tool_polytope import tool_wrench_polytope
 from rt_drake.contact.wrench_polytope import check_polytope
-from rt_drake.errors import InputError
+from rt_drake.errors import InputError, ScenarioError
 from rt_drake.model.cup_physics import load_bellows_cup
+from rt_drake.model.resources import resolve_scenario_path
+from rt_drake.model.scenario import load_scenario
 
 #: The bellows scenarios' planner cup (friction of the catalogue's lip).
 CUP = CupParameters(friction=0.6, suction_force=20.0)
@@ -188,3 +190,13 @@ def test_simulated_lip_leaks_at_or_above_the_peel_limit():
     # And the planner's limit is a peel, not a tip: below the rim's moment.
     rim = contact_wrench_polytope(dataclasses.replace(cup, peel_fraction=None))
     assert planner < largest_moment(rim.F, rim.g, np.zeros(6), np.pi)
+
+
+def test_scenario_key_loads_and_a_bad_value_names_it(tmp_path):
+    shipped = resolve_scenario_path("random_transport_uncertain_bellows")
+    assert load_scenario(shipped).cup.peel_fraction == FRACTION
+    text = shipped.read_text().replace("peel_fraction: 0.5", "peel_fraction: 1.5")
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(text)
+    with pytest.raises(ScenarioError, match=r"bad.yaml: key 'cup'.*peel_fraction.*1.5"):
+        load_scenario(bad)
