@@ -16,6 +16,13 @@ moment, as a fraction c of ``N0 r``, at which
 
 The moment turns the face about the x axis of C, with a lip point opposite
 (the ring's weakest direction). Reads the catalogue only; no simulation.
+
+``--at-rest MASS DX DY`` (kg, m, m: an object hanging below the cup pointing
+down, its centre of mass DX, DY off the axis) also prints, for each
+``--fractions`` c, the share ``max_k F_k w / g_k`` of the planner's set
+(the cup's P A, radius and friction, ``peel_fraction`` c; none: the rigid
+rim) that holding it at rest takes; ``1 - grasp_margin`` is the most a
+margin leaves.
 """
 
 from __future__ import annotations
@@ -25,6 +32,7 @@ import argparse
 import numpy as np
 from scipy.optimize import brentq
 
+from rt_drake.contact import CupParameters, contact_wrench_polytope
 from rt_drake.model.cup_physics import BellowsCup, load_bellows_cup
 
 
@@ -57,9 +65,13 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("cup", nargs="?", default="vs060_bellows_20n")
     parser.add_argument("--pull", type=float, nargs="+", default=[0.0, 5.41, 6.48])
+    parser.add_argument("--at-rest", type=float, nargs=3, metavar=("MASS", "DX", "DY"))
+    parser.add_argument(
+        "--fractions", type=float, nargs="+", default=[0.5, 0.697, 0.72, 0.74]
+    )
     args = parser.parse_args()
     cup = load_bellows_cup(args.cup)
-    print(f"{cup.name}: P A {cup.suction_force:.2f} N, r {1e3 * cup.radius:g} mm, ")
+    print(f"{cup.name}: P A {cup.suction_force:.2f} N, r {1e3 * cup.radius:g} mm,")
     print(
         f"  {cup.lip_points} points, K {cup.lip_stiffness:g} N/m, "
         f"leak gap {1e3 * cup.leak_gap:g} mm"
@@ -73,6 +85,31 @@ def main() -> None:
             f"(c = {first / (N0 * cup.radius):.3f}), leak {leak:.4f} N m "
             f"(c = {leak / (N0 * cup.radius):.3f})"
         )
+    if args.at_rest is not None:
+        at_rest(cup, *args.at_rest, args.fractions)
+
+
+def at_rest(
+    cup: BellowsCup, mass: float, dx: float, dy: float, fractions: list[float]
+) -> None:
+    """Print the share of the planner's set an object at rest takes, per c.
+
+    Cup pointing down: gravity along +z_C; the cup's wrench on the object
+    about C's origin is ``[-p x (m g e_z); -m g e_z]``, p = (dx, dy, 0).
+    """
+    weight = np.array([0.0, 0.0, mass * 9.81])
+    p = np.array([dx, dy, 0.0])
+    wrench = np.concatenate([-np.cross(p, weight), -weight])
+    for fraction in [None, *fractions]:
+        planner = CupParameters(
+            radius=cup.radius,
+            friction=cup.friction,
+            suction_force=cup.suction_force,
+            peel_fraction=fraction,
+        )
+        polytope = contact_wrench_polytope(planner)
+        share = float(np.max(polytope.F @ wrench / polytope.g))
+        print(f"at rest, peel_fraction {fraction}: max F w / g = {share:.4f}")
 
 
 if __name__ == "__main__":
