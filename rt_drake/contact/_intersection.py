@@ -43,21 +43,19 @@ def intersect(
 
     Args:
         F: (rows, 6) rows in raw wrench units (redundant rows allowed).
-        g: (rows,) offsets, all > 0 (the zero wrench strictly inside).
+        g: (rows,) offsets.
         scale: (6,) the diagonal S of the scaled coordinates.
 
     Returns:
         F' unit rows (one per facet), g' and the (count, 6) vertices, in raw
         wrench units.
     """
-    if np.any(g <= 0.0):
-        raise InputError("intersect: the zero wrench must be strictly inside (g > 0)")
     scaled = F / scale  # F w = (F S^-1)(S w)
     norms = np.linalg.norm(scaled, axis=1)
     scaled, offsets = scaled / norms[:, None], g / norms
     hull = HalfspaceIntersection(
         np.hstack([scaled, -offsets[:, None]]),
-        np.zeros(F.shape[1]),
+        _interior_point(scaled, offsets),
         qhull_options=QHULL_OPTIONS,
     )
     points = hull.intersections
@@ -74,6 +72,29 @@ def intersect(
     rows = scaled[keep] * scale  # back to raw units, then unit rows
     row_norms = np.linalg.norm(rows, axis=1)
     return rows / row_norms[:, None], offsets[keep] / row_norms, points / scale
+
+
+def _interior_point(F: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """A point strictly inside ``F x <= g`` (unit rows).
+
+    0, or the centre of the largest ball inside (an LP) when 0 is not
+    strictly inside.
+
+    Raises:
+        InputError: the set has no interior (the rows leave no wrench).
+    """
+    if np.all(g > 0.0):
+        return np.zeros(F.shape[1])
+    # max t  s.t.  F x + t <= g  (|F_j| = 1): the ball of radius t at x.
+    cost = np.zeros(F.shape[1] + 1)
+    cost[-1] = -1.0
+    A = np.hstack([F, np.ones((len(F), 1))])
+    result = linprog(cost, A_ub=A, b_ub=g, bounds=(None, None), method="highs")
+    if result.status != 0 or result.x[-1] <= LP_TOLERANCE * max(g.max(), 1.0):
+        raise InputError(
+            "intersect: the rows leave no wrench (the set has no interior)"
+        )
+    return np.asarray(result.x[:-1])
 
 
 def _is_facet(points: np.ndarray, dimension: int) -> bool:

@@ -200,3 +200,29 @@ def test_scenario_key_loads_and_a_bad_value_names_it(tmp_path):
     bad.write_text(text)
     with pytest.raises(ScenarioError, match=r"bad.yaml: key 'cup'.*peel_fraction.*1.5"):
         load_scenario(bad)
+
+
+def test_intersection_when_the_rim_set_leaves_out_the_zero_wrench():
+    """Suction above the rim's capacity (4 x 6.5 N < 29.9 N): the rim's set
+    does not contain 0 (some g < 0), the intersection starts from an LP's
+    interior point and still agrees with the LP of the rim."""
+    cup = CupParameters(
+        radius=0.00885, points=4, friction=0.82, sides=3,
+        suction_force=29.9, max_normal_force=6.5, peel_fraction=0.5,
+    )  # fmt: skip
+    rim = contact_wrench_polytope(dataclasses.replace(cup, peel_fraction=None))
+    assert rim.g.min() < 0
+    peeled = contact_wrench_polytope(cup)
+    check_polytope(peeled)
+    rng = np.random.default_rng(2)
+    centre = peeled.vertices.mean(axis=0)
+    picks = np.vstack([rim.vertices, peeled.vertices])
+    wrenches = centre + (picks - centre) * rng.uniform(0.8, 1.2, (len(picks), 1))
+    F, g = peel_rows(cup)
+    margin = np.min(g - wrenches @ F.T, axis=1)
+    clear = np.abs(margin) > 1e-6
+    expected = is_realizable_lp(wrenches, cup, tol=1e-9) & (margin >= 0)
+    assert 10 < np.count_nonzero(expected[clear]) < np.count_nonzero(clear) - 10
+    np.testing.assert_array_equal(
+        peeled.contains(wrenches, tol=1e-9)[clear], expected[clear]
+    )
