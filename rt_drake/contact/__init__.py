@@ -20,6 +20,8 @@ origin, expressed in C. The grasp is stable when ``F w <= g``.
 - :func:`guided_approximation`: the paper's inner approximation.
 - :func:`worst_cup_polytope`: the wrenches every cup of a friction and
   suction range can exert (``friction_min``, ``suction_force_min``).
+- :func:`peel_rows`: a compliant lip's peel limit (``peel_fraction``),
+  rows on the tilting moment that W_c of such a cup includes.
 
 Only :mod:`rt_drake.contact._cup` and :mod:`rt_drake.contact.tool` (numpy)
 are imported with the package, so a scenario can name ``CupParameters`` and
@@ -61,6 +63,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers
         guided_approximation,
     )
     from rt_drake.contact.load_sharing import SharedLoadSet, shared_load_polytope
+    from rt_drake.contact.peel import peel_rows
     from rt_drake.contact.tool_polytope import (
         ToolWrenchSet,
         tool_summands,
@@ -90,6 +93,7 @@ _LAZY = {
     "SharedLoadSet": "load_sharing",
     "shared_load_polytope": "load_sharing",
     "object_wrench_sampler": "_samplers",
+    "peel_rows": "peel",
     "WrenchPolytope": "wrench_polytope",
     "contact_wrench_polytope": "wrench_polytope",
     "is_realizable": "wrench_polytope",
@@ -124,6 +128,7 @@ __all__ = [
     "load_polytope",
     "lp_residual",
     "object_wrench_sampler",
+    "peel_rows",
     "save_polytope",
     "shared_load_polytope",
     "shared_load_residual",

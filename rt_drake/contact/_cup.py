@@ -67,6 +67,10 @@ class CupParameters:
             [0, friction]; None: friction is known.
         suction_force_min: The lowest suction force (leaks), N, in (0,
             suction_force]; None: suction is known.
+        peel_fraction: c in (0, 1]: a compliant lip, whose tilting moment
+            is kept to ``|M_t| <= c r (P A + f_z)`` (1/2: the ring of lip
+            springs lifts nowhere; :mod:`rt_drake.contact.peel`); None: the
+            rigid rim alone (the paper's model).
 
     The last two describe what is not known about the cup; they are not
     parameters of its wrench set (``as_dict`` leaves them out) but of the
@@ -81,12 +85,14 @@ class CupParameters:
     max_normal_force: float = 33.3
     friction_min: float | None = None
     suction_force_min: float | None = None
+    peel_fraction: float | None = None
 
     def __post_init__(self) -> None:
         self.validate()
 
     def validate(self) -> None:
         """Raise InputError naming the first parameter that is out of range."""
+        self._validate_peel()
         for name, (first, last) in COUNT_RANGES.items():
             count = getattr(self, name)
             if isinstance(count, bool) or not isinstance(count, (int, np.integer)):
@@ -131,6 +137,18 @@ class CupParameters:
                     f"{getattr(self, nominal)!r}"
                 )
 
+    def _validate_peel(self) -> None:
+        """``peel_fraction`` None or a finite number in (0, 1]."""
+        value = self.peel_fraction
+        if value is None:
+            return
+        if isinstance(value, bool) or not isinstance(
+            value, (int, float, np.integer, np.floating)
+        ):
+            raise InputError(f"cup peel_fraction must be a number, got {value!r}")
+        if not (math.isfinite(value) and 0.0 < value <= 1.0):
+            raise InputError(f"cup peel_fraction must be in (0, 1], got {value!r}")
+
     @classmethod
     def from_vacuum(cls, pressure_pa: float, area_m2: float, **fields: Any) -> Self:
         """Return a cup whose suction force is ``P A`` (N).
@@ -151,12 +169,14 @@ class CupParameters:
         """Return the model's fields as plain Python numbers, in declaration order.
 
         The fields that define the wrench set (and its cache key): not
-        ``friction_min`` and ``suction_force_min``.
+        ``friction_min`` and ``suction_force_min``, and ``peel_fraction``
+        only when set (the rigid rim's key and set are the paper model's).
         """
         return {
             f.name: (int if f.type is int else float)(getattr(self, f.name))
             for f in dataclasses.fields(self)
             if f.name not in _RANGE_FIELDS
+            and not (f.name == "peel_fraction" and self.peel_fraction is None)
         }
 
     def is_uncertain(self) -> bool:

@@ -153,6 +153,11 @@ class ToolParameters:
             except ValueError as error:
                 message = str(error).removeprefix("cup ")
                 raise ToolParameterError(f"cup {i}: {message}") from None
+            if len(self.cups) > 1 and mount.cup.peel_fraction is not None:
+                raise ToolParameterError(
+                    f"cup {i}: peel_fraction {mount.cup.peel_fraction!r} is for one "
+                    f"cup; a tool of {len(self.cups)} cups has no peel rows"
+                )
 
     @property
     def length_scale(self) -> float:

@@ -30,8 +30,10 @@ from rt_drake.contact._cup import (
     grasp_matrices,
     suction_wrench,
 )
+from rt_drake.contact._intersection import intersect
 from rt_drake.contact._minkowski import minkowski_sum
 from rt_drake.contact.exact_cost import DEFAULT_MAX_MEMORY, check_exact_cost
+from rt_drake.contact.peel import peel_rows
 from rt_drake.contact.tool import ToolParameters
 from rt_drake.errors import InputError
 
@@ -225,7 +227,10 @@ def contact_wrench_polytope(
     """Compute the exact W_c of a cup: minimal H-rep and vertices.
 
     The paper's cup (m = 6, mu = 0.3, k = 4, 33.3 N, 20 N) gives 834 facets
-    and 1779 vertices. The cost is estimated first
+    and 1779 vertices. A cup with ``peel_fraction`` gets the rim's set
+    intersected with the lip's peel rows (:mod:`rt_drake.contact.peel`):
+    the rows of both that are facets, and the vertices of the intersection.
+    The cost is estimated first
     (:func:`rt_drake.contact.exact_cost.exact_cost`) and the result checked
     (:func:`check_polytope`).
 
@@ -244,6 +249,19 @@ def contact_wrench_polytope(
     arguments.instance(cup, "cup", CupParameters, where=where)
     arguments.number(max_memory, "max_memory", where=where, above=0.0)
     cup.validate()
+    if cup.peel_fraction is not None:
+        rim = contact_wrench_polytope(
+            dataclasses.replace(cup, peel_fraction=None), max_memory
+        )
+        peel_F, peel_g = peel_rows(cup)
+        F, g, vertices = intersect(
+            np.vstack([rim.F, peel_F]),
+            np.concatenate([rim.g, peel_g]),
+            wrench_scale(cup),
+        )
+        polytope = WrenchPolytope(cup=cup, F=F, g=g, vertices=vertices)
+        check_polytope(polytope)
+        return polytope
     check_exact_cost(cup, max_memory)
     scale = wrench_scale(cup)
     pyramid = friction_pyramid(cup)
