@@ -10,8 +10,8 @@ lifting the other.
 Model (derived here; Dex-Net 3.0, Mahler et al., ICRA 2018, also treats the
 cup's perimeter as a quasi-static ring of springs, there for its seal
 test, not for this limit). The lip is a ring of radius r of points of
-equal stiffness, pressed onto a rigid face. Assumptions: the face stays plane (a rigid object); the lip points are
-linear springs of equal stiffness along the cup axis and deflect only
+equal stiffness, pressed onto a rigid face. Assumptions: the face stays
+plane (a rigid object); the lip points are linear springs of equal stiffness along the cup axis and deflect only
 along it; friction carries the shear without changing the normal loads;
 quasi-static (the bellows' dynamics are the job of ``planning.grasp_ramp_s``
 and ``planning.grasp_margin``). In the cup frame C (origin at the centre of
