@@ -8,14 +8,15 @@ points pressed onto the face; it cannot move its load to one edge without
 lifting the other.
 
 Model (derived here; Dex-Net 3.0, Mahler et al., ICRA 2018, also treats the
-cup's perimeter as a quasi-static ring of springs, there for its seal
-test, not for this limit). The lip is a ring of radius r of points of
-equal stiffness, pressed onto a rigid face. Assumptions: the face stays
-plane (a rigid object); the lip points are linear springs of equal stiffness along the cup axis and deflect only
-along it; friction carries the shear without changing the normal loads;
-quasi-static (the bellows' dynamics are the job of ``planning.grasp_ramp_s``
-and ``planning.grasp_margin``). In the cup frame C (origin at the centre of
-the face, +z into the object), w = ``[torque; force]`` on the object:
+cup's perimeter as a quasi-static ring of springs, there for its seal test, not
+for this limit). The lip is a ring of radius r of points of equal stiffness,
+pressed onto a rigid face. Assumptions: the face stays plane (a rigid object);
+the lip points are linear springs of equal stiffness along the cup axis and
+deflect only along it; friction carries the shear without changing the normal
+loads; quasi-static (the bellows' dynamics are the job of
+``planning.grasp_ramp_s`` and ``planning.grasp_margin``). In the cup frame C
+(origin at the centre of the face, +z into the object), w = ``[torque; force]``
+on the object:
 
 - The ring's total normal load is ``N0 = P A + f_z``: the suction pulls the
   object on by P A, the net force ``f_z`` on the object leaves the rest on
