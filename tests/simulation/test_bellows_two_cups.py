@@ -5,11 +5,11 @@ both lips with the bellows relaxed, the arm held still. It sinks into the
 bellows and rings on them: the static stretch of each is ``(m / 2 + m_lip) g
 / k_axial`` = 15.7 mm, reached through an oscillation of period ``2 pi
 sqrt((m + 2 m_lip) / (2 k_axial))`` = 0.25 s with damping ratio 0.07, so the
-carton is still swinging by centimetres on the tool when the MOVE (here: the
-arm held still for 0.3 s more) starts. With no shear and no moment on the
-lips (a symmetric load, the tool vertical), friction holds the carton on
-each lip: its slip on the lips stays near zero while its motion on the tool
-is that swing.
+carton still swings by about 9 mm (``0.59 x`` the stretch) on the tool when
+the MOVE (here: the arm held still for 0.3 s more) starts. With no shear and
+no moment on the lips (a symmetric load, the tool vertical), friction holds
+the carton on each lip: its slip on the lips stays near zero while its
+motion on the tool is that swing.
 """
 
 from __future__ import annotations
