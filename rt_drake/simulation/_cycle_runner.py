@@ -79,9 +79,8 @@ def build_cycle(
     ]
     gravity = float(np.linalg.norm(plant.gravity_field().gravity_vector()))
     # Slip is the object's motion on what touches it: the cup frame of the
-    # tool, or a single bellows cup's lip (its bellows deflection apart); the
-    # motion on the tool's cup frame is measured too.
-    lip = station.lips[0].body_index if len(station.lips) == 1 else None
+    # tool, or each bellows cup's lip (its bellows deflection apart), the
+    # largest; the motion on the tool's cup frame is measured too.
     builder = DiagramBuilder()
     cell = builder.AddNamedSystem("station", station.diagram)
     sequencer = builder.AddNamedSystem(
@@ -97,7 +96,7 @@ def build_cycle(
             vacuum=scenario.vacuum,
             pipelined=pipelined,
             command_period=scenario.robot.command_period_s,
-            lip_body=lip,
+            lip_bodies=[lip.body_index for lip in station.lips],
         ),
     )
     for name in ("body_poses", "body_spatial_velocities"):

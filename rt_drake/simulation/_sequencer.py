@@ -32,7 +32,8 @@ holds with the force certain as the vacuum decays), so the release overlaps
 the set-down; DETACH still ends at "released".
 
 It measures, from the plant's body poses, how far the held object slips on
-what touches it (the bellows cup's lip, else the tool's cup frame), how far
+what touches it (each of the bellows cups' lips, the largest slip of them,
+else the tool's cup frame), how far
 it moves on the tool's cup frame (the slip plus the bellows' deflection) and
 where it lands. All that changes lives in the Context's abstract
 state.
@@ -41,6 +42,7 @@ state.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
 
 import numpy as np
 from pydrake.common.value import AbstractValue
@@ -89,7 +91,7 @@ class SequencerState:
     pending: PendingMotion | None = None
     pick: Motion | None = None
     X_CO_attached: RigidTransform | None = None
-    X_LO_attached: RigidTransform | None = None
+    X_LO_attached: tuple[RigidTransform, ...] | None = None
     records: tuple[ObjectRecord, ...] = ()
 
 
@@ -128,7 +130,7 @@ class Sequencer(LeafSystem):
         vacuum: Vacuum,
         pipelined: bool = True,
         command_period: float | None = None,
-        lip_body: BodyIndex | None = None,
+        lip_bodies: Sequence[BodyIndex] = (),
     ) -> None:
         """Make the sequencer.
 
@@ -145,8 +147,9 @@ class Sequencer(LeafSystem):
             command_period: s, send the motion sampled at this period and
                 interpolated between samples (:mod:`._command`); None:
                 continuous.
-            lip_body: the bellows cup's lip L, whose frame is C at rest: the
-                slip is measured on it; None: on C (the rim cup).
+            lip_bodies: the bellows cups' lips L_i, one per cup, each frame
+                its cup's frame at rest: the slip is the largest on any of
+                them; none: on C (the rim cup).
         """
         super().__init__()
         self._motions = motions
@@ -155,7 +158,7 @@ class Sequencer(LeafSystem):
         self._weights = list(object_weights)
         self._tool = tool_body
         self._X_TC = X_TC
-        self._lip = lip_body
+        self._lips = tuple(lip_bodies)
         self._vacuum = vacuum
         self._pipelined = pipelined
         self._command_period = command_period
@@ -386,12 +389,13 @@ class Sequencer(LeafSystem):
         X_WC = poses[int(self._tool)] @ self._X_TC
         return X_WC.inverse() @ poses[int(self._bodies[index])]
 
-    def _X_LO(self, context: Context, index: int) -> RigidTransform:
-        """Pose of object ``index`` on the lip L (C itself without a lip)."""
-        if self._lip is None:
-            return self._X_CO(context, index)
+    def _X_LO(self, context: Context, index: int) -> tuple[RigidTransform, ...]:
+        """Poses X_LiO of object ``index`` on each lip L_i (C without lips)."""
+        if not self._lips:
+            return (self._X_CO(context, index),)
         poses = self._poses_port.Eval(context)
-        return poses[int(self._lip)].inverse() @ poses[int(self._bodies[index])]
+        X_WO = poses[int(self._bodies[index])]
+        return tuple(poses[int(lip)].inverse() @ X_WO for lip in self._lips)
 
     def _measure(self, context: Context, state: SequencerState) -> SequencerState:
         """Track slip during MOVE and the placement error during DETACH."""
@@ -403,13 +407,13 @@ class Sequencer(LeafSystem):
             and X_LO_attached is not None
             and X_CO_attached is not None
         ):
-            record = with_slip(
-                record,
-                X_LO_attached,
-                self._X_LO(context, index),
-                X_CO_attached,
-                self._X_CO(context, index),
-            )
+            X_CO = self._X_CO(context, index)
+            # The slip is the largest on any lip: the object held still by
+            # every lip has not slipped, however far the bellows deflect.
+            for X_LO_then, X_LO in zip(
+                X_LO_attached, self._X_LO(context, index), strict=True
+            ):
+                record = with_slip(record, X_LO_then, X_LO, X_CO_attached, X_CO)
         elif state.phase is Phase.DETACH:
             X_WO = self._poses_port.Eval(context)[int(self._bodies[index])]
             goal = self._objects[index].goal.GetDeterministicValue()
