@@ -1,7 +1,7 @@
 """The grasp margin from the bellows cup's stated dynamics, for a scenario's MOVEs.
 
     python tools/bellows_margin.py SCENARIO [--seed 1] [--trials 0 1 ...]
-        [--rounds 6] [--tail-s 0]
+        [--rounds 10] [--tail-s 0]
 
 The planner keeps the *quasi-static* wrench ``w(t)`` of a retimed MOVE (the
 held object's inertia and weight, in the tool frame T, the wrench the grasp
@@ -76,7 +76,7 @@ def main() -> None:
     parser.add_argument("scenario")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--trials", type=int, nargs="+", default=list(range(20)))
-    parser.add_argument("--rounds", type=int, default=6)
+    parser.add_argument("--rounds", type=int, default=10)
     parser.add_argument("--tail-s", type=float, default=0.0)
     parser.add_argument(
         "--margins", type=float, nargs="*", default=[],
