@@ -24,6 +24,22 @@ lips) has the spatial inertia at T's origin
 
 ``p`` its centre of mass from T's origin, in T. The modes solve
 ``K v = omega^2 M v``; the periods are ``2 pi / omega`` (s).
+
+The bellows' dampers in parallel give ``C = sum_i J_i^T diag(C_t, C_f) J_i``
+in the same way. Driven by a load ``w(t)`` (the wrench the tool must put on
+the held body, 6, in T about T's origin: its inertia and weight), the body
+on the bellows deflects as ``M d'' + C d' + K d = w``. With the modes
+M-normalised (``V^T M V = 1``, ``V^T K V = diag(omega^2)``) and C taken
+diagonal in them (``zeta_k = v_k^T C v_k / (2 omega_k)``), each modal
+coordinate ``q_k = v_k^T M d`` obeys
+
+    q_k'' + 2 zeta_k omega_k q_k' + omega_k^2 q_k = v_k^T w(t),
+
+started at rest in equilibrium (``q_k(0) = v_k^T w(0) / omega_k^2``). The
+bellows carry ``K d = M V diag(omega^2) q``: the quasi-static wrench ``w``
+plus the ring. A step in ``w`` peaks at ``1 + exp(-zeta pi / sqrt(1 -
+zeta^2))`` of its size; a ramp of x periods (undamped) at ``1 + |sin(pi x)
+/ (pi x)|``.
 """
 
 from __future__ import annotations
@@ -31,6 +47,7 @@ from __future__ import annotations
 import numpy as np
 from pydrake.math import RigidTransform
 from scipy.linalg import eigh
+from scipy.signal import lsim
 
 from rt_drake.errors import InputError
 from rt_drake.model.cup_physics import BellowsCup
@@ -49,7 +66,7 @@ def tool_stiffness(cup: BellowsCup, X_TCs: list[RigidTransform]) -> np.ndarray:
     """
     if not X_TCs:
         raise InputError("tool_stiffness: X_TCs must hold at least one cup pose")
-    K_local = np.diag(
+    return _in_parallel(
         [
             cup.tilt_stiffness,
             cup.tilt_stiffness,
@@ -57,8 +74,34 @@ def tool_stiffness(cup: BellowsCup, X_TCs: list[RigidTransform]) -> np.ndarray:
             cup.lateral_stiffness,
             cup.lateral_stiffness,
             cup.axial_stiffness,
-        ]
+        ],
+        X_TCs,
     )
+
+
+def tool_damping(cup: BellowsCup, X_TCs: list[RigidTransform]) -> np.ndarray:
+    """``C`` (6, 6, in T about T's origin, ``[theta; x]``; N m s/rad, N s/m).
+
+    The sum over the cups of ``J_i^T diag(C_t, C_f) J_i`` (module docstring).
+    """
+    if not X_TCs:
+        raise InputError("tool_damping: X_TCs must hold at least one cup pose")
+    return _in_parallel(
+        [
+            cup.tilt_damping,
+            cup.tilt_damping,
+            cup.torsion_damping,
+            cup.lateral_damping,
+            cup.lateral_damping,
+            cup.axial_damping,
+        ],
+        X_TCs,
+    )
+
+
+def _in_parallel(local: list[float], X_TCs: list[RigidTransform]) -> np.ndarray:
+    """``sum_i J_i^T diag(local) J_i``: the cups' bushings in parallel, in T."""
+    K_local = np.diag(local)
     K = np.zeros((6, 6))
     for X_TC in X_TCs:
         R = X_TC.rotation().matrix()
@@ -103,4 +146,62 @@ def mode_periods(K: np.ndarray, M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return 2.0 * np.pi / np.sqrt(omega2[order]), modes[:, order]
 
 
-__all__ = ["held_inertia", "mode_periods", "tool_stiffness"]
+def modal_damping_ratios(
+    K: np.ndarray, C: np.ndarray, M: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(omega, zeta, V)``: rad/s, damping ratios, M-normalised modes (columns).
+
+    Slowest first; ``zeta_k = v_k^T C v_k / (2 omega_k)`` (C taken diagonal
+    in the modes, module docstring).
+    """
+    omega2, V = eigh(K, M)
+    if omega2[0] <= 0.0:
+        raise InputError(
+            f"modal_damping_ratios: K is not positive definite ({omega2[0]=})"
+        )
+    omega = np.sqrt(omega2)
+    zeta = np.einsum("ik,ij,jk->k", V, C, V) / (2.0 * omega)
+    return omega, zeta, V
+
+
+def bellows_wrench(
+    t: np.ndarray, w: np.ndarray, K: np.ndarray, C: np.ndarray, M: np.ndarray
+) -> np.ndarray:
+    """The wrench ``K d(t)`` (N, 6, in T) the bellows carry under the load ``w``.
+
+    ``t`` (N,) s, equally spaced and increasing; ``w`` (N, 6) the
+    quasi-static load ``[tau; f]`` (N m, N) in T about T's origin, linear
+    between samples. Each mode's
+    ``q_k'' + 2 zeta_k omega_k q_k' + omega_k^2 q_k = v_k^T w`` is integrated
+    exactly for that piecewise-linear load (``scipy.signal.lsim``, matrix
+    exponential), from rest in equilibrium with ``w[0]`` (module docstring);
+    then ``K d = M V diag(omega^2) q``.
+    """
+    t = np.asarray(t, dtype=float)
+    w = np.asarray(w, dtype=float)
+    if t.ndim != 1 or w.shape != (t.size, 6) or t.size < 2:
+        raise InputError(
+            f"bellows_wrench: need t (N,) and w (N, 6), got {t.shape}, {w.shape}"
+        )
+    steps = np.diff(t)
+    if steps.min() <= 0.0 or np.ptp(steps) > 1e-9 * steps.mean():
+        raise InputError("bellows_wrench: t must be equally spaced and increasing")
+    omega, zeta, V = modal_damping_ratios(K, C, M)
+    loads = w @ V  # (N, modes): v_k^T w
+    q = np.empty_like(loads)
+    for k, (om, ze) in enumerate(zip(omega, zeta, strict=True)):
+        A = np.array([[0.0, 1.0], [-(om**2), -2.0 * ze * om]])
+        system = (A, np.array([[0.0], [1.0]]), np.array([[1.0, 0.0]]), np.zeros((1, 1)))
+        x0 = np.array([loads[0, k] / om**2, 0.0])
+        _, q[:, k], _ = lsim(system, loads[:, k], t - t[0], X0=x0, interp=True)
+    return (q * omega**2) @ V.T @ M
+
+
+__all__ = [
+    "bellows_wrench",
+    "held_inertia",
+    "modal_damping_ratios",
+    "mode_periods",
+    "tool_damping",
+    "tool_stiffness",
+]
