@@ -64,19 +64,13 @@ def tool_stiffness(cup: BellowsCup, X_TCs: list[RigidTransform]) -> np.ndarray:
 
     The sum over the cups of ``J_i^T diag(K_t, K_f) J_i`` (module docstring).
     """
-    if not X_TCs:
-        raise InputError("tool_stiffness: X_TCs must hold at least one cup pose")
-    return _in_parallel(
-        [
-            cup.tilt_stiffness,
-            cup.tilt_stiffness,
-            cup.torsion_stiffness,
-            cup.lateral_stiffness,
-            cup.lateral_stiffness,
-            cup.axial_stiffness,
-        ],
-        X_TCs,
+    axes = (
+        cup.tilt_stiffness,
+        cup.torsion_stiffness,
+        cup.lateral_stiffness,
+        cup.axial_stiffness,
     )
+    return _in_parallel("tool_stiffness", axes, X_TCs)
 
 
 def tool_damping(cup: BellowsCup, X_TCs: list[RigidTransform]) -> np.ndarray:
@@ -84,24 +78,29 @@ def tool_damping(cup: BellowsCup, X_TCs: list[RigidTransform]) -> np.ndarray:
 
     The sum over the cups of ``J_i^T diag(C_t, C_f) J_i`` (module docstring).
     """
-    if not X_TCs:
-        raise InputError("tool_damping: X_TCs must hold at least one cup pose")
-    return _in_parallel(
-        [
-            cup.tilt_damping,
-            cup.tilt_damping,
-            cup.torsion_damping,
-            cup.lateral_damping,
-            cup.lateral_damping,
-            cup.axial_damping,
-        ],
-        X_TCs,
+    axes = (
+        cup.tilt_damping,
+        cup.torsion_damping,
+        cup.lateral_damping,
+        cup.axial_damping,
     )
+    return _in_parallel("tool_damping", axes, X_TCs)
 
 
-def _in_parallel(local: list[float], X_TCs: list[RigidTransform]) -> np.ndarray:
-    """``sum_i J_i^T diag(local) J_i``: the cups' bushings in parallel, in T."""
-    K_local = np.diag(local)
+def _in_parallel(
+    name: str, axes: tuple[float, float, float, float], X_TCs: list[RigidTransform]
+) -> np.ndarray:
+    """``sum_i J_i^T diag(a_t, a_t, a_tor, a_lat, a_lat, a_ax) J_i``, in T.
+
+    The cups' bushings in parallel, each with the per-axis values ``axes =
+    (a_t, a_tor, a_lat, a_ax)`` (tilt, torsion, lateral, axial) in its cup
+    frame C_i: the stiffnesses give ``K``, the dampings ``C``. ``name`` is
+    the public function's, for the error.
+    """
+    if not X_TCs:
+        raise InputError(f"{name}: X_TCs must hold at least one cup pose")
+    tilt, torsion, lateral, axial = axes
+    K_local = np.diag([tilt, tilt, torsion, lateral, lateral, axial])
     K = np.zeros((6, 6))
     for X_TC in X_TCs:
         R = X_TC.rotation().matrix()
