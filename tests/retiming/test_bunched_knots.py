@@ -16,12 +16,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from grasp_paths import HOME, OBJECTS, joint_steps, object_grasps
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from rt_drake.model.held import held_object_of
 from rt_drake.retiming import (
-    GraspConstraint,
     GraspUnstableAtRestError,
     JointLimits,
     check_trajectory,
@@ -31,8 +30,6 @@ from rt_drake.retiming._joint_path import as_joint_path
 from rt_drake.retiming.grid import MIN_PIECE_SEGMENTS, MIN_STEP, initial_grid
 from rt_drake.types.path import GeometricPath
 
-HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
-OBJECTS = ["notebook", "carton_box", "whetstone_box"]
 #: A given grid of 101 uniform points (as a caller's explicit grid).
 GIVEN_GRID = np.linspace(0.0, 1.0, 101)
 
@@ -44,12 +41,7 @@ def limits(plant, scenario):
 
 @pytest.fixture(scope="module")
 def grasps(scenario):
-    return {
-        name: GraspConstraint.for_cup(
-            held_object_of(scenario.object(name)), scenario.cup
-        )
-        for name in OBJECTS
-    }
+    return object_grasps(scenario)
 
 
 def _sampled_at_equal_times(plant, limits, grasp, waypoints, count=200):
@@ -95,9 +87,7 @@ def test_the_grasp_holds_at_1khz_where_the_knots_bunch(plant, limits, grasps):
 
 @settings(max_examples=4, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
-    steps=st.lists(
-        st.lists(st.floats(-0.5, 0.5), min_size=6, max_size=6), min_size=1, max_size=3
-    ),
+    steps=joint_steps(max_steps=3),
     object_name=st.sampled_from(OBJECTS),
 )
 def test_every_limit_holds_at_1khz_on_bunched_knots(

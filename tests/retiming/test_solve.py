@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import toppra
+from grasp_paths import HOME, OBJECTS, joint_steps, object_grasps
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from pydrake.multibody.optimization import Toppra
@@ -20,7 +21,6 @@ from rt_drake.dynamics.wrench import (
     joint_torques,
     path_wrench_coefficients,
 )
-from rt_drake.model.held import held_object_of
 from rt_drake.retiming import (
     Engine,
     GraspConstraint,
@@ -52,7 +52,6 @@ from rt_drake.retiming.passes import AffineConstraint
 from rt_drake.types.held_object import HeldObject
 from rt_drake.types.path import drake_path
 
-HOME = np.array([0.0, 0.35, 1.75, 0.0, 1.04, 0.0])
 PATHS = {
     # MOVE-like: lift, swing joint 1 across, lower (cup stays near vertical;
     # joint 5 stays inside its 95 deg limit all along the spline).
@@ -73,7 +72,6 @@ PATHS = {
         HOME + [0.6, -0.1, 0.2, -0.2, -0.1, 2.2],
     ],
 }
-OBJECTS = ["notebook", "carton_box", "whetstone_box"]
 
 
 @pytest.fixture(scope="module")
@@ -83,12 +81,7 @@ def limits(plant, scenario):
 
 @pytest.fixture(scope="module")
 def grasps(scenario):
-    return {
-        name: GraspConstraint.for_cup(
-            held_object_of(scenario.object(name)), scenario.cup
-        )
-        for name in OBJECTS
-    }
+    return object_grasps(scenario)
 
 
 @pytest.mark.parametrize("path_name", sorted(PATHS))
@@ -340,9 +333,7 @@ def _inside_position_limits(plant, path):
 @pytest.mark.slow
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
-    steps=st.lists(
-        st.lists(st.floats(-0.5, 0.5), min_size=6, max_size=6), min_size=1, max_size=4
-    ),
+    steps=joint_steps(max_steps=4),
     object_name=st.sampled_from(OBJECTS),
 )
 def test_every_limit_holds_at_1khz_within_1e3(

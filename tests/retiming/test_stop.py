@@ -12,21 +12,22 @@ import numpy as np
 import pytest
 from grasp_paths import BACK, HOME
 from pydrake.trajectories import PiecewisePolynomial
-from scipy.interpolate import CubicSpline
 from scipy.optimize import linprog
+from stop_helpers import (
+    assert_at_rest_on_back,
+    back_spline,
+    notebook_fixtures,
+)
 
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.dynamics.wrench import path_wrench_coefficients
-from rt_drake.model.held import held_object_of
 from rt_drake.retiming import (
-    GraspConstraint,
     JointLimits,
     Margin,
     PathNotControllableError,
     RetimeInputError,
     StopNotFoundError,
     check_trajectory,
-    chord_knots,
     joint_brake_stop,
     protective_stop,
     retime,
@@ -40,21 +41,7 @@ from rt_drake.retiming._stop_pass import grid_constraints, stop_pass
 FRACTIONS = (0.15, 0.45)
 
 
-@pytest.fixture(scope="module")
-def limits(plant, scenario):
-    return JointLimits.from_plant(plant, scenario.robot)
-
-
-@pytest.fixture(scope="module")
-def grasp(scenario):
-    return GraspConstraint.for_cup(
-        held_object_of(scenario.object("notebook")), scenario.cup
-    )
-
-
-@pytest.fixture(scope="module")
-def move(plant, limits, grasp):
-    return retime(plant, BACK, limits, grasp)
+limits, grasp, move = notebook_fixtures(jerk=False)
 
 
 @pytest.mark.parametrize("fraction", FRACTIONS)
@@ -74,17 +61,10 @@ def test_a_grasp_aware_stop_rests_on_the_path_inside_every_limit(
             whole.EvalDerivative(tk, 1), move.trajectory.EvalDerivative(tk, 1),
             atol=1e-7,
         )  # fmt: skip
-    # At rest, on the path: q = path(s_stop) by a spline built apart.
-    spline = CubicSpline(chord_knots(BACK), BACK, bc_type="clamped")
+    # At rest on the path (a spline built apart), every sample of it on the path.
+    assert_at_rest_on_back(whole, stop.s_stop, t, at_rest=1e-9)
     end = whole.end_time()
-    assert np.abs(whole.EvalDerivative(end, 1)).max() < 1e-9
-    assert np.allclose(whole.value(end).ravel(), spline(stop.s_stop), atol=1e-9)
-    # Every sample of the stop on the path, and every limit and the grasp.
-    times = np.linspace(t, end, 40)
-    q = np.hstack([whole.value(tk) for tk in times]).T
-    dense = np.linspace(0.0, 1.0, 20001)
-    nearest = np.abs(q[:, None, :] - spline(dense)[None]).max(axis=2).min(axis=1)
-    assert nearest.max() < 2e-3  # the path, sampled every 5e-5 in s
+    # Every limit and the grasp.
     check = check_trajectory(plant, whole, limits, grasp)
     assert check.passed(), check.summary()
     # The stop alone is the whole motion from t on.
@@ -148,7 +128,7 @@ def _lp_reaches_rest(s, dq, ddq, wrench, limits, F, g, x_start, index):
 def test_the_maximal_braking_pass_finds_the_nearest_rest_an_lp_finds(
     plant, limits, grasp, move
 ):
-    spline = CubicSpline(chord_knots(BACK), BACK, bc_type="clamped")
+    spline = back_spline()
     context = plant.CreateDefaultContext()
     cup = CupFrame.of(plant)
     for fraction in FRACTIONS:
@@ -266,7 +246,7 @@ def test_no_later_stop_point_is_reached_sooner(plant, limits, grasp, move):
     """The retimer itself, on sub-paths built apart (Drake cubic Hermite
     pieces of the scipy spline, exact), from the state at t to rest at
     points beyond the stop's: none is faster than the stop."""
-    spline = CubicSpline(chord_knots(BACK), BACK, bc_type="clamped")
+    spline = back_spline()
     t = FRACTIONS[1] * move.duration
     stop = protective_stop(plant, BACK, limits, move, t, grasp)
     reached = 0

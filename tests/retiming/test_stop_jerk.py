@@ -10,54 +10,26 @@ the acceleration limit, ramp it back to 0).
 
 from __future__ import annotations
 
-import dataclasses
-
 import numpy as np
 import pytest
 from grasp_paths import BACK, HOME
 from pydrake.trajectories import PiecewisePolynomial
-from scipy.interpolate import CubicSpline
+from stop_helpers import (
+    assert_at_rest_on_back,
+    jerk_by_differences,
+    notebook_fixtures,
+)
 
-from rt_drake.model.held import held_object_of
 from rt_drake.retiming import (
-    GraspConstraint,
-    JointLimits,
     Margin,
     check_trajectory,
-    chord_knots,
     joint_brake_stop,
     protective_stop,
     retime,
 )
 from rt_drake.retiming._stop import path_state_at
 
-#: Jerk limits per second of the acceleration limits (the shipped scenarios').
-JERK_PER_ACCELERATION = 20.0
-
-
-@pytest.fixture(scope="module")
-def limits(plant, scenario):
-    plain = JointLimits.from_plant(plant, scenario.robot)
-    return dataclasses.replace(plain, jerk=JERK_PER_ACCELERATION * plain.acceleration)
-
-
-@pytest.fixture(scope="module")
-def grasp(scenario):
-    return GraspConstraint.for_cup(
-        held_object_of(scenario.object("notebook")), scenario.cup
-    )
-
-
-@pytest.fixture(scope="module")
-def move(plant, limits, grasp):
-    return retime(plant, BACK, limits, grasp)
-
-
-def _jerk_by_differences(trajectory, start, end):
-    """Joint jerk (M-1, n) from the 1 kHz samples' accelerations."""
-    times = np.append(np.arange(start, end, 1e-3), end)
-    vdot = trajectory.sample(times, order=2)[2]
-    return np.diff(vdot, axis=0) / np.diff(times)[:, None]
+limits, grasp, move = notebook_fixtures(jerk=True)
 
 
 def test_a_jerk_limited_stop_rests_on_the_path_in_the_grasp_set(
@@ -76,22 +48,15 @@ def test_a_jerk_limited_stop_rests_on_the_path_in_the_grasp_set(
             move.trajectory.EvalDerivative(t, order),
             atol=1e-7,
         )
-    # At rest, on the path (a spline built apart), at s_stop.
-    spline = CubicSpline(chord_knots(BACK), BACK, bc_type="clamped")
+    # At rest (q' and q''), on the path (a spline built apart), at s_stop.
     end = whole.end_time()
     assert end == pytest.approx(t + stop.duration, abs=1e-9)
-    for order in (1, 2):
-        assert np.abs(whole.EvalDerivative(end, order)).max() < 1e-6
-    assert np.allclose(whole.value(end).ravel(), spline(stop.s_stop), atol=1e-9)
-    times = np.linspace(t, end, 40)
-    q = np.hstack([whole.value(tk) for tk in times]).T
-    dense = np.linspace(0.0, 1.0, 20001)
-    nearest = np.abs(q[:, None, :] - spline(dense)[None]).max(axis=2).min(axis=1)
-    assert nearest.max() < 2e-3  # the path, sampled every 5e-5 in s
+    assert np.abs(whole.EvalDerivative(end, 2)).max() < 1e-6
+    assert_at_rest_on_back(whole, stop.s_stop, t, at_rest=1e-6)
     # Every limit and the grasp at 1 kHz, the whole motion through t.
     check = check_trajectory(plant, whole, limits, grasp)
     assert check.passed(), check.summary()
-    jerk = _jerk_by_differences(whole, whole.start_time(), end)
+    jerk = jerk_by_differences(whole, whole.start_time(), end)
     assert np.max(np.abs(jerk) / limits.jerk) <= 1.0 + 1e-3
 
 
@@ -104,7 +69,7 @@ def test_the_jerk_limited_joint_brake_leaves_the_grasp_set_where_it_binds(
     assert brake.duration < held.duration and brake.s_stop < held.s_stop
     joints = check_trajectory(plant, brake.trajectory, limits)
     assert joints.passed(), joints.summary()
-    jerk = _jerk_by_differences(brake.trajectory, t - 0.05, brake.end_time)
+    jerk = jerk_by_differences(brake.trajectory, t - 0.05, brake.end_time)
     assert np.max(np.abs(jerk) / limits.jerk) <= 1.0 + 1e-3
     thrown = check_trajectory(plant, brake.stop, limits, grasp)
     assert thrown.margins[Margin.GRASP].value < -0.05

@@ -8,45 +8,27 @@ samples' accelerations, and the MOVE's own trajectory at each instant.
 
 from __future__ import annotations
 
-import dataclasses
-
 import numpy as np
 import pytest
 from grasp_paths import BACK
-from scipy.interpolate import CubicSpline
+from stop_helpers import (
+    back_spline,
+    jerk_by_differences,
+    notebook_fixtures,
+)
 
 from rt_drake import stop_table
-from rt_drake.model.held import held_object_of
 from rt_drake.retiming import (
-    GraspConstraint,
-    JointLimits,
     RetimeInputError,
     check_trajectory,
-    chord_knots,
     protective_stop,
-    retime,
 )
 
 #: Period of the table (s): coarse, so the test stays cheap.
 PERIOD = 0.15
 
 
-@pytest.fixture(scope="module")
-def limits(plant, scenario):
-    plain = JointLimits.from_plant(plant, scenario.robot)
-    return dataclasses.replace(plain, jerk=20.0 * plain.acceleration)
-
-
-@pytest.fixture(scope="module")
-def grasp(scenario):
-    return GraspConstraint.for_cup(
-        held_object_of(scenario.object("notebook")), scenario.cup
-    )
-
-
-@pytest.fixture(scope="module")
-def move(plant, limits, grasp):
-    return retime(plant, BACK, limits, grasp)
+limits, grasp, move = notebook_fixtures(jerk=True)
 
 
 @pytest.fixture(scope="module")
@@ -66,7 +48,7 @@ def test_the_instants_are_every_period_then_the_end(move, table):
 def test_every_stop_of_the_table_rests_on_the_path_in_the_grasp_set(
     plant, limits, grasp, table
 ):
-    spline = CubicSpline(chord_knots(BACK), BACK, bc_type="clamped")
+    spline = back_spline()
     moving = 0
     for stop in table.stops:
         whole, end = stop.trajectory, stop.end_time
@@ -78,9 +60,7 @@ def test_every_stop_of_the_table_rests_on_the_path_in_the_grasp_set(
         moving += 1
         check = check_trajectory(plant, stop.stop, limits, grasp)
         assert check.passed(), check.summary()
-        times = np.append(np.arange(stop.start_time, end, 1e-3), end)
-        vdot = stop.stop.sample(times, order=2)[2]
-        jerk = np.diff(vdot, axis=0) / np.diff(times)[:, None]
+        jerk = jerk_by_differences(stop.stop, stop.start_time, end)
         assert np.max(np.abs(jerk) / limits.jerk) <= 1.0 + 1e-3
     assert moving >= 3
 
