@@ -23,8 +23,10 @@ import os
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import argparse  # noqa: E402
+import dataclasses  # noqa: E402
 import statistics  # noqa: E402
 import time  # noqa: E402
+from typing import Any  # noqa: E402
 
 import numpy as np  # noqa: E402
 
@@ -71,6 +73,57 @@ def cpu(call):  # noqa: ANN001, ANN201
     return value, time.thread_time() - start
 
 
+@dataclasses.dataclass(frozen=True)
+class Cell:
+    """The bench's arm, its limits and the notebook's grasp, warmed up."""
+
+    plant: Any
+    context: Any
+    limits: JointLimits
+    grasp: GraspConstraint
+
+
+def cell(jerk: float | None) -> Cell:
+    """stack_four_objects' arm, its joint limits (with ``jerk`` x the
+    acceleration limits per second as jerk limits, if given) and the
+    notebook's grasp; one retime and one stop run first (compile, warm up)."""
+    scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
+    plant = make_arm_plant(scenario)
+    limits = JointLimits.from_plant(plant, scenario.robot)
+    if jerk is not None:
+        limits = dataclasses.replace(limits, jerk=jerk * limits.acceleration)
+    grasp = GraspConstraint.for_cup(
+        held_object_of(scenario.object("notebook")), scenario.cup
+    )
+    path0 = move_paths(1)[0]
+    warm = retime(plant, path0, limits, grasp)
+    protective_stop(plant, path0, limits, warm, 0.3 * warm.duration, grasp)
+    return Cell(plant, plant.CreateDefaultContext(), limits, grasp)
+
+
+def timed_stops(c: Cell, path: np.ndarray, result, t: float):  # noqa: ANN001, ANN201
+    """``(held, held CPU s, brake, brake CPU s)``: the grasp-aware stop and
+    the joint brake of ``result`` (the retimed ``path``) at ``t``."""
+    held, held_cpu = cpu(
+        lambda: protective_stop(
+            c.plant, path, c.limits, result, t, c.grasp, context=c.context
+        )
+    )
+    brake, brake_cpu = cpu(
+        lambda: joint_brake_stop(c.plant, path, c.limits, result, t, context=c.context)
+    )
+    return held, held_cpu, brake, brake_cpu
+
+
+def summary_row(name: str, values: list[float], scale: float, unit: str) -> str:
+    """A Markdown row: median, min and max of ``values`` x ``scale``."""
+    v = np.asarray(values) * scale
+    return (
+        f"| {name} | {statistics.median(v):.4g} | {v.min():.4g} | "
+        f"{v.max():.4g} | {unit} |"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--paths", type=int, default=6)
@@ -85,61 +138,35 @@ def main() -> None:
     if args.jerk is not None:
         jerk_main(args.paths, args.instants, args.jerk, args.sweep)
         return
-    scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
-    plant = make_arm_plant(scenario)
-    context = plant.CreateDefaultContext()
-    limits = JointLimits.from_plant(plant, scenario.robot)
-    grasp = GraspConstraint.for_cup(
-        held_object_of(scenario.object("notebook")), scenario.cup
-    )
-    path0 = move_paths(1)[0]
-    retime(plant, path0, limits, grasp, context=context)  # compile, warm up
-    protective_stop(plant, path0, limits, retime(plant, path0, limits, grasp), 0.3)
+    c = cell(None)
     retimes, held_cpu, brake_cpu = [], [], []
     held_time, brake_time, brake_margin, held_margin = [], [], [], []
     for path in move_paths(args.paths):
         for k in range(1, args.instants + 1):
             result, seconds = cpu(
-                lambda p=path: retime(plant, p, limits, grasp, context=context)
+                lambda p=path: retime(c.plant, p, c.limits, c.grasp, context=c.context)
             )
             retimes.append(seconds)
             t = k / (args.instants + 1) * result.duration
-            held, seconds = cpu(
-                lambda p=path, r=result, t=t: protective_stop(
-                    plant, p, limits, r, t, grasp, context=context
-                )
-            )
+            held, seconds, brake, brake_seconds = timed_stops(c, path, result, t)
             held_cpu.append(seconds)
-            brake, seconds = cpu(
-                lambda p=path, r=result, t=t: joint_brake_stop(
-                    plant, p, limits, r, t, context=context
-                )
-            )
-            brake_cpu.append(seconds)
+            brake_cpu.append(brake_seconds)
             held_time.append(held.duration)
             brake_time.append(brake.duration)
             for stop, out in ((held, held_margin), (brake, brake_margin)):
-                check = check_trajectory(plant, stop.stop, limits, grasp)
+                check = check_trajectory(c.plant, stop.stop, c.limits, c.grasp)
                 out.append(check.margins[Margin.GRASP].value)
     count = len(retimes)
-
-    def row(name: str, values: list[float], scale: float, unit: str) -> str:
-        v = np.asarray(values) * scale
-        return (
-            f"| {name} | {statistics.median(v):.3g} | {v.min():.3g} | "
-            f"{v.max():.3g} | {unit} |"
-        )
-
     print(f"{args.paths} paths x {args.instants} instants = {count} stops")
     print("| quantity | median | min | max | unit |")
     print("|---|---:|---:|---:|---|")
-    print(row("retime of the MOVE (CPU)", retimes, 1e3, "ms"))
-    print(row("protective_stop (CPU)", held_cpu, 1e3, "ms"))
-    print(row("joint_brake_stop (CPU)", brake_cpu, 1e3, "ms"))
-    print(row("grasp-aware stop time", held_time, 1.0, "s"))
-    print(row("joint-brake stop time", brake_time, 1.0, "s"))
-    print(row("grasp margin, grasp-aware stop", held_margin, 1.0, "1"))
-    print(row("grasp margin, joint-brake stop", brake_margin, 1.0, "1"))
+    print(summary_row("retime of the MOVE (CPU)", retimes, 1e3, "ms"))
+    print(summary_row("protective_stop (CPU)", held_cpu, 1e3, "ms"))
+    print(summary_row("joint_brake_stop (CPU)", brake_cpu, 1e3, "ms"))
+    print(summary_row("grasp-aware stop time", held_time, 1.0, "s"))
+    print(summary_row("joint-brake stop time", brake_time, 1.0, "s"))
+    print(summary_row("grasp margin, grasp-aware stop", held_margin, 1.0, "1"))
+    print(summary_row("grasp margin, joint-brake stop", brake_margin, 1.0, "1"))
     left = sum(m < -1e-3 for m in brake_margin)
     print(f"joint-brake stops leaving the grasp set (margin < -1e-3): {left}/{count}")
 
@@ -182,25 +209,14 @@ def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
     simulate=False)``, session 3's), case by case, and the joint brake with
     Ruckig's per-joint stops (:func:`ruckig_stop`). CPU time of this thread.
     """
-    import dataclasses
-
     from rt_drake.dynamics.cup_frame import CupFrame
     from rt_drake.retiming._jerk_stop import JerkStopProblem
     from rt_drake.retiming._joint_path import as_joint_path
     from rt_drake.retiming._stop import guided_stop, path_state_at
 
-    scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
-    plant = make_arm_plant(scenario)
-    context = plant.CreateDefaultContext()
+    c = cell(factor)
+    plant, context, limits, grasp = c.plant, c.context, c.limits, c.grasp
     cup = CupFrame.of(plant)
-    plain = JointLimits.from_plant(plant, scenario.robot)
-    limits = dataclasses.replace(plain, jerk=factor * plain.acceleration)
-    grasp = GraspConstraint.for_cup(
-        held_object_of(scenario.object("notebook")), scenario.cup
-    )
-    path0 = move_paths(1)[0]
-    warm = retime(plant, path0, limits, grasp)
-    protective_stop(plant, path0, limits, warm, 0.3 * warm.duration, grasp)
     rows: dict[str, list[float]] = {
         k: []
         for k in (
@@ -216,18 +232,9 @@ def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
         spline = as_joint_path(path)
         for k in range(1, instants + 1):
             t = k / (instants + 1) * result.duration
-            held, seconds = cpu(
-                lambda p=path, r=result, t=t: protective_stop(
-                    plant, p, limits, r, t, grasp, context=context
-                )
-            )
+            held, seconds, brake, brake_seconds = timed_stops(c, path, result, t)
             rows["stop_cpu"].append(seconds)
-            brake, seconds = cpu(
-                lambda p=path, r=result, t=t: joint_brake_stop(
-                    plant, p, limits, r, t, context=context
-                )
-            )
-            rows["brake_cpu"].append(seconds)
+            rows["brake_cpu"].append(brake_seconds)
             full, seconds = cpu(
                 lambda p=path, r=result, t=t: guided_stop(
                     plant, p, limits, r, t, grasp, context, None, None,
@@ -269,11 +276,7 @@ def jerk_main(paths: int, instants: int, factor: float, sweep: int) -> None:
             rows["jerk_margin"].append(whole.margins[Margin.JERK].value)
 
     def row(name: str, key: str, scale: float, unit: str) -> str:
-        v = np.asarray(rows[key]) * scale
-        return (
-            f"| {name} | {statistics.median(v):.4g} | {v.min():.4g} | "
-            f"{v.max():.4g} | {unit} |"
-        )
+        return summary_row(name, rows[key], scale, unit)
 
     count = len(rows["held"])
     print(f"jerk {factor:g} x acceleration /s; {paths} paths x {instants} = {count}")
@@ -312,21 +315,10 @@ def table_main(paths: int, factor: float, periods: list[float]) -> None:
     ``protective_stop`` computed alone at every third instant of it (its
     duration beside the table's: the table's search starts from a guess).
     """
-    import dataclasses
-
     from rt_drake import stop_table
 
-    scenario = load_scenario(scenarios_dir() / "stack_four_objects.yaml")
-    plant = make_arm_plant(scenario)
-    context = plant.CreateDefaultContext()
-    plain = JointLimits.from_plant(plant, scenario.robot)
-    limits = dataclasses.replace(plain, jerk=factor * plain.acceleration)
-    grasp = GraspConstraint.for_cup(
-        held_object_of(scenario.object("notebook")), scenario.cup
-    )
-    path0 = move_paths(1)[0]
-    warm = retime(plant, path0, limits, grasp)
-    protective_stop(plant, path0, limits, warm, 0.3 * warm.duration, grasp)
+    c = cell(factor)
+    plant, context, limits, grasp = c.plant, c.context, c.limits, c.grasp
     print("| period | MOVE | duration | retime CPU | table CPU | stops | per stop |")
     print("|---:|---:|---:|---:|---:|---:|---:|")
     ratios: list[float] = []
