@@ -7,7 +7,7 @@ import json
 import pytest
 
 from rt_drake.cli import main
-from rt_drake.experiments import SPEED_FACTORS
+from rt_drake.experiments import SPEED_FACTORS, summarize
 
 #: Whole-cycle simulations: tens of seconds (still run by CI).
 pytestmark = pytest.mark.slow
@@ -24,8 +24,10 @@ def _slipped(step: dict) -> bool:
 def transport(tmp_path_factory):
     out = tmp_path_factory.mktemp("transport")
     # Table I's spline-versus-spline comparison (test_optimized_transport.py
-    # plays the shaped MOVE beside it).
-    argv = ["experiment", "transport", "--n", "2", "--seed", "0", "--no-optimize"]
+    # plays the shaped MOVE beside it). One trial: on seed 0 its unconstrained
+    # MOVE slips and the sweep reaches the first slipping factor; how the
+    # summary counts several trials is checked on copies of it below.
+    argv = ["experiment", "transport", "--n", "1", "--seed", "0", "--no-optimize"]
     assert main([*argv, "--out", str(out)]) == 0
     return out, json.loads((out / "results.json").read_text())
 
@@ -33,9 +35,9 @@ def transport(tmp_path_factory):
 def test_every_constrained_path_holds_and_some_unconstrained_slips(transport):
     _, results = transport
     trials = results["trials"]
-    assert len(trials) == 2
+    assert len(trials) == 1
     assert all(t["success_constrained"] for t in trials)
-    assert not all(t["success_unconstrained"] for t in trials)
+    assert not any(t["success_unconstrained"] for t in trials)
     for t in trials:
         slip = t["slip_constrained"]
         assert slip["max_translation_mm"] < 5.0 and slip["max_rotation_deg"] < 3.0
@@ -81,6 +83,19 @@ def test_summary_counts_what_the_trials_show(transport):
     )
     assert summary["critical_speed_factors"] == [
         t["critical_speed_factor"] for t in trials
+    ]
+    # Over several trials: the played one and two altered copies of it.
+    (played,) = trials
+    held = {**played, "success_unconstrained": True, "critical_speed_factor": 1.4}
+    lost = {**played, "success_constrained": False, "critical_speed_factor": None}
+    several = summarize([played, held, lost], not_retimed=2)
+    assert several["n"] == 3 and several["n_sampled"] == 5
+    assert several["success_constrained"] == 2
+    assert several["success_unconstrained"] == 1
+    assert several["critical_speed_factors"] == [
+        played["critical_speed_factor"],
+        1.4,
+        None,
     ]
 
 

@@ -46,6 +46,7 @@ def test_report_has_every_field(constrained_run):
     assert entry["exec_s"]["attach"] == pytest.approx(1.0, abs=0.01)
     assert entry["guarantee"] == "the nominal object (0.551 kg)"
     assert report["plan_on_critical_path_s"] == entry["plan_on_critical_path_s"]
+    assert report["pipelined_planning"] is True  # the default
     assert report["picks_per_hour"] == pytest.approx(3600.0 / report["total_s"])
     # The simulation waited for the plan on the critical path: it adds up.
     assert report["sim_time_s"] == pytest.approx(report["total_s"], abs=0.01)
@@ -83,25 +84,29 @@ def test_replay_holds_the_recording(constrained_run):
     assert "| floor (joint limits, no grasp) |" in (out / "report.md").read_text()
 
 
-def test_without_the_grasp_constraint_the_object_slips(tmp_path, capsys):
-    assert (
-        main(
-            [
-                "run",
-                "random_transport",
-                "--out",
-                str(tmp_path),
-                "--no-grasp-constraint",
-                "--no-jerk-limits",
-            ]
-        )
-        == 0
-    )
-    (entry,) = json.loads((tmp_path / "report.json").read_text())["objects"]
+def test_without_the_grasp_constraint_and_planned_sequentially_the_object_slips(
+    tmp_path, capsys
+):
+    """Two options in one run (each changes a part the other does not read):
+    joint limits only, so the object slips; and each motion planned when its
+    phase starts, so all the planning is on the critical path."""
+    # Without jerk limits: the slip and the planning are the subjects (and the
+    # CPU stays low).
+    argv = ["run", "random_transport", "--no-grasp-constraint", "--no-jerk-limits"]
+    argv += ["--sequential-planning", "--out", str(tmp_path)]
+    assert main(argv) == 0
+    report = json.loads((tmp_path / "report.json").read_text())
+    (entry,) = report["objects"]
     assert entry["slip"]["max_translation_mm"] > 5.0
     assert entry["guarantee"] == "none: joint limits only"
     # The shaping (on by default) needs the grasp constraint: said once.
     assert capsys.readouterr().out.count("MOVE shaping off") == 1
+    assert report["pipelined_planning"] is False
+    # Each motion is planned when its phase starts: the arm waits for all of it.
+    assert entry["plan_on_critical_path_s"] == pytest.approx(
+        sum(entry["plan_s"].values()), abs=1e-9
+    )
+    assert report["sim_time_s"] == pytest.approx(report["total_s"], abs=0.01)
 
 
 def test_an_uncertain_object_is_moved_robustly_and_the_report_says_so(tmp_path, capsys):
@@ -127,18 +132,3 @@ def test_bad_input_exits_2_with_one_line(tmp_path, capsys, argv, words):
     assert len(err.splitlines()) == 1 and err.startswith("rt-drake run: error:")
     for word in words:
         assert word in err
-
-
-def test_sequential_planning_puts_all_of_it_on_the_critical_path(tmp_path):
-    # Without jerk limits: planning is the subject (and the CPU stays low).
-    argv = ["run", "random_transport", "--sequential-planning", "--no-jerk-limits"]
-    argv += ["--out", str(tmp_path)]
-    assert main(argv) == 0
-    report = json.loads((tmp_path / "report.json").read_text())
-    (entry,) = report["objects"]
-    assert report["pipelined_planning"] is False
-    # Each motion is planned when its phase starts: the arm waits for all of it.
-    assert entry["plan_on_critical_path_s"] == pytest.approx(
-        sum(entry["plan_s"].values()), abs=1e-9
-    )
-    assert report["sim_time_s"] == pytest.approx(report["total_s"], abs=0.01)

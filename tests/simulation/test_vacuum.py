@@ -199,8 +199,11 @@ def test_a_vacuum_that_does_not_hold_in_time_stops_the_cycle(scenario_paths):
     scenario = load_scenario(scenario_paths["random_transport"])
     slow = dataclasses.replace(FIRST_ORDER, attach_s=0.05, build_up_tau_s=0.5)
     scenario = dataclasses.replace(scenario, vacuum=slow)
+    # A brisk APPROACH and REACH (1.0 and 0.6 s by default): the time-out
+    # comes 50 ms into ATTACH whatever came before it.
+    brisk = IkMotions(scenario, approach_s=0.5, reach_s=0.3)
     with pytest.raises(VacuumTimeout, match="ATTACH notebook: no part present"):
-        run_cycle(scenario, IkMotions(scenario), max_sim_time=10.0)
+        run_cycle(scenario, brisk, max_sim_time=10.0)
 
 
 @pytest.mark.slow
