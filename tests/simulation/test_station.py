@@ -91,14 +91,25 @@ def _run_lift(scenario_path, valve_times, valve_values, t_final):
     return samples
 
 
+#: s, the valve of the lift run opens (the suction stops): 0.5 s after the lift.
+T_OFF = T_HOLD + T_LIFT + 0.51
+
+
 @pytest.fixture(scope="module")
-def held_run(scenario_paths):
+def lift_run(scenario_paths):
+    """Suction on, wait, lift, hold 0.5 s; then the valve opens mid-air."""
     return _run_lift(
         scenario_paths["random_transport"],
-        [0.0, 10.0],
-        [[1.0, 1.0]],
-        T_HOLD + T_LIFT + 0.5,
+        [0.0, T_OFF, 10.0],
+        [[1.0, 0.0, 0.0]],
+        T_OFF + 0.4,
     )
+
+
+@pytest.fixture(scope="module")
+def held_run(lift_run):
+    """The lift run's samples while the valve is on (to 0.5 s after the lift)."""
+    return [s for s in lift_run if s["t"] <= T_HOLD + T_LIFT + 0.5 + 1e-9]
 
 
 def test_object_follows_the_cup_while_the_valve_is_on(held_run):
@@ -128,18 +139,11 @@ def test_object_stays_in_the_bin_without_suction(scenario_paths):
     assert np.linalg.norm(run[-1]["X_CO"].translation()) > LIFT - 0.01
 
 
-def test_object_falls_when_the_valve_opens_mid_air(scenario_paths):
-    t_off = T_HOLD + T_LIFT + 0.1
-    run = _run_lift(
-        scenario_paths["random_transport"],
-        [0.0, t_off, 10.0],
-        [[1.0, 0.0, 0.0]],
-        t_off + 0.4,
-    )
-    lifted = [s for s in run if s["t"] <= t_off][-1]["z_object"]
-    assert lifted > run[0]["z_object"] + LIFT - 0.01
+def test_object_falls_when_the_valve_opens_mid_air(lift_run):
+    lifted = [s for s in lift_run if s["t"] <= T_OFF][-1]["z_object"]
+    assert lifted > lift_run[0]["z_object"] + LIFT - 0.01
     # Dropped: back down on the bin floor (or what lies in it).
-    assert run[-1]["z_object"] < lifted - 0.1
+    assert lift_run[-1]["z_object"] < lifted - 0.1
 
 
 def _box_cup(yaw=0.0, gap=0.0, tilt_deg=0.0, offset=(0.0, 0.0)):
