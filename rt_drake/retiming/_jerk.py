@@ -65,6 +65,7 @@ from rt_drake.retiming._jerk_problem import (
     Selection,
     bernstein_rows,
     continuity,
+    grid_caps,
     solve_lp,
     variable_bounds,
 )
@@ -184,7 +185,7 @@ def jerk_limited(
         s, kinds, dense, points, limits, rest, middle, dense.maps.X[middle],
         bernstein_rows(s, kinds), continuity(s, kinds),
         variable_bounds(
-            s, kinds, _grid_caps(dense, kinds), rest, sd_start, sd_end, sdd_start
+            s, kinds, grid_caps(dense, kinds), rest, sd_start, sd_end, sdd_start
         ),
     )  # fmt: skip
     solver = WarmLP()
@@ -361,18 +362,6 @@ def _grid(s: np.ndarray, sd_start: float, sd_end: float) -> np.ndarray:
     if sd_end == 0.0:
         extra.append(1.0 - (1.0 - s[-2]) * halves)
     return np.union1d(s, np.concatenate([np.zeros(0), *extra]))
-
-
-def _grid_caps(dense: DensePoints, kinds: np.ndarray) -> np.ndarray:
-    """The velocity bound of ``x_i`` at each grid point starting an interior segment.
-
-    (N+1,): ``min_j v_j^2 / q'_j^2`` there (the dense point ``k = 0`` of
-    segment i); inf at the other points (rest pieces, the end).
-    """
-    caps = np.full(len(kinds) + 1, np.inf)
-    interior = np.flatnonzero(kinds == Piece.INTERIOR)
-    caps[interior] = dense.samples.x_cap[interior * len(DENSE)]
-    return caps
 
 
 def _topp_u(s_topp: np.ndarray, x_topp: np.ndarray, at: np.ndarray) -> np.ndarray:

@@ -176,7 +176,7 @@ def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Rows], list[R
 
     zeros = np.zeros((len(once), 1))
     # At the start of an interior segment x is x_i: its cap is a bound of z.
-    grid = (dense.k[once] == 0) & (problem.kinds[once // len(DENSE)] == Piece.INTERIOR)
+    grid = (dense.k[once] == 0) & _capped(problem.kinds)[once // len(DENSE)]
     velocity = np.where(grid, np.inf, smp.x_cap[once])
     add(Kind.VELOCITY, zeros, zeros + 1.0, velocity[:, None])
     inside = ((dense.k[once] > 0) & (dense.k[once] < last))[:, None]
@@ -251,6 +251,28 @@ def _grasp_rows_at(dense: DensePoints, once: np.ndarray, mask: np.ndarray) -> Ro
     )
 
 
+def _capped(kinds: np.ndarray) -> np.ndarray:
+    """(N,) segments whose start's velocity cap is a bound of ``x_i``.
+
+    The interior segments but the first (``x_0`` is given: its row stays).
+    """
+    capped = kinds == Piece.INTERIOR
+    capped[0] = False
+    return capped
+
+
+def grid_caps(dense: DensePoints, kinds: np.ndarray) -> np.ndarray:
+    """The velocity caps of ``x_i`` that are bounds of z, (N+1,) (inf elsewhere).
+
+    ``min_j v_j^2 / q'_j^2`` at the dense point ``k = 0`` of each segment of
+    :func:`_capped`; there :func:`_fixed_rows` makes no velocity row.
+    """
+    caps = np.full(len(kinds) + 1, np.inf)
+    capped = np.flatnonzero(_capped(kinds))
+    caps[capped] = dense.samples.x_cap[capped * len(DENSE)]
+    return caps
+
+
 def bernstein_rows(s: np.ndarray, kinds: np.ndarray) -> Rows:
     """Rows ``-(x_i + ds_i u_i) <= 0`` of the interior segments.
 
@@ -283,8 +305,8 @@ def variable_bounds(
     """Bounds of z: ``0 <= x <= x_cap``, the ends' x, ``u_0`` if given, rest pieces' u.
 
     ``x_cap``: (N+1,) the velocity bound ``min_j v_j^2 / q'_j^2`` of ``x_i``
-    at the grid points starting an interior segment (inf elsewhere): there
-    the velocity row is a bound of z, not a row of the LPs.
+    where it is a bound of z instead of a row of the LPs (inf elsewhere,
+    :func:`grid_caps`).
     """
     size = len(s)
     lower = np.full(2 * size, -np.inf)
@@ -334,6 +356,7 @@ __all__ = [
     "Selection",
     "bernstein_rows",
     "continuity",
+    "grid_caps",
     "solve_lp",
     "variable_bounds",
 ]
