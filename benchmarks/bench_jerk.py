@@ -100,6 +100,11 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--gridpoints", type=int, default=100)
+    parser.add_argument(
+        "--durations",
+        help="write the jerk-limited durations (shipped limits; .npy, full "
+        "precision) to this file, to compare two trees' results",
+    )
     args = parser.parse_args()
     scenario = load_scenario(scenarios_dir() / "random_transport_paper.yaml")
     plant = make_arm_plant(scenario)
@@ -117,6 +122,7 @@ def main() -> None:
     grid = args.gridpoints
     ratios: dict[str, list[float]] = {"shipped": [], **{f"{f:g}x": [] for f in FACTORS}}
     cpu_plain, cpu_jerk, lps, highs = [], [], [], []
+    jerk_durations: list[float] = []
     first_lp, warm_lp = [], []
     _jerk_lp.WarmLP.solve = timed_solve  # type: ignore[method-assign]
     worst_check, worst_difference, passed = np.inf, 0.0, 0
@@ -124,6 +130,7 @@ def main() -> None:
         base = retime(plant, path, plain, grasp, grid, context=context)
         limited = retime(plant, path, shipped, grasp, grid, context=context)
         ratios["shipped"].append(limited.duration / base.duration)
+        jerk_durations.append(limited.duration)
         lps.append(limited.jerk_lps)
         for factor in FACTORS:
             scaled = JointLimits(
@@ -153,6 +160,8 @@ def main() -> None:
             f"min margin {check.min_margin():+.5f}, third-difference jerk / limit "
             f"{difference:.5f}"
         )
+    if args.durations:
+        np.save(args.durations, np.array(jerk_durations))
     print("\n(a) jerk-limited / acceleration-limited duration, median [min, max]:")
     for name, values in ratios.items():
         print(

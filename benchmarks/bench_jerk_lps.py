@@ -10,7 +10,8 @@ timers (``time.thread_time``; the machine is shared). Printed, for the first
 LP of each retime (from the crash basis at TOPP-RA's profile) and for the
 later ones (warm-started): HiGHS runs per LP, simplex iterations per LP,
 the median CPU ms of an LP and the CPU ms per retime in them and in their
-HiGHS runs; and the fit ``ms of a run = fixed + per iteration x
+HiGHS runs; and the fits ``ms of a run = fixed + per iteration x
+iterations`` and ``fixed + per row x rows of its model + per iteration x
 iterations`` over all runs.
 """
 
@@ -33,8 +34,8 @@ _SOLVE = _jerk_lp.WarmLP.solve
 _RUN = _jerk_lp.WarmLP._run
 #: Per LP: (index in its retime, HiGHS runs, iterations, CPU ms, CPU ms in runs).
 LPS: list[tuple[int, int, int, float, float]] = []
-#: Per HiGHS run: (CPU ms, iterations).
-RUNS: list[tuple[float, int]] = []
+#: Per HiGHS run: (CPU ms, iterations, rows of its model).
+RUNS: list[tuple[float, int, int]] = []
 _CURRENT = {"runs": 0, "ms": 0.0}
 
 
@@ -67,7 +68,7 @@ def run(self):  # noqa: ANN001, ANN201
         ms = 1e3 * (time.thread_time() - start)
         _CURRENT["runs"] += 1
         _CURRENT["ms"] += ms
-        RUNS.append((ms, self.iterations - iterations))
+        RUNS.append((ms, self.iterations - iterations, self._highs.getNumRow()))
 
 
 def main() -> None:
@@ -109,6 +110,14 @@ def main() -> None:
     print(
         f"  a HiGHS run: {fixed:.2f} ms + {1e3 * slope:.1f} us per simplex iteration"
         f" (fit over {len(runs)} runs); runs per retime {len(runs) / retimes:.1f}"
+    )
+    design = np.column_stack([np.ones(len(runs)), runs[:, 2], runs[:, 1]])
+    fit = np.linalg.lstsq(design, runs[:, 0], rcond=None)[0]
+    print(
+        f"  with the model's rows: {fit[0]:.2f} ms + {1e3 * fit[1]:.2f} us per row "
+        f"+ {1e3 * fit[2]:.1f} us per iteration; rows per run median "
+        f"{np.median(runs[:, 2]):.0f}, iterations per run median "
+        f"{np.median(runs[:, 1]):.0f}"
     )
 
 

@@ -16,7 +16,9 @@ grasp rows exact at its points (:mod:`._jerk_rows`):
    those points), until the duration changes by less than
    :data:`CONVERGED`;
 3. every limit and all grasp rows are then evaluated exactly at 9 points
-   per segment, the jerk at 33 (:mod:`._jerk_points`); points over a limit
+   per segment, the jerk at 33 (:mod:`._jerk_points`; the grasp skipped at
+   points an earlier round's check bounds under the limit,
+   :mod:`._jerk_screen`); points over a limit
    by more than ``BETWEEN_TOLERANCE`` join the LPs (with every row there,
    and the violated grasp rows), and the LPs run again, at most
    :data:`MAX_ROUNDS` times; an excess still beyond the 1e-3 contract
@@ -63,9 +65,11 @@ from rt_drake.retiming._jerk_problem import (
     Selection,
     bernstein_rows,
     continuity,
+    grid_caps,
     solve_lp,
     variable_bounds,
 )
+from rt_drake.retiming._jerk_screen import grasp_check
 from rt_drake.retiming._jerk_set import SetGrasp, SetPairs
 from rt_drake.retiming._jerk_smooth import check_smooth
 from rt_drake.retiming._jerk_timed_path import JerkTimedPath, Piece, quadrature_duration
@@ -90,6 +94,12 @@ MAX_LPS = 12
 MAX_ROUNDS = 6
 #: Points halving towards each end at rest.
 END_POINTS = 6
+#: The dense points (:data:`._jerk_points.DENSE` indices) and jerk points
+#: (:data:`._jerk_points.JERK_DENSE` indices) of each segment in the first
+#: round's LPs: its ends. (Taking every point there from the start saves
+#: rounds but costs more than they do: ``benchmarks/bench_jerk_stopping.py``.)
+FIRST_DENSE = (0, len(DENSE) - 1)
+FIRST_JERK = (0, len(JERK_DENSE) - 1)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -174,12 +184,14 @@ def jerk_limited(
     problem = Problem(
         s, kinds, dense, points, limits, rest, middle, dense.maps.X[middle],
         bernstein_rows(s, kinds), continuity(s, kinds),
-        variable_bounds(s, kinds, rest, sd_start, sd_end, sdd_start),
+        variable_bounds(
+            s, kinds, grid_caps(dense, kinds), rest, sd_start, sd_end, sdd_start
+        ),
     )  # fmt: skip
     solver = WarmLP()
     x_ref = np.interp(dense.s, s_topp, x_topp)
     u_ref = _topp_u(s_topp, x_topp, dense.s)
-    active = np.isin(dense.k, (0, len(DENSE) - 1))
+    active = np.isin(dense.k, FIRST_DENSE)
     rows = None
     if grasp is not None:
         # Only the active points' rows enter the LPs: screened there alone.
@@ -195,7 +207,7 @@ def jerk_limited(
         active=active,
         rows=rows,
         keep=dense.joint_ratios(x_ref, u_ref, limits).at_least(JOINT_SCREEN),
-        jerk_active=np.isin(points.k, (0, len(JERK_DENSE) - 1)),
+        jerk_active=np.isin(points.k, FIRST_JERK),
         pairs=pairs,
     )
     x_bar = np.maximum(np.interp(s, s_topp, x_topp), 0.0)
@@ -208,6 +220,7 @@ def jerk_limited(
     # starts from the last LP's: if its first LP changes it by less than
     # CONVERGED, the round is done).
     previous = np.inf
+    screened = None  # the grasp check's last wrenches (_jerk_screen)
     while True:
         rounds += 1
         for _ in range(MAX_LPS):
@@ -236,7 +249,9 @@ def jerk_limited(
         x_z, u_z = dense.maps.X @ z, dense.maps.U @ z
         grasp_over, grasp_max = None, None
         if grasp is not None:  # the pairs over the contract, each point's worst
-            grasp_over, grasp_max = dense.grasp_screen(x_z, u_z, 1.0 + tolerance)
+            grasp_over, grasp_max, screened = grasp_check(
+                dense, x_z, u_z, 1.0 + tolerance, screened
+            )
         set_worst = None
         if pairs is not None:  # the set's worst object at every dense point
             set_worst = pairs.worst(x_z, u_z)

@@ -25,8 +25,13 @@ _STATUS = np.array(
     [highspy.HighsBasisStatus(v) for v in range(5)], dtype=object
 )  # kLower, kBasic, kUpper, kZero, kNonbasic
 _BASIC = 1
-#: Relative distance to a bound under which a crash start makes a row nonbasic.
+#: Relative distance to a bound under which a crash start makes a row nonbasic
+#: (and the first sub-LP takes it).
 GUESS = 1e-2
+#: Relative distance to a bound at the last optimum under which the next
+#: LP's first sub-LP takes a row (its basic rows near a bound: many grasp
+#: rows at a point are; those it then breaks join as cuts).
+WARM_GUESS = 1e-3
 #: Relative excess (over ``max(1, |bound|)``) of a row that a sub-LP's
 #: optimum may leave before the row joins (HiGHS's primal tolerance).
 FEASIBLE = 1e-7
@@ -75,8 +80,9 @@ class WarmLP:
         (n, 2) lower and upper bounds of z (inf for none). ``always``:
         (R_ub,) rows every sub-LP takes (enough to bound it).
 
-        Cutting planes: the first sub-LP takes ``always``, the rows tight at
-        the last optimum (or the guess) and those that point breaks; the
+        Cutting planes: the first sub-LP takes ``always``, the rows within
+        :data:`WARM_GUESS` of their bound at the last optimum (or within
+        :data:`GUESS` at the guess) and those that point breaks; the
         rows its optimum breaks by more than :data:`FEASIBLE` are added
         (HiGHS keeps its basis) and it is solved again, until none is
         broken: then its optimum is the LP's.
@@ -84,7 +90,8 @@ class WarmLP:
         working = always.copy()
         slack = np.maximum(1.0, np.abs(b_ub))
         if self._start is not None:
-            working |= A_ub @ self._start >= b_ub - GUESS * slack
+            near = GUESS if self._keys is None else WARM_GUESS
+            working |= A_ub @ self._start >= b_ub - near * slack
         if self._keys is not None:
             working |= np.isin(keys, self._keys[self._rows != _BASIC])
         order = np.flatnonzero(working)

@@ -30,8 +30,10 @@ from rt_drake.retiming._jerk_points import (
 )
 from rt_drake.retiming._jerk_rows import (
     KIND_SHIFT,
+    Block,
     Rows,
     affine_rows,
+    block,
     jerk_rows,
     key,
     stacked,
@@ -87,7 +89,7 @@ class Selection:
     pairs: SetPairs | None = None
     #: The LP rows other than the jerk's (:func:`_fixed_rows`), while the
     #: selection is unchanged; None: to be made.
-    fixed: tuple[list[Rows], list[Rows]] | None = None
+    fixed: tuple[Block, Block] | None = None
 
 
 def solve_lp(
@@ -108,8 +110,9 @@ def solve_lp(
     limits, points = problem.limits, problem.jerk
     assert limits.jerk is not None
     s, size = problem.s, len(problem.s)
-    if chosen.fixed is None:
-        chosen.fixed = _fixed_rows(problem, chosen)
+    if chosen.fixed is None:  # made once per selection, kept compressed
+        rows_before, rows_after = _fixed_rows(problem, chosen)
+        chosen.fixed = block(rows_before), block(rows_after)
     before, after = chosen.fixed
     index = np.flatnonzero(chosen.jerk_active & points.inner)
     floor = 1e-6 * max(float(np.max(x_jerk)), 1e-12)
@@ -130,10 +133,14 @@ def solve_lp(
     width = (np.append(ds, 0.0) + np.insert(ds, 0, 0.0)) / 6.0
     weight = -problem.X_middle.T @ (4.0 / 6.0 * ds / (2.0 * x_middle**1.5))
     weight[:size] -= width / (2.0 * np.maximum(x_bar, 1e-3 * scale) ** 1.5)
-    A_ub, b_ub, keys = stacked([*before, jerk, *after], 2 * size)
+    A_ub, b_ub, keys = stacked([before, block([jerk]), after], 2 * size)
+    # Every sub-LP takes the velocity rows between grid points and the
+    # Bernstein rows (at the grid points the velocity is a bound of z): with
+    # the continuity rows they bound it. The rows x >= 0 inside a segment
+    # are implied by the Bernstein rows (rest pieces: by u's bounds): they
+    # join only if broken.
     kind = keys >> KIND_SHIFT
-    always = (kind == Kind.VELOCITY) | (kind == Kind.POSITIVE)
-    always |= (kind == Kind.MIDDLE) | (kind == Kind.BERNSTEIN)
+    always = (kind == Kind.VELOCITY) | (kind == Kind.BERNSTEIN)
     z, status = solver.solve(
         weight / np.max(np.abs(weight)), A_ub, b_ub, keys, *problem.equalities,
         problem.variable_bounds, always,
@@ -168,7 +175,10 @@ def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Rows], list[R
         blocks.append(affine_rows(band, once, kind, alpha, beta, bound))
 
     zeros = np.zeros((len(once), 1))
-    add(Kind.VELOCITY, zeros, zeros + 1.0, smp.x_cap[once][:, None])
+    # At the start of an interior segment x is x_i: its cap is a bound of z.
+    grid = (dense.k[once] == 0) & _capped(problem.kinds)[once // len(DENSE)]
+    velocity = np.where(grid, np.inf, smp.x_cap[once])
+    add(Kind.VELOCITY, zeros, zeros + 1.0, velocity[:, None])
     inside = ((dense.k[once] > 0) & (dense.k[once] < last))[:, None]
     add(Kind.POSITIVE, zeros, zeros - 1.0, np.where(inside, 0.0, np.inf))  # x >= 0
     keep = chosen.keep
@@ -241,6 +251,28 @@ def _grasp_rows_at(dense: DensePoints, once: np.ndarray, mask: np.ndarray) -> Ro
     )
 
 
+def _capped(kinds: np.ndarray) -> np.ndarray:
+    """(N,) segments whose start's velocity cap is a bound of ``x_i``.
+
+    The interior segments but the first (``x_0`` is given: its row stays).
+    """
+    capped = kinds == Piece.INTERIOR
+    capped[0] = False
+    return capped
+
+
+def grid_caps(dense: DensePoints, kinds: np.ndarray) -> np.ndarray:
+    """The velocity caps of ``x_i`` that are bounds of z, (N+1,) (inf elsewhere).
+
+    ``min_j v_j^2 / q'_j^2`` at the dense point ``k = 0`` of each segment of
+    :func:`_capped`; there :func:`_fixed_rows` makes no velocity row.
+    """
+    caps = np.full(len(kinds) + 1, np.inf)
+    capped = np.flatnonzero(_capped(kinds))
+    caps[capped] = dense.samples.x_cap[capped * len(DENSE)]
+    return caps
+
+
 def bernstein_rows(s: np.ndarray, kinds: np.ndarray) -> Rows:
     """Rows ``-(x_i + ds_i u_i) <= 0`` of the interior segments.
 
@@ -264,16 +296,23 @@ def bernstein_rows(s: np.ndarray, kinds: np.ndarray) -> Rows:
 def variable_bounds(
     s: np.ndarray,
     kinds: np.ndarray,
+    x_cap: np.ndarray,
     rest: dict[int, tuple[int, float]],
     sd_start: float,
     sd_end: float,
     sdd_start: float | None = None,
 ) -> np.ndarray:
-    """Bounds of z: x >= 0, the ends' x, ``u_0`` if given, the end pieces' u."""
+    """Bounds of z: ``0 <= x <= x_cap``, the ends' x, ``u_0`` if given, rest pieces' u.
+
+    ``x_cap``: (N+1,) the velocity bound ``min_j v_j^2 / q'_j^2`` of ``x_i``
+    where it is a bound of z instead of a row of the LPs (inf elsewhere,
+    :func:`grid_caps`).
+    """
     size = len(s)
     lower = np.full(2 * size, -np.inf)
     upper = np.full(2 * size, np.inf)
     lower[:size] = 0.0
+    upper[:size] = x_cap
     lower[0] = upper[0] = float(sd_start) ** 2
     lower[size - 1] = upper[size - 1] = float(sd_end) ** 2
     if sdd_start is not None:  # u_0 given (sd_start > 0: no START piece)
@@ -317,6 +356,7 @@ __all__ = [
     "Selection",
     "bernstein_rows",
     "continuity",
+    "grid_caps",
     "solve_lp",
     "variable_bounds",
 ]

@@ -185,24 +185,52 @@ def jerk_rows(
     )
 
 
-def stacked(
-    rows: list[Rows], size: int
-) -> tuple[sparse.csr_matrix, np.ndarray, np.ndarray]:
-    """The rows as one sparse (R, size) matrix, their bounds and keys.
+class Block(NamedTuple):
+    """Rows in compressed form: their nonzero entries row by row.
 
-    Zero entries are dropped.
+    ``values``, ``cols``: the nonzero entries and their columns; ``counts``:
+    (R,) entries per row; ``bound``, ``keys``: (R,) as in :class:`Rows`.
     """
+
+    values: np.ndarray
+    cols: np.ndarray
+    counts: np.ndarray
+    bound: np.ndarray
+    keys: np.ndarray
+
+
+def block(rows: list[Rows]) -> Block:
+    """The rows, one after the other, with their zero entries dropped."""
     cols = np.concatenate([r.cols for r in rows])
     values = np.concatenate([r.values for r in rows])
     nonzero = values != 0.0
-    indptr = np.concatenate([[0], np.cumsum(nonzero.sum(axis=1))])
+    return Block(
+        values[nonzero],
+        cols[nonzero],
+        nonzero.sum(axis=1),
+        np.concatenate([r.bound for r in rows]),
+        np.concatenate([r.keys for r in rows]),
+    )
+
+
+def stacked(
+    blocks: list[Block], size: int
+) -> tuple[sparse.csr_matrix, np.ndarray, np.ndarray]:
+    """The blocks as one sparse (R, size) matrix, their bounds and keys."""
+    counts = np.concatenate([b.counts for b in blocks])
+    indptr = np.concatenate([[0], np.cumsum(counts)])
     A = sparse.csr_matrix(
-        (values[nonzero], cols[nonzero], indptr), shape=(len(values), size)
+        (
+            np.concatenate([b.values for b in blocks]),
+            np.concatenate([b.cols for b in blocks]),
+            indptr,
+        ),
+        shape=(len(counts), size),
     )
     return (
         A,
-        np.concatenate([r.bound for r in rows]),
-        np.concatenate([r.keys for r in rows]),
+        np.concatenate([b.bound for b in blocks]),
+        np.concatenate([b.keys for b in blocks]),
     )
 
 
@@ -250,9 +278,11 @@ KIND_SHIFT = 52
 __all__ = [
     "KIND_SHIFT",
     "Band",
+    "Block",
     "PointMaps",
     "Rows",
     "affine_rows",
+    "block",
     "key",
     "stacked",
     "jerk_rows",
