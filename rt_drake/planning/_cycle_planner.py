@@ -11,7 +11,9 @@
   into) that face and nothing else of the object.
 - PICK (:meth:`CyclePlanner.plan_pick`, :mod:`._pick`): APPROACH and REACH
   blended into one path without a stop at the approach pose, after a
-  vertical retreat from an object just placed.
+  vertical retreat from an object just placed. The cycle's first pick tries
+  the APPROACH as one straight joint-space line first
+  (:meth:`CyclePlanner.straight_approach`, :mod:`._straight_approach`).
 - MOVE: the object attached to the cup, through four anchors: grasp, lift
   (the grasp raised by ``approach_offset``; the IK line of the REACH passed
   in, reversed, when that REACH came down from there), above the place pose
@@ -67,6 +69,7 @@ from rt_drake.planning._planning_errors import (
     StartInCollisionError,
     UnreachablePoseError,
 )
+from rt_drake.planning._straight_approach import straight_approach
 from rt_drake.planning.result import PlannedPath
 from rt_drake.planning.scene import PlanningScene
 from rt_drake.types.phase import Phase
@@ -203,6 +206,13 @@ class CyclePlanner:
         goal = self.approach_goal(q_current, name)
         anchors = [goal.q_start, goal.q_goal]
         return through(self.scene, self.ik, anchors, goal.X_OC, goal.attempt)
+
+    def straight_approach(self, q_current: np.ndarray, name: str) -> PlannedPath | None:
+        """The APPROACH as one straight joint-space line, None if it is not clean.
+
+        :mod:`._straight_approach` (no RRT: the caller plans otherwise).
+        """
+        return straight_approach(self, q_current, name)
 
     def approach_goal(
         self, q_current: np.ndarray, name: str, prepared: bool = False

@@ -27,7 +27,12 @@ with a ``first_order`` vacuum the suction range then reaches down to
 
 The pick (:meth:`OnlineMotions.pick`) is one motion through the approach
 pose (:mod:`rt_drake.planning._pick`), retimed rest to rest; APPROACH ends
-when it passes the approach pose.
+when it passes the approach pose. The cycle's first pick (no retreat: the
+cup rests on nothing) is staged instead (:mod:`._first_pick`): a straight
+APPROACH timed by Ruckig, on which the arm starts, then the REACH, planned
+and retimed while the APPROACH runs; the blended pick where the straight
+line is not clean or the scenario limits the torques
+(``split_first_pick=False``: always the blended pick).
 
 Grids. TOPP-RA gives one path acceleration per grid segment, so on 100
 uniform points it leaves about 6 % of a motion unused where the profile
@@ -93,6 +98,7 @@ from rt_drake.shaping import (
     retime_adaptive,
 )
 from rt_drake.shaping import warm_up as warm_up_optimizer
+from rt_drake.simulation._first_pick import first_approach, then_reach
 from rt_drake.simulation._release import release_lead
 from rt_drake.simulation.motion import Motion, PhasePart, PlanTimes
 from rt_drake.simulation.move_grasp import (
@@ -126,6 +132,9 @@ class OnlineMotions:
             ``planning.optimize_move``); needs the grasp constraint.
         jerk_limits: retime every motion under the scenario's
             ``robot.jerk_limits`` too (when it gives them).
+        split_first_pick: stage a pick without retreat (the cycle's first)
+            as a straight APPROACH, then the REACH (:mod:`._first_pick`);
+            False: the blended pick, as every other.
     """
 
     def __init__(
@@ -138,6 +147,7 @@ class OnlineMotions:
         robust: bool = True,
         optimize: bool | None = None,
         jerk_limits: bool = False,
+        split_first_pick: bool = True,
     ) -> None:
         arguments.instance(scenario, "scenario", Scenario, where="OnlineMotions")
         arguments.number(move_speed, "move_speed", where="OnlineMotions", above=0.0)
@@ -152,6 +162,8 @@ class OnlineMotions:
         self._grasp_limits = grasp_limits(self._limits, scenario)
         self._speed = move_speed
         self._gridpoints = gridpoints
+        # Ruckig bounds velocity, acceleration and jerk, not torques.
+        self._split_first = split_first_pick and self._limits.torque is None
         self._polytope = None
         if grasp_constraint:
             self._polytope = move_polytope(scenario)
@@ -365,19 +377,40 @@ class OnlineMotions:
         """Straight down onto ``obj``."""
         return self._timed(self._planner.plan_reach, q_start, obj, carrying=False)
 
+    def straight_approach(
+        self, q_start: np.ndarray, obj: ObjectConfig
+    ) -> Motion | None:
+        """From rest at ``q_start`` to above ``obj`` on a straight line, or None.
+
+        The staged first pick's first part (:func:`._first_pick.first_approach`):
+        what the cycle's first motion waits for.
+        """
+        self._place_objects_for(obj)
+        return first_approach(self._planner, self._limits, q_start, obj.name)
+
     def pick(
         self, q_start: np.ndarray, obj: ObjectConfig, retreat: bool = False
     ) -> Motion:
-        """Retreat (if ``retreat``), approach and reach ``obj`` without a stop.
+        """Retreat (if ``retreat``), approach and reach ``obj``.
 
-        Parts: APPROACH until the cup passes the approach pose (its plan
-        times: the retreat, transit and blend, and the retime), then REACH
-        (its plan times: the descent's IK line).
+        Without ``retreat`` (the first pick), staged if the straight APPROACH
+        is clean (:mod:`._first_pick`; parts APPROACH and REACH, each with
+        its own plan times). Else one motion without a stop: APPROACH until
+        the cup passes the approach pose (its plan times: the retreat,
+        transit and blend, and the retime, plus a straight APPROACH tried
+        and blocked), then REACH (its plan times: the descent's IK line).
         """
+        tried_s = 0.0
+        if not retreat and self._split_first:
+            start = time.perf_counter()
+            approach = self.straight_approach(q_start, obj)
+            if approach is not None:
+                return then_reach(approach, self._planner, self.retime_free, obj.name)
+            tried_s = time.perf_counter() - start
         self._place_objects_for(obj)
         start = time.perf_counter()
         planned = self._planner.plan_pick(q_start, obj.name, retreat)
-        plan_s = time.perf_counter() - start
+        plan_s = time.perf_counter() - start + tried_s
         start = time.perf_counter()
         result = self.retime_free(planned.path.path)
         t_approach = time_at(result, planned.s_approach)
