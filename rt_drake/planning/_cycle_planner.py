@@ -54,6 +54,7 @@ from rt_drake.planning._line_heights import LineHeightError, LineProbe
 from rt_drake.planning._pick import (
     PlannedPick,
     plan_pick,
+    turned_descent,
 )
 from rt_drake.planning._planner_steps import (
     TOUCH_ALLOWANCE,
@@ -227,14 +228,23 @@ class CyclePlanner(PlannerSteps):
             index, q_goal = self._solve(attempt, "approach", targets, q_current)
         return PhaseEnds(attempt, q_current, q_goal, grasps[index])
 
-    def plan_reach(self, q_approach: np.ndarray, name: str) -> PlannedPath:
-        """Straight descent from ``q_approach`` to the grasp of ``name``."""
+    def plan_reach(
+        self, q_approach: np.ndarray, name: str, turn: bool = False
+    ) -> PlannedPath:
+        """Straight descent from ``q_approach`` to the grasp of ``name``.
+
+        ``turn``: through the blended pick's descent (:func:`._pick.turned_descent`:
+        the IK line and a point ``TURN_STEP`` below its top), so that a MOVE
+        lifts along the same line as after a blended pick.
+        """
         line = self.descent_line(q_approach, name)
         assert line.chain is not None  # descent_line raises otherwise
-        planned = through(
-            self.scene, self.ik, list(line.chain), line.X_OC, line.attempt
-        )
-        return dataclasses.replace(planned, descent=line.chain)
+        chain = line.chain
+        if turn:
+            with line.attempt.watch("ik"):
+                chain = turned_descent(self, chain)
+        planned = through(self.scene, self.ik, list(chain), line.X_OC, line.attempt)
+        return dataclasses.replace(planned, descent=chain)
 
     def descent_line(
         self, q_approach: np.ndarray, name: str, prepared: bool = False

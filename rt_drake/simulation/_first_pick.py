@@ -13,8 +13,10 @@ starts as soon as the first stage is ready (a staged
    millisecond). On the critical path: the IK, the check and Ruckig.
 2. REACH (:func:`then_reach`): planned
    (:meth:`~rt_drake.planning.CyclePlanner.plan_reach`: the IK line down to
-   the grasp) and retimed from rest to rest while the APPROACH runs; the arm
-   begins it at the approach pose.
+   the grasp, with the blended pick's turn point below its top, so the
+   MOVE lifts along the same points as after a blended pick) and retimed
+   from rest to rest while the APPROACH runs; the arm begins it at the
+   approach pose.
 
 The arm stops at the approach pose, where the blended pick
 (:mod:`rt_drake.planning._pick`) keeps moving down; at the top of the
@@ -82,7 +84,7 @@ def then_reach(
     """
     assert approach.planned is not None  # from first_approach
     start = time.perf_counter()
-    reach = planner.plan_reach(approach.planned.q_goal, name)
+    reach = planner.plan_reach(approach.planned.q_goal, name, turn=True)
     plan_s = time.perf_counter() - start
     start = time.perf_counter()
     result = retime(reach.path)

@@ -79,6 +79,10 @@ def test_the_first_pick_is_staged_and_the_arm_starts_on_its_approach(first):
     assert pick.planned.descent is not None
     end = pick.trajectory.value(pick.phase_end(Phase.APPROACH)).ravel()
     np.testing.assert_array_equal(end, pick.planned.descent[0])
+    # The same descent as the blended pick's (its turn point included): the
+    # MOVE lifts along the same line either way.
+    blended = motions.planner.plan_pick(motions.q_home, obj.name)
+    np.testing.assert_array_equal(pick.planned.descent, blended.path.descent)
     # Later picks (after a place) are blended, without a stop.
     move = motions.move(pick.q_end, obj, pick)
     after = motions.pick(move.q_end, motions.planner.scenario.objects[1], True)
