@@ -86,9 +86,10 @@ class Motion:
     Attributes:
         trajectory: q(t) for t in [0, duration] (rad); derivatives q', q''.
         times: wall seconds spent producing it (all of it).
-        planned: the planned path it follows, if it came from the planner.
+        planned: the planned path it follows, if it came from the planner
+            (a staged motion: its last part's, e.g. the first pick's REACH).
         retimed: the retiming of that path (its trajectory is ``trajectory``
-            unless the source plays it faster).
+            unless the source plays it faster or the motion is staged).
         grasp: the grasp constraint it was retimed under, if any.
         guarantee: for a MOVE, what holds the object, in words (the nominal
             object, every object of its uncertainty set, or none); "" else.
