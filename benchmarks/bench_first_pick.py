@@ -8,19 +8,29 @@
 One process per measurement: ``OnlineMotions`` is built as ``rt-drake run``
 builds it (the scenario's jerk limits unless --no-jerk-limits; the retimer
 and optimiser kernels warmed up, as the cycle does before its clock
-starts), then the first object's pick from home is planned and retimed,
-timed with ``time.process_time`` (CPU) and ``time.perf_counter`` (wall):
-that call is what the cycle's first APPROACH waits for. The same pick
-repeated in the same process (``--repeats``) gives the warm cost, and its
-stages apart (``warm_*_cpu_s``: the planner's ``plan_pick``, the retime,
-the time at which the retimed pick passes the approach pose). Prints one
-JSON line.
+starts). Then, timed with ``time.process_time`` (CPU):
 
-``--grids`` retimes the first pick's path (planned once) on uniform grids
-of those sizes instead (the retimer adds the knots and refines each, so
-every grid keeps the limits between its points): the least CPU over
-``--repeats`` and the pick's duration, one JSON line per size. A cheaper
-first retime pays for itself only if it costs less CPU than it adds motion.
+- ``critical_first_cpu_s``: what the cycle's first APPROACH waits for, on
+  the first call in the process: the whole first pick (plan and retime)
+  where it is one blended motion; the straight APPROACH (IK, the line's
+  dense check, Ruckig) where the pick is staged
+  (``OnlineMotions.straight_approach``; its REACH is planned behind it);
+- ``critical_warm_cpu_s``: the same, repeated (``--repeats``, median);
+- ``pick_warm_cpu_s``: the whole first pick, REACH included (median);
+- ``charged_warm_s``: the wait the sequencer charges the first APPROACH
+  (wall seconds: ``PendingMotion.wait_s``, load-dependent), median;
+- ``duration_s``, ``approach_s``: the pick's motion and its APPROACH part;
+- ``blended_{plan,retime,split}_cpu_s``: the blended pick's stages (the
+  planner's ``plan_pick``, its retime, the time at which the retimed pick
+  passes the approach pose; medians), the route of every later pick.
+
+Prints one JSON line. A tree without the staged pick reports the blended
+pick as its critical path.
+
+``--grids`` retimes the first pick's blended path (planned once) on uniform
+grids of those sizes instead (the retimer adds the knots and refines each,
+so every grid keeps the limits between its points): the least CPU over
+``--repeats`` and the pick's duration, one JSON line per size.
 
 ``--compare`` runs this script alternately with ``PYTHONPATH`` set to two
 source trees (e.g. an export of the previous commit and the worktree),
@@ -41,22 +51,33 @@ import time
 
 
 def measure(scenario: str, repeats: int, jerk_limits: bool = True) -> dict:
-    """CPU and wall seconds of the first pick, and of ``repeats`` more."""
+    """CPU seconds of the first pick's critical path, and more (module doc)."""
     from rt_drake.model.scenario import load_scenario
+    from rt_drake.simulation.motion import PendingMotion
     from rt_drake.simulation.online_motions import OnlineMotions, time_at
+    from rt_drake.types.phase import Phase
 
+    repeats = max(repeats, 1)
     sc = load_scenario(scenario)
     motions = OnlineMotions(sc, jerk_limits=jerk_limits)
     obj = sc.objects[0]
-    cpu, wall = time.process_time(), time.perf_counter()
-    first = motions.pick(motions.q_home, obj)
-    first_cpu, first_wall = time.process_time() - cpu, time.perf_counter() - wall
-    warm_cpu, warm_wall = [], []
+    # The staged route's first part, if this tree has one (else the pick).
+    straight = getattr(motions, "straight_approach", None)
+
+    def critical() -> float:
+        cpu = time.process_time()
+        if straight is None or straight(motions.q_home, obj) is None:
+            motions.pick(motions.q_home, obj)
+        return time.process_time() - cpu
+
+    first_cpu = critical()
+    warm_critical = [critical() for _ in range(repeats)]
+    warm_pick, charged = [], []
     for _ in range(repeats):
-        cpu, wall = time.process_time(), time.perf_counter()
-        motions.pick(motions.q_home, obj)
-        warm_cpu.append(time.process_time() - cpu)
-        warm_wall.append(time.perf_counter() - wall)
+        cpu = time.process_time()
+        pick = motions.pick(motions.q_home, obj)
+        warm_pick.append(time.process_time() - cpu)
+        charged.append(PendingMotion(pick, 0.0).wait_s(0.0))
     stages: dict[str, list[float]] = {"plan": [], "retime": [], "split": []}
     for _ in range(repeats):
         cpu = time.process_time()
@@ -68,16 +89,18 @@ def measure(scenario: str, repeats: int, jerk_limits: bool = True) -> dict:
         cpu = time.process_time()
         time_at(result, planned.s_approach)
         stages["split"].append(time.process_time() - cpu)
+
+    def median(values: list[float]) -> float | None:
+        return statistics.median(values) if values else None
+
     return {
-        "first_cpu_s": first_cpu,
-        "first_wall_s": first_wall,
-        "first_charged_s": first.times.total_s,
-        "warm_cpu_s": statistics.median(warm_cpu) if warm_cpu else None,
-        "warm_wall_s": statistics.median(warm_wall) if warm_wall else None,
-        **{
-            f"warm_{k}_cpu_s": statistics.median(v) if v else None
-            for k, v in stages.items()
-        },
+        "critical_first_cpu_s": first_cpu,
+        "critical_warm_cpu_s": median(warm_critical),
+        "pick_warm_cpu_s": median(warm_pick),
+        "charged_warm_s": median(charged),
+        "duration_s": pick.duration,
+        "approach_s": pick.phase_end(Phase.APPROACH),
+        **{f"blended_{k}_cpu_s": median(v) for k, v in stages.items()},
     }
 
 

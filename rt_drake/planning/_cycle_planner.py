@@ -11,7 +11,9 @@
   into) that face and nothing else of the object.
 - PICK (:meth:`CyclePlanner.plan_pick`, :mod:`._pick`): APPROACH and REACH
   blended into one path without a stop at the approach pose, after a
-  vertical retreat from an object just placed.
+  vertical retreat from an object just placed. The cycle's first pick tries
+  the APPROACH as one straight joint-space line first
+  (:meth:`CyclePlanner.straight_approach`, :mod:`._straight_approach`).
 - MOVE: the object attached to the cup, through four anchors: grasp, lift
   (the grasp raised by ``approach_offset``; the IK line of the REACH passed
   in, reversed, when that REACH came down from there), above the place pose
@@ -33,46 +35,43 @@ naming phase and object within its budget (plus one IK round).
 from __future__ import annotations
 
 import dataclasses
-import zlib
 
 import numpy as np
-from pydrake.math import RigidTransform, RotationMatrix
+from pydrake.math import RigidTransform
 
 from rt_drake import arguments
 from rt_drake.errors import InputError
 from rt_drake.model.plant import home_configuration
 from rt_drake.model.scenario import Scenario
 from rt_drake.planning._connect import (
-    Attempt,
     PhaseEnds,
     describe,
     ik_line,
     through,
 )
-from rt_drake.planning._geometry import face_under_cup
-from rt_drake.planning._ik import (
-    CupIk,
-    initial_guesses,
-    nearest_valid_solution,
-)
+from rt_drake.planning._ik import CupIk
 from rt_drake.planning._line_heights import LineHeightError, LineProbe
 from rt_drake.planning._pick import (
     PlannedPick,
     plan_pick,
+    turned_descent,
+)
+from rt_drake.planning._planner_steps import (
+    TOUCH_ALLOWANCE,
+    PlannerSteps,
+    check_pose,
+    pose_key,
 )
 from rt_drake.planning._planning_errors import (
     GoalInCollisionError,
     PlanningError,
-    PlanningInputError,
-    StartInCollisionError,
     UnreachablePoseError,
 )
+from rt_drake.planning._straight_approach import straight_approach
 from rt_drake.planning.result import PlannedPath
 from rt_drake.planning.scene import PlanningScene
 from rt_drake.types.phase import Phase
 
-#: m, how far a grasped face is moved in so the cup may touch it.
-TOUCH_ALLOWANCE = 0.002
 #: m, how close the cup's origin must be to a grasp pose to be holding it.
 GRASP_TOLERANCE_M = 0.002
 #: rad, how close the cup's orientation must be to a grasp pose likewise.
@@ -89,7 +88,7 @@ def _raised(X_WC: RigidTransform, height: float) -> RigidTransform:
     return RigidTransform([0.0, 0.0, height]) @ X_WC
 
 
-class CyclePlanner:
+class CyclePlanner(PlannerSteps):
     """Plans APPROACH, REACH and MOVE for a scenario's objects.
 
     Object poses (``object_poses``, X_WO) start at the scenario's starts;
@@ -141,7 +140,7 @@ class CyclePlanner:
         """Move object ``name`` to X_WO (None: the object left the cell)."""
         self.scenario.object(name)
         if X_WO is not None:
-            _check_pose(X_WO, f"pose of object '{name}'")
+            check_pose(X_WO, f"pose of object '{name}'")
         self.object_poses[name] = X_WO
 
     def line_height(self, name: str, X_WO: RigidTransform, at: Phase) -> float:
@@ -159,7 +158,7 @@ class CyclePlanner:
         assert self._probe is not None  # built when any object is "auto"
         X_OC = self.grasps(name)[0]
         others = {k: v for k, v in self.object_poses.items() if k != name}
-        key = (name, _pose_key(X_WO), *((k, _pose_key(v)) for k, v in others.items()))
+        key = (name, pose_key(X_WO), *((k, pose_key(v)) for k, v in others.items()))
         if key not in self._heights:
             try:
                 self._heights[key] = self._probe.line_height(
@@ -191,11 +190,6 @@ class CyclePlanner:
             self.object_poses[obj.name] = X_goal
         self.object_poses = saved
 
-    def grasps(self, name: str) -> list[RigidTransform]:
-        """The scenario's X_OC and its 180 deg yaw flip about z_C."""
-        X_OC = self.scenario.object(name).grasp.GetDeterministicValue()
-        return [X_OC, X_OC @ RigidTransform(RotationMatrix.MakeZRotation(np.pi))]
-
     # -- phases -------------------------------------------------------------
 
     def plan_approach(self, q_current: np.ndarray, name: str) -> PlannedPath:
@@ -203,6 +197,13 @@ class CyclePlanner:
         goal = self.approach_goal(q_current, name)
         anchors = [goal.q_start, goal.q_goal]
         return through(self.scene, self.ik, anchors, goal.X_OC, goal.attempt)
+
+    def straight_approach(self, q_current: np.ndarray, name: str) -> PlannedPath | None:
+        """The APPROACH as one straight joint-space line, None if it is not clean.
+
+        :mod:`._straight_approach` (no RRT: the caller plans otherwise).
+        """
+        return straight_approach(self, q_current, name)
 
     def approach_goal(
         self, q_current: np.ndarray, name: str, prepared: bool = False
@@ -227,14 +228,23 @@ class CyclePlanner:
             index, q_goal = self._solve(attempt, "approach", targets, q_current)
         return PhaseEnds(attempt, q_current, q_goal, grasps[index])
 
-    def plan_reach(self, q_approach: np.ndarray, name: str) -> PlannedPath:
-        """Straight descent from ``q_approach`` to the grasp of ``name``."""
+    def plan_reach(
+        self, q_approach: np.ndarray, name: str, turn: bool = False
+    ) -> PlannedPath:
+        """Straight descent from ``q_approach`` to the grasp of ``name``.
+
+        ``turn``: through the blended pick's descent (:func:`._pick.turned_descent`:
+        the IK line and a point ``TURN_STEP`` below its top), so that a MOVE
+        lifts along the same line as after a blended pick.
+        """
         line = self.descent_line(q_approach, name)
         assert line.chain is not None  # descent_line raises otherwise
-        planned = through(
-            self.scene, self.ik, list(line.chain), line.X_OC, line.attempt
-        )
-        return dataclasses.replace(planned, descent=line.chain)
+        chain = line.chain
+        if turn:
+            with line.attempt.watch("ik"):
+                chain = turned_descent(self, chain)
+        planned = through(self.scene, self.ik, list(chain), line.X_OC, line.attempt)
+        return dataclasses.replace(planned, descent=chain)
 
     def descent_line(
         self, q_approach: np.ndarray, name: str, prepared: bool = False
@@ -301,7 +311,7 @@ class CyclePlanner:
         if X_WO_goal is None:
             X_WO_goal = obj.goal.GetDeterministicValue()
         else:
-            _check_pose(X_WO_goal, "goal pose X_WO_goal", attempt)
+            check_pose(X_WO_goal, "goal pose X_WO_goal", attempt)
         X_OC = self._nearest_grasp(attempt, self.scene.cup_pose(q_grasp))
         X_grasp = self._pose(attempt) @ X_OC
         error = self.scene.cup_pose(q_grasp).InvertAndCompose(X_grasp)
@@ -371,7 +381,7 @@ class CyclePlanner:
         q_start = self._configuration(attempt, q_start, "q_start")
         q_goal = self._configuration(attempt, q_goal, "q_goal")
         if X_OC is not None:
-            _check_pose(X_OC, "grasp X_OC", attempt)
+            check_pose(X_OC, "grasp X_OC", attempt)
         with attempt.watch("scene"):
             self.prepare(phase, name, q_start, X_OC)
         self._check_start(attempt, q_start)
@@ -397,130 +407,8 @@ class CyclePlanner:
         """
         attempt = self._begin(phase, name, check=False)
         q_near = self._configuration(attempt, q_near, "q_near")
-        _check_pose(X_WC, "cup pose X_WC", attempt)
+        check_pose(X_WC, "cup pose X_WC", attempt)
         return self._solve(attempt, "cup", [X_WC], q_near)[1]
-
-    # -- scene --------------------------------------------------------------
-
-    def prepare(
-        self,
-        phase: Phase,
-        name: str,
-        q_start: np.ndarray,
-        X_OC: RigidTransform | None = None,
-    ) -> PlanningScene:
-        """Set the scene's objects for ``phase`` of object ``name``.
-
-        APPROACH: every object at its pose; REACH: the same, the grasped face
-        of ``name`` moved in by ``TOUCH_ALLOWANCE``; MOVE: ``name`` carried
-        at X_CO = X_OC^-1. In every phase an object the cup rests on at
-        ``q_start`` gets the allowance on the face under the cup.
-        """
-        scene = self.scene
-        if phase is Phase.MOVE:
-            if X_OC is None:
-                raise PlanningError(phase, name, "a MOVE needs the grasp X_OC")
-            scene.attach(name, X_OC.inverse())
-        else:
-            scene.detach()
-        X_WC = scene.cup_pose(q_start)
-        for other in self.scenario.objects:
-            X_WO = self.object_poses.get(other.name)
-            if phase is Phase.MOVE and other.name == name:
-                X_WO = None
-            normal = None
-            if X_WO is not None:
-                normal = face_under_cup(other.model, X_WO, X_WC, TOUCH_ALLOWANCE)
-                if phase is Phase.REACH and other.name == name and X_OC is not None:
-                    normal = -X_OC.rotation().col(2)
-            scene.set_object(other.name, X_WO, other.model, normal, TOUCH_ALLOWANCE)
-        return scene
-
-    # -- steps --------------------------------------------------------------
-
-    def _begin(self, phase: Phase, name: str, check: bool = True) -> Attempt:
-        if check:
-            self.scenario.object(name)
-        # The key names the phase in capitals: the seeds of every earlier run.
-        key = zlib.crc32(f"{self.seed}:{phase.label}:{name}".encode())
-        rng = np.random.default_rng(key)
-        return Attempt(phase, name, self.budget_s, self.seed, rng)
-
-    def _pose(self, attempt: Attempt) -> RigidTransform:
-        X_WO = self.object_poses.get(attempt.name)
-        if X_WO is None:
-            raise PlanningError(
-                attempt.phase, attempt.name, "the object is not in the cell"
-            )
-        return X_WO
-
-    def _nearest_grasp(self, attempt: Attempt, X_WC: RigidTransform) -> RigidTransform:
-        """The grasp (or its flip) whose cup orientation is nearest X_WC's."""
-        R_WO = self._pose(attempt).rotation()
-        return min(
-            self.grasps(attempt.name),
-            key=lambda X_OC: (
-                X_WC.rotation()
-                .InvertAndCompose(R_WO @ X_OC.rotation())
-                .ToAngleAxis()
-                .angle()
-            ),
-        )
-
-    def _configuration(self, attempt: Attempt, q: object, name: str) -> np.ndarray:
-        """``q`` (argument ``name``) as (n,) joint positions; PlanningInputError if not.
-
-        Wrong size, NaN or inf are refused before any query sees them.
-        """
-        n = self.scene.plant.num_positions()
-        try:
-            array = np.asarray(q, dtype=float)
-        except (TypeError, ValueError):
-            array = None
-        if array is None or array.shape != (n,) or not np.all(np.isfinite(array)):
-            shown = (
-                f"{array.size} values {np.array2string(array, precision=4)}"
-                if array is not None
-                else repr(q)
-            )
-            raise PlanningInputError(
-                attempt.phase,
-                attempt.name,
-                f"configuration {name} must be {n} finite joint positions (rad), "
-                f"got {shown}",
-            )
-        return array
-
-    def _valid(self, q: np.ndarray) -> bool:
-        return self.scene.within_limits(q) and self.scene.is_free(q)
-
-    def _check_start(self, attempt: Attempt, q: np.ndarray) -> None:
-        if not self._valid(q):
-            raise StartInCollisionError(
-                attempt.phase, attempt.name, describe(self.scene, q, "start")
-            )
-
-    def _solve(self, attempt, what, targets, q_near) -> tuple[int, np.ndarray]:
-        guesses = initial_guesses(
-            q_near, self.q_home, self.scene.lower, self.scene.upper, attempt.rng
-        )
-        outcome = nearest_valid_solution(self.ik, targets, q_near, guesses, self._valid)
-        if outcome.q is not None:
-            return outcome.target, outcome.q
-        if outcome.in_collision is not None:  # reached, but only in collision
-            detail = describe(self.scene, outcome.in_collision, "goal")
-            raise GoalInCollisionError(attempt.phase, attempt.name, detail)
-        p = np.round(targets[0].translation(), 3).tolist()
-        raise UnreachablePoseError(
-            attempt.phase,
-            attempt.name,
-            f"{what} pose unreachable (cup at {p} m; "
-            f"IK failed from {outcome.attempts} initial guesses)",
-        )
-
-    def _optional(self, X_WC: RigidTransform, q_near: np.ndarray) -> np.ndarray | None:
-        q = self.ik.solve(X_WC, q_near, q_near)
-        return q if q is not None and self._valid(q) else None
 
     def _reversed_reach(
         self,
@@ -543,22 +431,6 @@ class CyclePlanner:
         if np.linalg.norm(error.translation()) > 1e-5 or not self._valid(chain[-1]):
             return None
         return chain
-
-
-def _pose_key(X_WO: RigidTransform | None) -> bytes | None:
-    """A hashable key of a pose (its 3x4 matrix, bit for bit)."""
-    return None if X_WO is None else X_WO.GetAsMatrix34().tobytes()
-
-
-def _check_pose(X: RigidTransform, what: str, attempt: Attempt | None = None) -> None:
-    """Refuse a pose that is not a finite RigidTransform."""
-    finite = isinstance(X, RigidTransform) and np.all(np.isfinite(X.GetAsMatrix4()))
-    if finite:
-        return
-    detail = f"{what} must be a finite RigidTransform, got {X}"
-    if attempt is None:
-        raise InputError(detail)
-    raise PlanningInputError(attempt.phase, attempt.name, detail)
 
 
 __all__ = [

@@ -210,19 +210,7 @@ def plan_pick(
     reach = planner.descent_line(goal.q_goal, name, prepared=True)
     assert reach.chain is not None  # descent_line always returns its line
     start = time.perf_counter()
-    X_approach = planner.scene.cup_pose(goal.q_goal)
-    q_turn = planner.ik.solve(
-        RigidTransform([0.0, 0.0, -TURN_STEP]) @ X_approach,
-        reach.chain[0],
-        reach.chain[0],
-    )
-    descent = reach.chain
-    line = (
-        X_approach.translation()[2]
-        - planner.scene.cup_pose(reach.q_goal).translation()[2]
-    )
-    if q_turn is not None and TURN_STEP < line:
-        descent = np.vstack([descent[:1], [q_turn], descent[1:]])
+    descent = turned_descent(planner, reach.chain)
     blend_s = time.perf_counter() - start
     approach_timing, transit = goal.attempt.watch.timing(), None
     while True:
@@ -258,6 +246,27 @@ def plan_pick(
     )
     reach_timing = reach.attempt.watch.timing()
     return PlannedPick(planned, s_retreat, s_approach, reach_timing)
+
+
+def turned_descent(planner: PickPlanner, chain: np.ndarray) -> np.ndarray:
+    """The descent's IK line ``chain`` with a point ``TURN_STEP`` below its top.
+
+    The IK solution (seeded by the top, ``chain[0]``) of the approach pose
+    lowered by ``TURN_STEP`` along world z, inserted after the top: where
+    the spline turns into the line, it keeps the cup on it. ``chain`` as it
+    is if the line is not longer than ``TURN_STEP`` or that pose has no
+    solution.
+    """
+    X_approach = planner.scene.cup_pose(chain[0])
+    q_turn = planner.ik.solve(
+        RigidTransform([0.0, 0.0, -TURN_STEP]) @ X_approach, chain[0], chain[0]
+    )
+    line = (
+        X_approach.translation()[2] - planner.scene.cup_pose(chain[-1]).translation()[2]
+    )
+    if q_turn is not None and TURN_STEP < line:
+        return np.vstack([chain[:1], [q_turn], chain[1:]])
+    return chain
 
 
 class _TransitBlocked(RtDrakeError):
@@ -364,4 +373,5 @@ __all__ = [
     "TURN_STEP",
     "line_deviation",
     "plan_pick",
+    "turned_descent",
 ]

@@ -20,11 +20,12 @@ MOVE's own rows are those of ``f0``). A larger L both lowers ``f(L)`` and
 lengthens the window, so "holds" is monotone in L and a bisection over
 ``[0, LEAD_TAUS tau_r]`` (``LEAD_STEPS`` halvings) finds it. L = 0 always
 holds (the MOVE was retimed for ``f0``): the valve then closes on arrival,
-as before.
+as before. :func:`with_release` gives a MOVE its lead.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 
@@ -33,9 +34,14 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import Context
 from pydrake.trajectories import Trajectory
 
+from rt_drake.contact import cached_wrench_polytope, with_suction_force
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.dynamics.wrench import object_wrench
-from rt_drake.retiming import GraspConstraint
+from rt_drake.model.scenario import Scenario
+from rt_drake.model.vacuum import VacuumModel
+from rt_drake.retiming import CupGrasp, GraspConstraint
+from rt_drake.simulation._time_at import grid_times
+from rt_drake.simulation.motion import Motion
 from rt_drake.types.held_object import HeldObject
 
 #: Hz: the wrench's sampling rate over the window.
@@ -106,4 +112,65 @@ def release_lead(
     return low
 
 
-__all__ = ["KNOT_SIDE_S", "LEAD_STEPS", "LEAD_TAUS", "RATE_HZ", "release_lead"]
+def with_release(
+    move: Motion,
+    scenario: Scenario,
+    plant: MultibodyPlant,
+    context: Context,
+    cup: CupFrame,
+    speed: float,
+) -> Motion:
+    """``move`` with its valve closing early, if the grasp holds (:func:`release_lead`).
+
+    Only with the ``first_order`` vacuum, one cup of a fixed suction force,
+    the nominal grasp (:class:`~rt_drake.retiming.CupGrasp`) and the MOVE
+    played as retimed (``speed`` 1); else ``move`` itself: the valve closes
+    on arrival. ``plant``, ``context``, ``cup``: the retimer's.
+    """
+    vacuum = scenario.vacuum
+    grasp = move.grasp
+    if (
+        vacuum.kind is not VacuumModel.FIRST_ORDER
+        or not isinstance(grasp, CupGrasp)
+        or scenario.tool is None
+        and scenario.cup.is_uncertain()
+        or speed != 1.0
+    ):
+        return move
+    full = cached_wrench_polytope(scenario.cup)
+    margin = scenario.planning.grasp_margin
+
+    def grasp_at(force: float) -> GraspConstraint:
+        polytope = with_suction_force(full, force)
+        return GraspConstraint.for_polytope(grasp.held, polytope).with_margin(margin)
+
+    force = vacuum.part_present_fraction * scenario.cup.suction_force
+    lead = release_lead(
+        plant,
+        move.trajectory,
+        grasp.held,
+        grasp_at,
+        force,
+        vacuum.release_tau_s,
+        context,
+        cup,
+        knots=grid_times(move.trajectory),
+    )
+    if lead <= 0.0:
+        return move
+    floor = force * math.exp(-lead / vacuum.release_tau_s)
+    guarantee = (
+        f"{move.guarantee}; valve closed {lead:.3f} s before arrival "
+        f"(at least {floor:.1f} N then)"
+    )
+    return dataclasses.replace(move, release_s=lead, guarantee=guarantee)
+
+
+__all__ = [
+    "KNOT_SIDE_S",
+    "LEAD_STEPS",
+    "LEAD_TAUS",
+    "RATE_HZ",
+    "release_lead",
+    "with_release",
+]

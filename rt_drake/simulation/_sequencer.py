@@ -9,14 +9,18 @@ pick starts moving (its grasp configuration is known), so it is planned
 during the pick and the ATTACH wait; the next object's pick is requested
 when the MOVE starts, so it is planned during the MOVE and the DETACH wait.
 The first object's pick has nothing before it to hide behind: it is
-requested at t = 0 and the arm waits for all of its planning and retiming
-(only the planner's construction, which loads the cell and the objects at
-their start poses into its collision scene, comes before the clock).
-Sequential (``pipelined=False``): each motion is requested when its phase
-starts. Either way a phase waits only for the part of its planning that did
-not fit in the time before it (:class:`~.motion.PendingMotion` defines how
-wall time is charged against simulated time), and the calls to the motion
-source, with their arguments, are the same.
+requested at t = 0 and the arm waits for its planning and retiming (only
+the planner's construction, which loads the cell and the objects at their
+start poses into its collision scene, comes before the clock); when that
+pick is staged (:attr:`~.motion.Motion.staged`: a straight APPROACH, then
+the REACH), the arm starts on the APPROACH and the REACH is planned behind
+it (:attr:`~.motion.PendingMotion.start_at`). Sequential
+(``pipelined=False``): each motion is requested when its phase starts, and
+the arm waits for all of it, staged or not. Either way a phase waits only
+for the part of its planning that did not fit in the time before it
+(:class:`~.motion.PendingMotion` defines how wall time is charged against
+simulated time), and the calls to the motion source, with their arguments,
+are the same.
 
 ATTACH and DETACH follow the scenario's vacuum (:mod:`rt_drake.model.vacuum`): fixed
 waits, or "part present" and "released" (force below the object's weight,
@@ -323,6 +327,8 @@ class Sequencer(LeafSystem):
             pending = self._request(state, phase, q_hold, now)
         motion = pending.motion
         wait = pending.wait_s(now)
+        if not self._pipelined:  # the paper's order: all of it, then the motion
+            wait = max(0.0, pending.ready_at - now)
         parts = (Phase.APPROACH, Phase.REACH) if phase is Phase.APPROACH else (phase,)
         state = self._record(
             state,
@@ -356,7 +362,10 @@ class Sequencer(LeafSystem):
         if self._pipelined:  # plan the next motion while this one runs
             nxt = Phase.MOVE if phase is Phase.APPROACH else Phase.APPROACH
             if nxt is Phase.MOVE or index + 1 < len(self._objects):
-                request = self._request(state, nxt, motion.q_end, now + wait)
+                # once the planner is free: a staged motion's later parts
+                # are still being planned when it starts
+                free = max(now + wait, pending.ready_at)
+                request = self._request(state, nxt, motion.q_end, free)
                 state = dataclasses.replace(state, pending=request)
         return state
 

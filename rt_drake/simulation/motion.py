@@ -19,6 +19,17 @@ planning and retiming took ``w`` wall seconds is ready at simulated time
 the ``t_n - t_r`` seconds available before it (the plan on the critical
 path). One wall second counts as one simulated second; at most one motion is
 pending at a time, so plans never queue.
+
+A staged motion (:attr:`Motion.staged`: the cycle's first pick, its
+straight APPROACH and then its REACH) is planned part by part, in order,
+and each part is needed only when the arm begins it: part k, ready at
+``t_r + W_k`` (``W_k`` the wall time of parts 0..k) and begun ``b_k``
+seconds after the motion's start (``b_0 = 0``, then the previous part's
+end), lets the motion start at ``t_r + max_k (W_k - b_k)``
+(:attr:`PendingMotion.start_at`). The arm thus starts once the first part
+is ready, and waits longer only if a later part would not be ready when it
+reaches it. The planner is busy until ``t_r + W`` (all parts,
+:attr:`PendingMotion.ready_at`); the next request waits for it.
 """
 
 from __future__ import annotations
@@ -75,9 +86,10 @@ class Motion:
     Attributes:
         trajectory: q(t) for t in [0, duration] (rad); derivatives q', q''.
         times: wall seconds spent producing it (all of it).
-        planned: the planned path it follows, if it came from the planner.
+        planned: the planned path it follows, if it came from the planner
+            (a staged motion: its last part's, e.g. the first pick's REACH).
         retimed: the retiming of that path (its trajectory is ``trajectory``
-            unless the source plays it faster).
+            unless the source plays it faster or the motion is staged).
         grasp: the grasp constraint it was retimed under, if any.
         guarantee: for a MOVE, what holds the object, in words (the nominal
             object, every object of its uncertainty set, or none); "" else.
@@ -92,6 +104,10 @@ class Motion:
             grasp less without it (s, both on adaptive grids); NaN for other
             motions and for a MOVE not shaped (the figure is computed beside
             the optimiser's own acceleration-limited retime only).
+        staged: its ``parts`` were planned one after the other, each part's
+            ``times`` its own, and each is needed only when the arm begins
+            it (the module docstring); False: the whole motion is needed
+            before it starts.
     """
 
     trajectory: Trajectory
@@ -103,6 +119,7 @@ class Motion:
     parts: tuple[PhasePart, ...] = ()
     release_s: float = 0.0
     grasp_price_s: float = float("nan")
+    staged: bool = False
 
     def phase_end(self, phase: Phase) -> float:
         """Seconds after the start at which ``phase`` ends (duration if no parts)."""
@@ -148,12 +165,29 @@ class PendingMotion:
 
     @property
     def ready_at(self) -> float:
-        """Simulated s at which it is ready: ``requested_at + wall_s``."""
+        """Simulated s at which all of it is ready: ``requested_at + wall_s``."""
         return self.requested_at + self.wall_s
 
+    @property
+    def start_at(self) -> float:
+        """Simulated s from which it may start.
+
+        ``ready_at``; for a staged motion ``requested_at + max_k (W_k -
+        b_k)`` over its parts (the module docstring).
+        """
+        motion = self.motion
+        if not motion.staged or not motion.parts:
+            return self.ready_at
+        planned, begun, lead = 0.0, 0.0, 0.0
+        for part in motion.parts:
+            planned += part.times.total_s
+            lead = max(lead, planned - begun)
+            begun = part.end_s
+        return self.requested_at + lead
+
     def wait_s(self, needed_at: float) -> float:
-        """``max(0, ready_at - needed_at)``: the wait of a phase starting then."""
-        return max(0.0, self.ready_at - needed_at)
+        """``max(0, start_at - needed_at)``: the wait of a phase starting then."""
+        return max(0.0, self.start_at - needed_at)
 
 
 class MotionSource(Protocol):

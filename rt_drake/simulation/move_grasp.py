@@ -5,7 +5,8 @@ What :class:`~rt_drake.simulation.OnlineMotions` (and the campaigns and the
 ``F w <= g`` of a MOVE: the held object's inertia in the cup frame
 (:func:`held_object`), the set W of the cup or tool (:func:`move_polytope`),
 the cup with the suction range a MOVE may rely on (:func:`move_cup`), and
-the joint limits of a grasp-constrained MOVE (:func:`grasp_limits`). Units:
+the joint limits of a grasp-constrained MOVE (:func:`grasp_limits`), and
+the grasp constraint itself, nominal or robust (:func:`grasp_for`). Units:
 SI; wrenches about the cup (or tool) frame, in it.
 """
 
@@ -13,6 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 
+import numpy as np
 from pydrake.common.schema import Transform
 from pydrake.math import RigidTransform
 
@@ -24,11 +26,14 @@ from rt_drake.contact import (
     WrenchPolytope,
     cached_wrench_polytope,
     with_suction_force,
+    worst_cup_polytope,
 )
 from rt_drake.model.held import held_object_of
 from rt_drake.model.scenario import ObjectConfig, Scenario
-from rt_drake.retiming import JointLimits
+from rt_drake.retiming import GraspConstraint, JointLimits, ObjectSetGrasp
 from rt_drake.types.held_object import HeldObject
+from rt_drake.types.object_uncertainty import ObjectUncertainty
+from rt_drake.uncertainty.inertial_set import uncertain_object
 
 
 def held_object(obj: ObjectConfig, X_OC: RigidTransform) -> HeldObject:
@@ -103,4 +108,37 @@ def move_cup(scenario: Scenario) -> CupParameters:
     return dataclasses.replace(cup, suction_force_min=fraction * lowest)
 
 
-__all__ = ["grasp_limits", "held_object", "move_cup", "move_polytope"]
+def grasp_for(
+    scenario: Scenario,
+    obj: ObjectConfig,
+    X_OC: RigidTransform,
+    robust: bool,
+    polytope: WrenchPolytope | SharedLoadSet | None = None,
+    worst_cup: tuple[np.ndarray, np.ndarray] | None = None,
+) -> GraspConstraint:
+    """The grasp constraint of ``obj`` held at ``X_OC``.
+
+    Robust (every object of its uncertainty set, every cup of the cup's
+    range: :class:`~rt_drake.retiming.ObjectSetGrasp`) when ``robust`` and
+    the scenario gives a set or a range; else the nominal object and cup
+    (:func:`move_polytope`, or ``polytope`` if computed already). Shrunk by
+    the scenario's ``planning.grasp_margin``. ``worst_cup``: the cup's
+    worst-case rows ``(F, g)`` (:func:`~rt_drake.contact.worst_cup_polytope`
+    of :func:`move_cup`) if computed already.
+    """
+    margin = scenario.planning.grasp_margin
+    held = held_object(obj, X_OC)
+    uncertainty = obj.uncertainty or ObjectUncertainty()
+    uncertain_cup = scenario.tool is None and scenario.cup.is_uncertain()
+    if not robust or (uncertainty.is_zero() and not uncertain_cup):
+        polytope = polytope or move_polytope(scenario)
+        return GraspConstraint.for_polytope(held, polytope).with_margin(margin)
+    cup = move_cup(scenario)
+    F, g = worst_cup or worst_cup_polytope(cup)
+    R_CO = X_OC.inverse().rotation().matrix()
+    objects = uncertain_object(held, uncertainty, R_CO)
+    grasp = ObjectSetGrasp(held=held, F=F, g=g, cup=cup, objects=objects)
+    return grasp.with_margin(margin)
+
+
+__all__ = ["grasp_for", "grasp_limits", "held_object", "move_cup", "move_polytope"]

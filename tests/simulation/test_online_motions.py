@@ -15,7 +15,9 @@ from rt_drake.types.phase import Phase
 
 @pytest.fixture(scope="module")
 def motions(scenario):
-    return OnlineMotions(scenario)
+    # The blended pick (every pick after a place) from home too; the cycle's
+    # staged first pick: test_online_motions_first_pick.py.
+    return OnlineMotions(scenario, split_first_pick=False)
 
 
 def test_replanning_after_a_move_gives_the_same_motion(motions, scenario):

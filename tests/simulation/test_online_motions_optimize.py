@@ -58,8 +58,8 @@ def test_no_optimize_plays_the_planners_spline_move_bit_for_bit(scenario_paths):
     scenario = load_scenario(scenario_paths["stack_four_objects"])
     assert scenario.planning.optimize_move  # the shipped cycle shapes by default
     obj = scenario.objects[0]
-    spline = OnlineMotions(scenario, seed=0, optimize=False)
-    pick = spline.pick(spline.q_home, obj)
+    spline = OnlineMotions(scenario, seed=0, optimize=False, split_first_pick=False)
+    pick = spline.pick(spline.q_home, obj)  # the blended pick, as plan_pick's
     move = spline.move(pick.q_end, obj, pick)
     # The same MOVE from the planner itself, and the retimer called directly.
     planner = CyclePlanner(scenario, seed=0)

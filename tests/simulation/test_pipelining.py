@@ -22,7 +22,7 @@ from rt_drake.simulation import (
     StationOptions,
     run_cycle,
 )
-from rt_drake.simulation.motion import Motion, PlanTimes
+from rt_drake.simulation.motion import Motion, PhasePart, PlanTimes
 from rt_drake.types.phase import Phase
 
 #: A two-object cycle with the planner and retimer: tens of seconds.
@@ -84,11 +84,15 @@ def test_records_add_up_on_the_simulated_clock(pipelined_run):
     log, result = pipelined_run
     waits = [r.plan_on_critical_path_s for r in result.records]
     assert all(w >= 0.0 for w in waits)
-    # The first pick has nothing before it to hide behind: all of it waits.
+    # The first pick has nothing before it to hide behind: the arm waits for
+    # its straight APPROACH (staged), not for the REACH planned behind it.
     first_pick = log[0][2]
+    assert first_pick.staged
+    approach = first_pick.plan_times(Phase.APPROACH).total_s
     assert result.records[0].plan_wait_s[Phase.APPROACH] == pytest.approx(
-        first_pick.times.total_s
+        max(approach, first_pick.times.total_s - first_pick.phase_end(Phase.APPROACH))
     )
+    assert approach < first_pick.times.total_s
     total = sum(sum(r.exec_s.values()) for r in result.records) + sum(waits)
     # Phases switch on the sequencer's 8 ms ticks; the cycle ends on one.
     assert result.sim_time == pytest.approx(total, abs=0.01)
@@ -104,3 +108,23 @@ def test_a_phase_waits_only_for_what_did_not_fit():
     assert pending.wait_s(needed_at=2.1) == pytest.approx(0.3)
     assert pending.wait_s(needed_at=2.4) == 0.0
     assert pending.wait_s(needed_at=3.5) == 0.0
+
+
+@pytest.mark.parametrize(("reach_s", "start"), [(0.15, 2.02), (0.9, 2.0 + 0.92 - 0.6)])
+def test_a_staged_motion_starts_once_its_first_part_is_ready(reach_s, start):
+    """APPROACH ready after 0.02 s and begun at once; REACH planned after it
+    (``reach_s``) and begun 0.6 s into the motion: the arm starts at 2.02 s
+    unless the REACH would not be ready at its start, then late by as much."""
+    parts = (
+        PhasePart(Phase.APPROACH, 0.6, PlanTimes(plan_s=0.015, retime_s=0.005)),
+        PhasePart(Phase.REACH, 0.75, PlanTimes(plan_s=0.05, retime_s=reach_s - 0.05)),
+    )
+    times = PlanTimes(plan_s=0.065, retime_s=reach_s - 0.045)
+    staged = Motion(trajectory=None, times=times, parts=parts, staged=True)
+    pending = PendingMotion(staged, requested_at=2.0)
+    assert pending.start_at == pytest.approx(start)
+    assert pending.wait_s(needed_at=2.0) == pytest.approx(start - 2.0)
+    assert pending.ready_at == pytest.approx(2.0 + 0.02 + reach_s)  # planner busy
+    # The same motion not staged: the arm waits for all of it.
+    whole = Motion(trajectory=None, times=times, parts=parts)
+    assert PendingMotion(whole, 2.0).wait_s(2.0) == pytest.approx(0.02 + reach_s)
