@@ -261,6 +261,26 @@ def test_a_scenario_tool_states_its_cups_stiffness(tmp_path):
     assert [m.stiffness for m in tool.cups] == [CupStiffness(700, 1000, 2, 1)] * 2
 
 
+def test_the_shipped_stiffness_scenario_states_its_catalogue_cups_values():
+    from rt_drake import load_scenario, scenarios_dir
+    from rt_drake.model.cup_physics import load_bellows_cup
+
+    scenario = load_scenario(
+        scenarios_dir() / "carton_two_cups_bellows_20n_stiffness.yaml"
+    )
+    assert scenario.tool.load_sharing == "stiffness"
+    bellows = load_bellows_cup(scenario.cup_physics.cup)
+    catalogue = CupStiffness(
+        axial=bellows.axial_stiffness,
+        lateral=bellows.lateral_stiffness,
+        tilt=bellows.tilt_stiffness,
+        torsion=bellows.torsion_stiffness,
+    )
+    tool = scenario.tool_parameters()
+    assert [m.stiffness for m in tool.cups] == [catalogue] * len(tool.cups)
+    assert [m.cup.friction for m in tool.cups] == [bellows.friction] * 2
+
+
 @pytest.mark.parametrize(
     ("old", "new", "message"),
     [
