@@ -15,7 +15,9 @@ contact > types > errors.
   ``is_realizable``, ``is_realizable_lp``; multi-cup tools:
   ``ToolParameters`` of ``CupMount`` (cup and pose in the tool frame),
   ``SharedLoadSet`` (the set when the cups share the load as equal springs,
-  as a rigid tool does; ``LoadSharing``), ``tool_wrench_polytope`` (exact
+  as a rigid tool does; ``LoadSharing``), ``stiffness_shared_set`` (the
+  set when compliant cups, each with its ``CupStiffness``, split the whole
+  wrench by stiffness), ``tool_wrench_polytope`` (exact
   W_T of any split), ``ToolWrenchSet`` (support function and LP, for inner
   approximations); retime under them with
   ``GraspConstraint.for_tool`` or ``GraspConstraint.inner_for_tool``;
@@ -56,6 +58,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
     from rt_drake.contact import (
         CupMount,
         CupParameters,
+        CupStiffness,
         LoadSharing,
         SharedLoadSet,
         ToolParameters,
@@ -65,6 +68,7 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
         contact_wrench_polytope,
         is_realizable,
         is_realizable_lp,
+        stiffness_shared_set,
         tool_wrench_polytope,
     )
     from rt_drake.contact.worst_cup import worst_cup_polytope
@@ -120,6 +124,8 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
 _LAZY: dict[str, str] = {
     "CupMount": "rt_drake.contact",
     "CupParameters": "rt_drake.contact",
+    "CupStiffness": "rt_drake.contact",
+    "stiffness_shared_set": "rt_drake.contact",
     "ToolParameters": "rt_drake.contact",
     "LoadSharing": "rt_drake.contact",
     "SharedLoadSet": "rt_drake.contact",
@@ -184,6 +190,7 @@ __all__ = [
     "CupFrame",
     "CupMount",
     "CupParameters",
+    "CupStiffness",
     "CyclePlanner",
     "ExportFormat",
     "GeometricPath",
@@ -238,6 +245,7 @@ __all__ = [
     "sample_trajectory",
     "save_trajectory",
     "scenarios_dir",
+    "stiffness_shared_set",
     "tool_wrench_polytope",
     "worst_cup_polytope",
 ]

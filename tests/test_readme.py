@@ -22,6 +22,11 @@ PRINTS = {
     "docs/quickstart.md": ["with the grasp", "object mass must be > 0 kg"],
     "docs/guides/own-robot.md": ["min margin"],
     "docs/guides/multi-cup-tools.md": ["one cup:", "W_T: 436 rows", "two cups:"],
+    "docs/guides/bellows-load-sharing.md": [
+        "cup 0 carries [0.    0.    0.033 0.    1.957 0.   ]",
+        "1662 rows, holds: False",
+        "564 rows, holds: True",
+    ],
     "docs/guides/robust-retiming.md": ["holds every object", "worst excess over"],
     "docs/guides/protective-stops.md": [
         "grasp-aware stop within every limit: True",

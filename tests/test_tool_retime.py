@@ -33,7 +33,13 @@ from rt_drake import (
     check_trajectory,
     retime,
 )
-from rt_drake.contact import shared_load_residual
+from rt_drake.contact import (
+    CupStiffness,
+    lp_residual,
+    shared_load_residual,
+    stiffness_shared_set,
+    stiffness_split,
+)
 from rt_drake.dynamics.newton_euler import reference_object_wrench
 from rt_drake.model.parser import make_parser
 from rt_drake.retiming import GraspUnstableAtRestError, RetimeInputError
@@ -78,6 +84,13 @@ def _box(mass: float, p_TScm: list[float]) -> HeldObject:
 
 ONE = [(CUP, np.zeros(3))]
 TWO = [(CUP, np.array([0.06, 0.0, 0.0])), (CUP, np.array([-0.06, 0.0, 0.0]))]
+#: The two cups as bellows (the catalogue's stiffness, models/cups/).
+BELLOWS_CUPS = ToolParameters(
+    cups=[
+        CupMount(m.cup, m.R_TC, m.p_TC, CupStiffness(700.0, 1000.0, 2.0, 1.0))
+        for m in TWO_CUPS.cups
+    ]
+)
 
 
 def _object_wrenches(plant, result, held, count=60):
@@ -169,6 +182,25 @@ def test_the_spring_split_retime_holds_by_an_independent_lp(arm, limits):
     assert shared_load_residual(wrenches, TWO_CUPS).max() > 1e-2
 
 
+def test_the_stiffness_split_retime_holds_every_cups_share_by_its_lp(arm, limits):
+    """Each cup's share of the motion's wrenches lies in its own rim set (LP)."""
+    held = _box(2.5, [0.01, 0.0, 0.03])
+    grasp = GraspConstraint.for_tool(held, BELLOWS_CUPS, load_sharing="stiffness")
+    result = retime(arm, SWING, limits, grasp)
+    wrenches = _object_wrenches(arm, result, held, count=60)
+    shares = np.einsum("cij,nj->nci", stiffness_split(BELLOWS_CUPS), wrenches)
+    for i, mount in enumerate(BELLOWS_CUPS.cups):
+        assert lp_residual(shares[:, i], mount.cup).max() <= 1e-3, i
+    np.testing.assert_allclose(grasp.F, stiffness_shared_set(BELLOWS_CUPS).F)
+    # The rims' spring set lets friction come from both cups: faster, and a
+    # cup's own share then leaves its set.
+    elastic = retime(arm, SWING, limits, GraspConstraint.for_tool(held, BELLOWS_CUPS))
+    assert elastic.duration < result.duration
+    wrenches = _object_wrenches(arm, elastic, held, count=60)
+    shares = np.einsum("cij,nj->nci", stiffness_split(BELLOWS_CUPS), wrenches)
+    assert lp_residual(shares[:, 0], BELLOWS_CUPS.cups[0].cup).max() > 1e-2
+
+
 def test_a_bad_load_sharing_is_refused():
     with pytest.raises(RetimeInputError, match="load_sharing must be one of"):
         GraspConstraint.for_tool(_box(1.0, [0, 0, 0.03]), TWO_CUPS, load_sharing="x")
@@ -214,6 +246,68 @@ def test_a_scenario_tool_gives_its_cups_and_poses(tmp_path):
     assert len(single.tool_parameters().cups) == 1
 
 
+STIFFNESS = "\n      stiffness: {axial: 700, lateral: 1000, tilt: 2, torsion: 1}"
+STIFF_SCENARIO = (
+    TOOL_SCENARIO.replace("tool:\n", "tool:\n  load_sharing: stiffness\n")
+    .replace("suction_force: 25.0", "suction_force: 25.0" + STIFFNESS)
+    .replace("deg: [0, 0, 90]}}", "deg: [0, 0, 90]}}" + STIFFNESS)
+)
+
+
+def test_a_scenario_tool_states_its_cups_stiffness(tmp_path):
+    from rt_drake import load_scenario
+
+    tool = load_scenario(_write(tmp_path, STIFF_SCENARIO)).tool_parameters()
+    assert [m.stiffness for m in tool.cups] == [CupStiffness(700, 1000, 2, 1)] * 2
+
+
+def test_the_shipped_stiffness_scenario_states_its_catalogue_cups_values():
+    from rt_drake import load_scenario, scenarios_dir
+    from rt_drake.model.cup_physics import load_bellows_cup
+
+    scenario = load_scenario(
+        scenarios_dir() / "carton_two_cups_bellows_20n_stiffness.yaml"
+    )
+    assert scenario.tool.load_sharing == "stiffness"
+    bellows = load_bellows_cup(scenario.cup_physics.cup)
+    catalogue = CupStiffness(
+        axial=bellows.axial_stiffness,
+        lateral=bellows.lateral_stiffness,
+        tilt=bellows.tilt_stiffness,
+        torsion=bellows.torsion_stiffness,
+    )
+    tool = scenario.tool_parameters()
+    assert [m.stiffness for m in tool.cups] == [catalogue] * len(tool.cups)
+    assert [m.cup.friction for m in tool.cups] == [bellows.friction] * 2
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "message"),
+    [
+        (
+            "suction_force: 25.0" + STIFFNESS,
+            "suction_force: 25.0",
+            r"key 'tool.cups\[0\].stiffness': load_sharing 'stiffness' needs",
+        ),
+        (
+            "lateral: 1000,",
+            "",
+            r"key 'tool.cups\[0\].stiffness.lateral': .* > 0 N/m, got nan",
+        ),
+        (
+            "torsion: 1}",
+            "torsion: -1}",
+            r"key 'tool.cups\[0\].stiffness.torsion': .*got -1",
+        ),
+    ],
+)
+def test_a_wrong_stiffness_is_refused_naming_the_key(tmp_path, old, new, message):
+    from rt_drake import ScenarioError, load_scenario
+
+    with pytest.raises(ScenarioError, match=message):
+        load_scenario(_write(tmp_path, STIFF_SCENARIO.replace(old, new, 1)))
+
+
 NO_CUPS = "tool:\n  cups: []\nobjects:" + TOOL_SCENARIO.split("objects:")[1]
 
 
@@ -235,7 +329,8 @@ NO_CUPS = "tool:\n  cups: []\nobjects:" + TOOL_SCENARIO.split("objects:")[1]
         (
             "tool:\n",
             "tool:\n  load_sharing: rigid\n",
-            "key 'tool.load_sharing': must be one of elastic, any, got 'rigid'",
+            "key 'tool.load_sharing': must be one of elastic, any, stiffness, "
+            "got 'rigid'",
         ),
         (
             "[0.06, 0, 0]}",

@@ -14,7 +14,10 @@ origin, expressed in C. The grasp is stable when ``F w <= g``.
   (also cached by :func:`cached_wrench_polytope`), which lets the cups
   split the load in any way; :class:`SharedLoadSet` (``LoadSharing``
   ``elastic``): the set when the cups share it as equal springs, which a
-  rigid tool does (:func:`shared_load_residual`: its independent LP).
+  rigid tool does (:func:`shared_load_residual`: its independent LP);
+  :func:`stiffness_shared_set` (``stiffness``): the set when compliant
+  cups, each with its :class:`CupStiffness`, split the whole wrench by
+  their stiffness and each cup's share lies in its own W_c.
 - :func:`is_realizable` (H-rep), :func:`is_realizable_lp` (independent LP,
   for a cup or a tool).
 - :func:`guided_approximation`: the paper's inner approximation.
@@ -23,9 +26,10 @@ origin, expressed in C. The grasp is stable when ``F w <= g``.
 - :func:`peel_rows`: a compliant lip's peel limit (``peel_fraction``),
   rows on the tilting moment that W_c of such a cup includes.
 
-Only :mod:`rt_drake.contact._cup` and :mod:`rt_drake.contact.tool` (numpy)
-are imported with the package, so a scenario can name ``CupParameters`` and
-``ToolParameters`` cheaply; the rest (scipy) loads on first use of its names.
+Only :mod:`rt_drake.contact._cup`, :mod:`rt_drake.contact.cup_stiffness` and
+:mod:`rt_drake.contact.tool` (numpy) are imported with the package, so a
+scenario can name ``CupParameters`` and ``ToolParameters`` cheaply; the
+rest (scipy) loads on first use of its names.
 """
 
 import importlib
@@ -36,6 +40,7 @@ from rt_drake.contact._cup import (
     grasp_matrices,
     suction_wrench,
 )
+from rt_drake.contact.cup_stiffness import CupStiffness
 from rt_drake.contact.tool import (
     CupMount,
     LoadSharing,
@@ -64,6 +69,11 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers
     )
     from rt_drake.contact.load_sharing import SharedLoadSet, shared_load_polytope
     from rt_drake.contact.peel import peel_rows
+    from rt_drake.contact.stiffness_sharing import (
+        stiffness_shared_polytope,
+        stiffness_shared_set,
+        stiffness_split,
+    )
     from rt_drake.contact.tool_polytope import (
         ToolWrenchSet,
         tool_summands,
@@ -94,6 +104,9 @@ _LAZY = {
     "shared_load_polytope": "load_sharing",
     "object_wrench_sampler": "_samplers",
     "peel_rows": "peel",
+    "stiffness_shared_polytope": "stiffness_sharing",
+    "stiffness_shared_set": "stiffness_sharing",
+    "stiffness_split": "stiffness_sharing",
     "WrenchPolytope": "wrench_polytope",
     "contact_wrench_polytope": "wrench_polytope",
     "is_realizable": "wrench_polytope",
@@ -109,6 +122,7 @@ _LAZY = {
 __all__ = [
     "CupMount",
     "CupParameters",
+    "CupStiffness",
     "GuidedApproximation",
     "LoadSharing",
     "SharedLoadSet",
@@ -132,6 +146,9 @@ __all__ = [
     "save_polytope",
     "shared_load_polytope",
     "shared_load_residual",
+    "stiffness_shared_polytope",
+    "stiffness_shared_set",
+    "stiffness_split",
     "suction_wrench",
     "tool_summands",
     "tool_symmetry",

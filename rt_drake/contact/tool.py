@@ -23,6 +23,7 @@ import enum
 import numpy as np
 
 from rt_drake.contact._cup import CupParameters
+from rt_drake.contact.cup_stiffness import CupStiffness
 from rt_drake.errors import InputError
 
 #: Largest ``|R R^T - I|`` (max entry) and ``|det R - 1|`` accepted for R_TC.
@@ -76,11 +77,16 @@ class CupMount:
         cup: The cup's point-contact model.
         R_TC: (3, 3) rotation of the cup frame C in T (read-only array).
         p_TC: (3,) position of C's origin in T, m (read-only array).
+        stiffness: The bellows' stiffness about C's origin, in C, for
+            ``LoadSharing.STIFFNESS`` (:mod:`rt_drake.contact.stiffness_sharing`);
+            None: not stated (a rigid cup). Not part of the cup's wrench set,
+            so :meth:`as_dict` (the cache key) leaves it out.
     """
 
     cup: CupParameters
     R_TC: np.ndarray = dataclasses.field(default_factory=lambda: np.eye(3))
     p_TC: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(3))
+    stiffness: CupStiffness | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.cup, CupParameters):
@@ -89,6 +95,11 @@ class CupMount:
             )
         object.__setattr__(self, "R_TC", _rotation(self.R_TC))
         object.__setattr__(self, "p_TC", _position(self.p_TC))
+        if self.stiffness is not None and not isinstance(self.stiffness, CupStiffness):
+            raise ToolParameterError(
+                f"stiffness must be a CupStiffness or None, got "
+                f"{type(self.stiffness).__name__}"
+            )
 
     def adjoint(self) -> np.ndarray:
         """Return ``Ad = [[R, [p]x R], [0, R]]`` (6, 6): w_C -> w_T."""
@@ -181,10 +192,15 @@ class LoadSharing(enum.Enum):
     :func:`~rt_drake.contact.tool_wrench_polytope`); it over-claims for a
     rigid tool: the two-cup carton slipped in 8 of 20 simulated transports
     retimed under it.
+    ``STIFFNESS``: compliant (bellows) cups on a rigid tool split the whole
+    wrench by their stated stiffness, and each cup's share must lie in its
+    own set (:mod:`rt_drake.contact.stiffness_sharing`; every cup states
+    its :class:`~rt_drake.contact.CupStiffness`).
     """
 
     ELASTIC = "elastic"
     ANY = "any"
+    STIFFNESS = "stiffness"
 
 
 def is_identity_pose(mount: CupMount) -> bool:

@@ -27,6 +27,7 @@ from rt_drake.model.scenario_sections import (
     RandomTransport,
     RobotConfig,
     ToolConfig,
+    ToolCupConfig,
 )
 
 #: m, the largest ``planning.approach_clearance``.
@@ -208,7 +209,8 @@ def check_tool(path: Path, tool: ToolConfig, key: str = "tool") -> None:
 
     At least one cup; each cup's parameters in range and its pose fixed; a
     known ``load_sharing``, and for ``elastic`` with several cups, the
-    planar rims it needs (:func:`~rt_drake.contact.load_sharing.rim_springs`).
+    planar rims it needs (:func:`~rt_drake.contact.load_sharing.rim_springs`);
+    for ``stiffness``, every cup's ``stiffness`` (four values > 0).
 
     Args:
         path: The file, for messages.
@@ -239,12 +241,29 @@ def check_tool(path: Path, tool: ToolConfig, key: str = "tool") -> None:
             name = message.split(" ", 1)[0]
             raise ScenarioError(f"{where}.{name}': {message}") from None
         _check_grip(path, f"{key}.cups[{index}]", entry.friction, None)
+        _check_stiffness(where, entry, tool.load_sharing)
     parameters = tool.parameters()
     if tool.load_sharing == LoadSharing.ELASTIC.value and len(parameters.cups) > 1:
         try:
             rim_springs(parameters)
         except InputError as error:
             raise ScenarioError(f"{path}: key '{key}.load_sharing': {error}") from None
+
+
+def _check_stiffness(where: str, entry: ToolCupConfig, load_sharing: str) -> None:
+    """A stated stiffness is four values > 0; ``stiffness`` sharing needs it."""
+    if entry.stiffness is None:
+        if load_sharing == LoadSharing.STIFFNESS.value:
+            raise ScenarioError(
+                f"{where}.stiffness': load_sharing 'stiffness' needs every cup's "
+                "stiffness {axial, lateral, tilt, torsion}, got none"
+            )
+        return
+    try:
+        entry.stiffness.parameters()
+    except InputError as error:
+        name = str(error).removeprefix("cup stiffness ").split(" ", 1)[0]
+        raise ScenarioError(f"{where}.stiffness.{name}': {error}") from None
 
 
 def check_robot(path: Path, robot: RobotConfig) -> None:

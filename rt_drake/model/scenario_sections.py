@@ -15,10 +15,11 @@ field says otherwise.
 """
 
 import dataclasses
+import math
 
 from pydrake.common.schema import Transform
 
-from rt_drake.contact import CupMount, CupParameters, ToolParameters
+from rt_drake.contact import CupMount, CupParameters, CupStiffness, ToolParameters
 from rt_drake.model.frames import DEFAULT_CUP_FRAME
 from rt_drake.types.object_uncertainty import ObjectUncertainty
 
@@ -175,6 +176,35 @@ class PlanningConfig:
 
 
 @dataclasses.dataclass
+class StiffnessConfig:
+    """A bellows cup's stiffness as the planner states it (``stiffness:``).
+
+    About the cup frame C's origin, in C (:class:`~rt_drake.contact.
+    CupStiffness`); every field is required (NaN: not given).
+
+    Attributes:
+        axial: N/m, along the cup's axis.
+        lateral: N/m, across it.
+        tilt: N m/rad, about an axis across it.
+        torsion: N m/rad, about it.
+    """
+
+    axial: float = math.nan
+    lateral: float = math.nan
+    tilt: float = math.nan
+    torsion: float = math.nan
+
+    def parameters(self) -> CupStiffness:
+        """The stiffness (validated: each value finite and > 0)."""
+        return CupStiffness(
+            axial=self.axial,
+            lateral=self.lateral,
+            tilt=self.tilt,
+            torsion=self.torsion,
+        )
+
+
+@dataclasses.dataclass
 class ToolCupConfig:
     """One cup of a multi-cup tool: its pose in the tool frame and its model.
 
@@ -183,6 +213,8 @@ class ToolCupConfig:
             ``robot.cup_frame`` names); C's +z points out of the cup.
         radius, points, friction, sides, suction_force, max_normal_force:
             The cup's :class:`~rt_drake.contact.CupParameters` (same defaults).
+        stiffness: The bellows' stiffness, for ``tool.load_sharing:
+            stiffness`` (None: not stated).
     """
 
     pose: Transform = dataclasses.field(default_factory=Transform)
@@ -192,6 +224,7 @@ class ToolCupConfig:
     sides: int = CupParameters.sides
     suction_force: float = CupParameters.suction_force
     max_normal_force: float = CupParameters.max_normal_force
+    stiffness: StiffnessConfig | None = None
 
     def parameters(self) -> CupParameters:
         """The cup's point-contact model (validated)."""
@@ -213,8 +246,10 @@ class ToolConfig:
         cups: The cups, each posed in the tool frame.
         load_sharing: How the cups split the load, ``elastic`` (a rigid tool:
             the rims as equal springs; the cups in the tool frame's z = 0
-            plane, axes along z) or ``any`` (every split; over-claims for a
-            rigid tool); see :class:`~rt_drake.contact.LoadSharing`.
+            plane, axes along z), ``stiffness`` (compliant cups: the whole
+            wrench split by each cup's ``stiffness``, every cup's share in its
+            own set) or ``any`` (every split; over-claims for a rigid tool);
+            see :class:`~rt_drake.contact.LoadSharing`.
     """
 
     cups: list[ToolCupConfig] = dataclasses.field(default_factory=list)
@@ -230,6 +265,7 @@ class ToolConfig:
                     entry.parameters(),
                     X_TC.rotation().matrix(),
                     X_TC.translation(),
+                    None if entry.stiffness is None else entry.stiffness.parameters(),
                 )
             )
         return ToolParameters(cups=tuple(mounts))
@@ -243,6 +279,7 @@ __all__ = [
     "RandomTransport",
     "Region",
     "RobotConfig",
+    "StiffnessConfig",
     "ToolConfig",
     "ToolCupConfig",
 ]

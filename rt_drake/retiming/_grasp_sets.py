@@ -17,6 +17,7 @@ import numpy as np
 from rt_drake import arguments
 from rt_drake.contact import CupParameters, ToolParameters, cached_wrench_polytope
 from rt_drake.contact.load_sharing import SharedLoadSet
+from rt_drake.contact.stiffness_sharing import stiffness_shared_set
 from rt_drake.contact.tool import LoadSharing
 from rt_drake.contact.worst_cup import worst_cup_polytope
 from rt_drake.retiming._grasp_checks import check_grip, check_single_cup
@@ -95,8 +96,10 @@ def tool_rows(
     """Rows of the tool's set W_T about and in T, under ``load_sharing``.
 
     Several cups sharing elastically: the rim-spring set
-    (:class:`~rt_drake.contact.load_sharing.SharedLoadSet`); else the exact
-    Minkowski sum (cached, at most ``max_facets`` facets).
+    (:class:`~rt_drake.contact.load_sharing.SharedLoadSet`); by stiffness:
+    each cup's share in its own set
+    (:func:`~rt_drake.contact.stiffness_sharing.stiffness_shared_set`); else
+    the exact Minkowski sum (cached, at most ``max_facets`` facets).
     """
     if not isinstance(tool, ToolParameters):
         raise RetimeInputError(
@@ -112,6 +115,9 @@ def tool_rows(
         ) from None
     if len(tool.cups) > 1 and sharing is LoadSharing.ELASTIC:
         shared = SharedLoadSet.of(tool)
+        return shared.F, shared.g
+    if len(tool.cups) > 1 and sharing is LoadSharing.STIFFNESS:
+        shared = stiffness_shared_set(tool)
         return shared.F, shared.g
     polytope = cached_wrench_polytope(tool, max_facets=max_facets)
     return polytope.F, polytope.g

@@ -238,6 +238,10 @@ class GraspConstraint:
         - ``elastic`` (default): a rigid tool and object on equal rim springs
           (:mod:`rt_drake.contact.load_sharing`; cups in T's z = 0 plane,
           axes along z); a few hundred rows, computed in milliseconds.
+        - ``stiffness``: compliant (bellows) cups split the whole wrench by
+          the ``stiffness`` every cup of ``tool`` states, and each cup's
+          share must lie in its own W_c
+          (:mod:`rt_drake.contact.stiffness_sharing`); milliseconds.
         - ``any``: any split (the exact Minkowski sum W_T, cached on disk;
           two paper cups take about a minute the first time, 47,728 rows;
           more than ``max_facets`` facets raise ``TooManyFacetsError``, a

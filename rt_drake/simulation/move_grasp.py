@@ -25,6 +25,7 @@ from rt_drake.contact import (
     ToolParameters,
     WrenchPolytope,
     cached_wrench_polytope,
+    stiffness_shared_set,
     with_suction_force,
     worst_cup_polytope,
 )
@@ -47,9 +48,10 @@ def move_polytope(scenario: Scenario) -> WrenchPolytope | SharedLoadSet:
     The scenario's cup W_c (cached on disk), or its tool's set about the
     tool frame, in it: for several cups with ``tool.load_sharing:
     elastic`` (the default) the rims' spring split (:class:`SharedLoadSet`,
-    milliseconds), with ``any`` the exact W_T of any split (two paper cups:
-    47,728 rows, about a minute the first time, then cached). With a
-    ``first_order`` vacuum, for the suction force guaranteed at "part
+    milliseconds), with ``stiffness`` each cup's share of the bellows'
+    stiffness split in its own set, with ``any`` the exact W_T of any split
+    (two paper cups: 47,728 rows, about a minute the first time, then
+    cached). With a ``first_order`` vacuum, for the suction force guaranteed at "part
     present": every cup's ``P A`` times ``part_present_fraction`` (one cup:
     W_c translated; a tool: the set of the tool with those forces).
     """
@@ -75,6 +77,8 @@ def move_polytope(scenario: Scenario) -> WrenchPolytope | SharedLoadSet:
         )
     if len(tool.cups) > 1 and scenario.tool.load_sharing == LoadSharing.ELASTIC.value:
         return SharedLoadSet.of(tool)
+    if len(tool.cups) > 1 and scenario.tool.load_sharing == LoadSharing.STIFFNESS.value:
+        return stiffness_shared_set(tool)
     return cached_wrench_polytope(tool)
 
 

@@ -132,4 +132,4 @@ def test_the_spring_lp_refuses_a_cup_that_is_not_a_tool():
 
 
 def test_load_sharing_names_its_choices():
-    assert {m.value for m in LoadSharing} == {"elastic", "any"}
+    assert {m.value for m in LoadSharing} == {"elastic", "any", "stiffness"}
