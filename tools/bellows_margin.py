@@ -182,8 +182,9 @@ def evaluate(context, m: float, label: str) -> float | None:
             print(f"{label} m {m:.3f} trial {i}: {message}", flush=True)
             return None
         ringing = []  # per object: (D, static rows, t at the peak, per mode)
+        states = move_states(retimed.trajectory, tail_s)
         for held in helds:
-            t, w = move_load(motions, retimed.trajectory, held, tail_s)
+            t, w = move_load(motions, states, held)
             M = held_inertia(held, cup, X_TCs)
             dynamic = bellows_wrench(t, w, K, C, M)
             static_rows = rows(shared, w).max()
@@ -212,8 +213,8 @@ def evaluate(context, m: float, label: str) -> float | None:
     return worst
 
 
-def move_load(motions, trajectory, held, tail_s: float):
-    """``(t, w)``: the object's wrench (N, 6, in T) along the MOVE, then held."""
+def move_states(trajectory, tail_s: float):
+    """``(t, q, v, vdot, n_tail)`` along the MOVE (2 ms), then ``tail_s`` at rest."""
     h = 1e-3
     end = trajectory.end_time()
     n = int(np.ceil(end / STEP_S))
@@ -228,11 +229,15 @@ def move_load(motions, trajectory, held, tail_s: float):
     A = np.array([(q_at(t + h) - 2 * q_at(t) + q_at(t - h)) / h**2 for t in ts])
     V[[0, -1]] = 0.0
     A[[0, -1]] = 0.0
-    w = object_wrench(motions._plant, held, Q, V, A, cup=motions._cup)  # noqa: SLF001
     tail = step * np.arange(1, int(np.ceil(tail_s / step)) + 1)
-    return np.concatenate([ts, end + tail]), np.vstack(
-        [w, np.repeat(w[-1:], tail.size, 0)]
-    )
+    return np.concatenate([ts, end + tail]), Q, V, A, tail.size
+
+
+def move_load(motions, states, held):
+    """``(t, w)``: the object's wrench (N, 6, in T) along the MOVE, then held."""
+    t, Q, V, A, n_tail = states
+    w = object_wrench(motions._plant, held, Q, V, A, cup=motions._cup)  # noqa: SLF001
+    return t, np.vstack([w, np.repeat(w[-1:], n_tail, 0)])
 
 
 @dataclasses.dataclass(frozen=True)
