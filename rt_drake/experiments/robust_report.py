@@ -71,11 +71,12 @@ def _speed_lines(s: dict[str, Any]) -> list[str]:
     factors = ", ".join(
         "never" if f is None else f"{f:g}" for f in s["critical_speed_factors"]
     )
-    median = s["critical_speed_factor_median"]
+    median, least = s["critical_speed_factor_median"], s["critical_speed_factor_min"]
     return [
         "- critical speed factor of the robust plans (true object): median "
         + ("-" if median is None else f"{median:g}")
-        + f", min {s['critical_speed_factor_min']}"
+        + ", min "
+        + ("-" if least is None else f"{least:g}")
         + (
             f" (some never slipped up to {s['never_slipped_up_to']:g}x)"
             if s["never_slipped_up_to"] is not None
