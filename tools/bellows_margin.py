@@ -1,7 +1,7 @@
 """The grasp margin from the bellows cup's stated dynamics, for a scenario's MOVEs.
 
     python tools/bellows_margin.py SCENARIO [--seed 1] [--trials 0 1 ...]
-        [--rounds 10] [--tail-s 0]
+        [--rounds 10] [--tail-s 0] [--robust]
 
 The planner keeps the *quasi-static* wrench ``w(t)`` of a retimed MOVE (the
 held object's inertia and weight, in the tool frame T, the wrench the grasp
@@ -35,29 +35,35 @@ the last m that asked for more and that one, to a bracket 0.005 wide, and
 print its upper end. Each round prints; the paths are planned once, at
 margin 0, and retimed at each m. ``--margins`` only evaluates D at the
 margins given.
+
+``--robust``: the MOVEs of ``experiment transport --robust`` instead (the
+nominal object's path from APPROACH and REACH, retimed for every object of
+the object's uncertainty set, the planner's rows of that set, with its
+peel rows if the cup states them). The true objects that experiment plays
+are the set's hardest corners (heaviest, largest moments, the centre of
+mass at one of its 8 corners: ``hardest_corner``); D is the largest over
+those 8, each rung by its own wrench and inertia and measured on the set's
+rows: ``D = max_j max_t max_rows (F K d_j / g) / max_t max_rows (F w_j / g)``.
 """
 
 from __future__ import annotations
 
 import argparse
 import dataclasses
+import itertools
 
 import numpy as np
+from _bellows_common import trial_move
 from pydrake.math import RigidTransform, RotationMatrix
 
 from rt_drake.contact.load_sharing import SharedLoadSet
 from rt_drake.dynamics.wrench import object_wrench
-from rt_drake.experiments._transport_experiment import (
-    move_from_the_cup,
-    transport_inputs,
-    transport_scenario,
-)
+from rt_drake.experiments._transport_experiment import transport_inputs
 from rt_drake.model.cup_physics import load_bellows_cup
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.planning import sample_transports
 from rt_drake.retiming import RetimeError
 from rt_drake.simulation import (
-    OnlineMotions,
     bellows_wrench,
     held_inertia,
     modal_damping_ratios,
@@ -65,6 +71,7 @@ from rt_drake.simulation import (
     tool_stiffness,
 )
 from rt_drake.simulation.move_grasp import held_object
+from rt_drake.uncertainty.object_samples import ObjectInertia, perturbed
 
 STEP_S = 0.002  # s, the load's sampling
 GROWTH = 0.005  # stop when m grows by less
@@ -79,6 +86,10 @@ def main() -> None:
     parser.add_argument("--rounds", type=int, default=10)
     parser.add_argument("--tail-s", type=float, default=0.0)
     parser.add_argument(
+        "--robust", action="store_true",
+        help="the robust experiment's MOVEs, rung by the set's hardest corners",
+    )  # fmt: skip
+    parser.add_argument(
         "--margins", type=float, nargs="*", default=[],
         help="only evaluate D at these margins (no iteration)",
     )  # fmt: skip
@@ -90,7 +101,7 @@ def main() -> None:
     tool = scenario.tool_parameters()
     X_TCs = [RigidTransform(RotationMatrix(c.R_TC), c.p_TC) for c in tool.cups]
     K, C = tool_stiffness(cup, X_TCs), tool_damping(cup, X_TCs)
-    shared = SharedLoadSet.of(tool)
+    shared = Rows.of(SharedLoadSet.of(tool))
     pairs = sample_transports(scenario, max(args.trials) + 1, args.seed)
     jerk = bool(scenario.robot.jerk_limits)
     m0 = scenario.planning.grasp_margin
@@ -101,28 +112,28 @@ def main() -> None:
     moves = []
     for i in args.trials:
         X_start, X_goal = pairs[i]
-        planned = transport_scenario(scenario, name, X_start, X_goal)
-        motions = OnlineMotions(
-            planned,
-            grasp_constraint=True,
-            seed=args.seed + i,
-            optimize=False,
-            jerk_limits=jerk,
-        )
-        obj = planned.objects[0]
         try:
-            move = move_from_the_cup(motions, obj, X_start)
+            trial = trial_move(
+                scenario, name, X_start, X_goal, args.seed, i, jerk,
+                robust=not args.robust,
+            )  # fmt: skip
         except Exception as error:  # noqa: BLE001 (a study: report and go on)
             print(f"trial {i}: no MOVE: {type(error).__name__}", flush=True)
             continue
+        motions, obj, move = trial.motions, trial.obj, trial.move
         plant, cup_frame = motions._plant, motions._cup  # noqa: SLF001
         context = plant.CreateDefaultContext()
-        plant.SetPositions(context, move.planned.q_start)
+        plant.SetPositions(context, trial.q_grasp)
         X_OC = X_start.inverse() @ cup_frame.frame.CalcPoseInWorld(context)
-        held = held_object(obj, X_OC)
-        unmargined = motions.grasp_for(obj, X_OC)
-        moves.append((i, motions, move.planned.path, held, unmargined))
+        unmargined = motions.grasp_for(obj, X_OC, robust=args.robust)
+        if args.robust:
+            helds = hardest_corners(obj, X_OC)
+            rows_of = Rows(unmargined.F, unmargined.g)
+        else:
+            helds, rows_of = [held_object(obj, X_OC)], shared
+        moves.append((i, motions, move.planned.path, helds, unmargined, rows_of))
         if len(moves) == 1:
+            held = helds[0]
             M = held_inertia(held, cup, X_TCs)
             omega, zeta, _ = modal_damping_ratios(K, C, M)
             print(
@@ -133,7 +144,7 @@ def main() -> None:
                 ),
                 flush=True,
             )
-    context = (moves, cup, X_TCs, K, C, shared, args.tail_s)
+    context = (moves, cup, X_TCs, K, C, args.tail_s)
     if args.margins:
         for m in args.margins:
             evaluate(context, m, "margin")
@@ -161,28 +172,36 @@ def main() -> None:
 
 def evaluate(context, m: float, label: str) -> float | None:
     """D_max over the MOVEs retimed with margin m (None: m infeasible); prints."""
-    moves, cup, X_TCs, K, C, shared, tail_s = context
+    moves, cup, X_TCs, K, C, tail_s = context
     worst, durations = 1.0, []
-    for i, motions, geometric, held, grasp in moves:
+    for i, motions, geometric, helds, grasp, shared in moves:
         try:
             retimed = motions.retime_path(geometric, grasp.with_margin(m))
         except RetimeError as error:
             message = " ".join(str(error).split())[:120]
             print(f"{label} m {m:.3f} trial {i}: {message}", flush=True)
             return None
-        t, w = move_load(motions, retimed.trajectory, held, tail_s)
-        M = held_inertia(held, cup, X_TCs)
-        dynamic = bellows_wrench(t, w, K, C, M)
-        static_rows = rows(shared, w).max()
-        ring = rows(shared, dynamic)
-        D = ring.max() / static_rows
-        per_mode = modal_factors(w, dynamic, K, C, M)
+        ringing = []  # per object: (D, static rows, t at the peak, per mode)
+        states = move_states(retimed.trajectory, tail_s)
+        for held in helds:
+            t, w = move_load(motions, states, held)
+            M = held_inertia(held, cup, X_TCs)
+            dynamic = bellows_wrench(t, w, K, C, M)
+            static_rows = rows(shared, w).max()
+            ring = rows(shared, dynamic)
+            per_mode = modal_factors(w, dynamic, K, C, M)
+            ringing.append(
+                (ring.max() / static_rows, static_rows, t[ring.argmax()], per_mode)
+            )
+        j = int(np.argmax([r[0] for r in ringing]))
+        D, static_rows, t_peak, per_mode = ringing[j]
         worst = max(worst, D)
         durations.append(retimed.duration)
+        which = f" (object {j} of {len(helds)})" if len(helds) > 1 else ""
         print(
             f"{label} m {m:.3f} trial {i}: MOVE {retimed.duration:.3f} s, "
             f"rows static {static_rows:.3f} dynamic {static_rows * D:.3f}, "
-            f"D {D:.3f} (at {t[ring.argmax()]:.3f} s); per mode "
+            f"D {D:.3f} (at {t_peak:.3f} s){which}; per mode "
             + " ".join(f"{d:.2f}" for d in per_mode),
             flush=True,
         )
@@ -194,8 +213,8 @@ def evaluate(context, m: float, label: str) -> float | None:
     return worst
 
 
-def move_load(motions, trajectory, held, tail_s: float):
-    """``(t, w)``: the object's wrench (N, 6, in T) along the MOVE, then held."""
+def move_states(trajectory, tail_s: float):
+    """``(t, q, v, vdot, n_tail)`` along the MOVE (2 ms), then ``tail_s`` at rest."""
     h = 1e-3
     end = trajectory.end_time()
     n = int(np.ceil(end / STEP_S))
@@ -210,16 +229,46 @@ def move_load(motions, trajectory, held, tail_s: float):
     A = np.array([(q_at(t + h) - 2 * q_at(t) + q_at(t - h)) / h**2 for t in ts])
     V[[0, -1]] = 0.0
     A[[0, -1]] = 0.0
-    w = object_wrench(motions._plant, held, Q, V, A, cup=motions._cup)  # noqa: SLF001
     tail = step * np.arange(1, int(np.ceil(tail_s / step)) + 1)
-    return np.concatenate([ts, end + tail]), np.vstack(
-        [w, np.repeat(w[-1:], tail.size, 0)]
-    )
+    return np.concatenate([ts, end + tail]), Q, V, A, tail.size
 
 
-def rows(shared: SharedLoadSet, w: np.ndarray) -> np.ndarray:
-    """``max_rows F w / g`` at each sample (the tool set without margin)."""
+def move_load(motions, states, held):
+    """``(t, w)``: the object's wrench (N, 6, in T) along the MOVE, then held."""
+    t, Q, V, A, n_tail = states
+    w = object_wrench(motions._plant, held, Q, V, A, cup=motions._cup)  # noqa: SLF001
+    return t, np.vstack([w, np.repeat(w[-1:], n_tail, 0)])
+
+
+@dataclasses.dataclass(frozen=True)
+class Rows:
+    """A grasp set's rows ``F w <= g`` (w in T: N m, N), without margin."""
+
+    F: np.ndarray
+    g: np.ndarray
+
+    @classmethod
+    def of(cls, shared: SharedLoadSet) -> Rows:
+        """The tool's set (``load_sharing`` as the scenario states)."""
+        return cls(shared.F, shared.g)
+
+
+def rows(shared: Rows, w: np.ndarray) -> np.ndarray:
+    """``max_rows F w / g`` at each sample (the set without margin)."""
     return ((w @ shared.F.T) / shared.g).max(axis=1)
+
+
+def hardest_corners(obj, X_OC: RigidTransform) -> list:
+    """The set's 8 hardest corners held at X_OC (mass, moments at the top).
+
+    As ``hardest_corner`` draws them: the centre of mass at each of its
+    box's 8 corners (along O's axes).
+    """
+    nominal = ObjectInertia.of_model(obj)
+    return [
+        perturbed(nominal, obj.uncertainty, 1.0, np.array(signs), np.ones(3)).held(X_OC)
+        for signs in itertools.product((-1.0, 1.0), repeat=3)
+    ]
 
 
 def modal_factors(w, dynamic, K, C, M) -> np.ndarray:

@@ -23,20 +23,17 @@ import argparse
 import dataclasses
 import time
 
+from _bellows_common import trial_move
+
 from rt_drake.experiments._rollout import (
     critical_speed,
     rollout_scenario,
     simulate_move,
 )
-from rt_drake.experiments._transport_experiment import (
-    move_from_the_cup,
-    transport_inputs,
-    transport_scenario,
-)
+from rt_drake.experiments._transport_experiment import transport_inputs
 from rt_drake.model.cup_physics import load_bellows_cup
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.planning import sample_transports
-from rt_drake.simulation import OnlineMotions
 from rt_drake.simulation import _station as station_module
 
 
@@ -68,30 +65,16 @@ def main() -> None:
     pairs = sample_transports(scenario, max(args.trials) + 1, args.seed)
     jerk = bool(scenario.robot.jerk_limits) and not args.no_jerk_limits
     for i in args.trials:
-        X_start, X_goal = pairs[i]
-        planned = transport_scenario(scenario, name, X_start, X_goal)
-        motions = OnlineMotions(
-            planned,
-            grasp_constraint=True,
-            seed=args.seed + i,
-            optimize=False,
-            jerk_limits=jerk,
-        )
-        obj = planned.objects[0]
         try:
-            if scenario.random_transport.start_on_cup:
-                move = move_from_the_cup(motions, obj, X_start)
-            else:  # as the experiment: APPROACH and REACH give the grasp
-                approach = motions.approach(motions.q_home, obj)
-                reach = motions.reach(approach.q_end, obj)
-                move = motions.move(reach.q_end, obj, reach)
-            free = motions.retime_path(move.planned.path, grasp=None)
+            trial = trial_move(scenario, name, *pairs[i], args.seed, i, jerk)
+            move = trial.move
+            free = trial.motions.retime_path(move.planned.path, grasp=None)
         except Exception as error:  # noqa: BLE001 (a study: report and go on)
             message = " ".join(str(error).split())[:150]
             print(f"trial {i}: no MOVE: {type(error).__name__}: {message}", flush=True)
             continue
-        q_grasp = move.planned.q_start
-        world = rollout_scenario(dataclasses.replace(planned), q_grasp)
+        q_grasp = trial.q_grasp
+        world = rollout_scenario(dataclasses.replace(trial.scenario), q_grasp)
         plays = [] if args.sweep else [("constrained", move.trajectory)]
         if not args.constrained_only:
             plays.append(("joint limits only", free.trajectory))

@@ -69,6 +69,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         help="nominal vs robust plans, played with true objects from the object's "
         "uncertainty set",
     )
+    transport.add_argument(
+        "--sweep",
+        action="store_true",
+        help="with --robust: also play each robust plan faster until the true "
+        "object slips (its critical speed factor; without --robust every "
+        "trial is swept)",
+    )
     add_optimize_flag(transport, "also optimise each MOVE and play it")
     add_cup_physics_flag(transport)
     add_jerk_flag(transport)
@@ -196,6 +203,7 @@ def run_stop(args: argparse.Namespace) -> int:
 def run_transport(args: argparse.Namespace) -> int:
     """Run the transport experiment and write its outputs; return 0."""
     from rt_drake.cli._output import output_directory
+    from rt_drake.errors import InputError
     from rt_drake.experiments import (
         TRANSPORT_FILES,
         optimized_summary,
@@ -207,6 +215,10 @@ def run_transport(args: argparse.Namespace) -> int:
 
     if args.robust:
         return run_robust_transport(args)
+    if args.sweep:
+        raise InputError(
+            "--sweep is for --robust: experiment transport sweeps every trial"
+        )
     path = resolve_scenario_path(args.scenario)
     output_directory(args.out, "--out", TRANSPORT_FILES, {"scenario file": path})
     results = _timed_trials(
@@ -270,10 +282,12 @@ def run_robust_transport(args: argparse.Namespace) -> int:
             progress=progress,
             cup_physics=args.cup_physics,
             jerk_limits=not args.no_jerk_limits,
+            sweep=args.sweep,
         ),
     )
     written = write_robust_report(results, args.out)
-    print(robust_table(results))
+    if results["trials"]:
+        print(robust_table(results))
     print("\n".join(summary_lines(results)))
     print(f"{results['wall_s']:.0f} s; wrote " + ", ".join(str(p) for p in written))
     return 0

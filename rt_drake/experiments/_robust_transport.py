@@ -15,7 +15,15 @@ trajectory is checked, at 1 kHz, for every object of that sample by another
 route than the retimer's
 (:func:`~rt_drake.dynamics.newton_euler.reference_object_wrenches`):
 ``sound_excess`` is the largest ``max_k F_k w / g_k - 1`` found (the
-retimer's contract: at most 1e-3).
+retimer's contract: at most 1e-3). With ``sweep``, the robust plan is also
+played faster and faster with the true object until it slips (its critical
+speed factor, as ``experiment transport`` finds the nominal one's).
+
+A trial whose nominal MOVE or robust retime the retimer refuses (e.g. the
+set's worst object slips off the cup even at rest) is not played: it is
+recorded as ``{"index", "start", "goal", "not_retimed": "<which plan>:
+<message>"}``, as ``experiment transport`` records its own, and the run
+goes on.
 """
 
 from __future__ import annotations
@@ -34,8 +42,10 @@ from pydrake.multibody.tree import SpatialInertia
 from rt_drake.contact import worst_cup_polytope
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.dynamics.newton_euler import reference_object_wrenches
-from rt_drake.errors import ScenarioError
+from rt_drake.errors import RtDrakeError, ScenarioError
 from rt_drake.experiments._rollout import (
+    SPEED_FACTORS,
+    critical_speed,
     rollout_scenario,
     simulate_move,
 )
@@ -51,7 +61,7 @@ from rt_drake.model.scenario import (
     load_scenario,
 )
 from rt_drake.planning import sample_transports
-from rt_drake.retiming import GraspConstraint, TimedPath
+from rt_drake.retiming import GraspConstraint, RetimeError, TimedPath
 from rt_drake.retiming.stage_rows import (
     normalised_rows,
     wrench_ratios,
@@ -77,13 +87,52 @@ def robust_trial(
     X_WO_goal: RigidTransform,
     seed: int,
     jerk_limits: bool = False,
+    sweep: bool = False,
 ) -> dict[str, Any]:
     """Plan one transport, retime it nominal and robust, play both (true object).
 
     Every retime holds the grasp: under the scenario's
     ``planning.grasp_ramp_s`` when it gives one, and its
     ``robot.jerk_limits`` too with ``jerk_limits``. The physics is the
-    scenario's ``cup_physics``.
+    scenario's ``cup_physics``. With ``sweep``, also the robust plan's
+    critical speed factor (``critical_speed_factor``, ``speed_sweep``).
+
+    A MOVE the retimer refuses, nominal or robust, is not played: the trial
+    is ``{"index", "start", "goal", "not_retimed": "<which plan>:
+    <message>"}``.
+    """
+    try:
+        return _played_trial(
+            scenario, object_name, index, X_WO_start, X_WO_goal, seed,
+            jerk_limits, sweep,
+        )  # fmt: skip
+    except _NotRetimed as error:
+        return {
+            "index": index,
+            "start": _pose_list(X_WO_start),
+            "goal": _pose_list(X_WO_goal),
+            "not_retimed": str(error),
+        }
+
+
+class _NotRetimed(RtDrakeError):
+    """The retimer refused the trial's nominal or robust MOVE (its message says)."""
+
+
+def _played_trial(
+    scenario: Scenario,
+    object_name: str,
+    index: int,
+    X_WO_start: RigidTransform,
+    X_WO_goal: RigidTransform,
+    seed: int,
+    jerk_limits: bool,
+    sweep: bool,
+) -> dict[str, Any]:
+    """:func:`robust_trial` once both MOVEs are retimed.
+
+    Raises:
+        _NotRetimed: the retimer refused the nominal MOVE or its robust retime.
     """
     obj = scenario.object(object_name)
     uncertainty = _uncertainty(obj)
@@ -100,12 +149,18 @@ def robust_trial(
     approach = motions.approach(motions.q_home, planned_obj)
     reach = motions.reach(approach.q_end, planned_obj)
     q_grasp = reach.q_end
-    nominal = motions.move(q_grasp, planned_obj, reach)
+    try:
+        nominal = motions.move(q_grasp, planned_obj, reach)
+    except RetimeError as error:
+        raise _NotRetimed(f"nominal plan: {error}") from None
     assert nominal.planned is not None and nominal.retimed is not None
     path, X_OC = nominal.planned.path, nominal.planned.X_OC
     robust_grasp = motions.grasp_for(planned_obj, X_OC, robust=True)
     start = time.perf_counter()
-    robust = motions.retime_path(path, robust_grasp)
+    try:
+        robust = motions.retime_path(path, robust_grasp)
+    except RetimeError as error:
+        raise _NotRetimed(f"robust plan: {error}") from None
     robust_s = time.perf_counter() - start
 
     rng = np.random.default_rng([seed, index])
@@ -119,12 +174,26 @@ def robust_trial(
     bound = motions.retime_path(path, GraspConstraint.for_objects(held_sample, cup))
     excess = sound_excess(trial, robust.trajectory, held_sample)
     played = {
-        name: simulate_move(world, q_grasp, trajectory, object_inertias=inertias)
-        for name, trajectory in (
-            ("nominal", nominal.trajectory),
-            ("robust", robust.trajectory),
+        "nominal": simulate_move(
+            world, q_grasp, nominal.trajectory, object_inertias=inertias
         )
     }
+    speeds: dict[str, Any] = {}
+    if sweep:  # its first rollout, at speed 1, is the robust plan's
+        critical, rollouts = critical_speed(
+            world, q_grasp, robust.trajectory, object_inertias=inertias
+        )
+        played["robust"] = rollouts[0][1]
+        speeds = {
+            "critical_speed_factor": critical,
+            "speed_sweep": [
+                {"factor": f, **r.as_dict(), "success": r.success} for f, r in rollouts
+            ],
+        }
+    else:
+        played["robust"] = simulate_move(
+            world, q_grasp, robust.trajectory, object_inertias=inertias
+        )
     d_n, d_r = nominal.retimed.duration, robust.duration
     return {
         "index": index,
@@ -147,6 +216,7 @@ def robust_trial(
         "robust_pairs": robust.grasp_rows,
         "robust_vertex_objects": robust.grasp_objects,
         "guarantee_robust": robust_grasp.guarantee(),
+        **speeds,
     }
 
 
@@ -194,6 +264,19 @@ def sound_excess(scenario: Scenario, trajectory: TimedPath, objects: list) -> fl
     return float(ratio.max()) - 1.0
 
 
+def _speed_summary(trials: list[dict[str, Any]]) -> dict[str, Any]:
+    """The robust plans' critical speed factors: median, min, each."""
+    critical = [t["critical_speed_factor"] for t in trials]
+    finite = [c for c in critical if c is not None]
+    every = len(finite) == len(critical)
+    return {
+        "critical_speed_factor_median": float(np.median(finite)) if every else None,
+        "critical_speed_factor_min": min(finite) if finite else None,
+        "never_slipped_up_to": None if every else SPEED_FACTORS[-1],
+        "critical_speed_factors": critical,
+    }
+
+
 def _uncertainty(obj: ObjectConfig) -> ObjectUncertainty:
     if obj.uncertainty is None or obj.uncertainty.is_zero():
         raise ScenarioError(
@@ -211,7 +294,7 @@ def _pose_list(X: RigidTransform) -> list[float]:
 
 def _trial_job(args: tuple) -> dict[str, Any]:
     """One trial in a worker: scenarios do not pickle, so it is loaded again."""
-    path, object_name, index, X_start, X_goal, seed, cup, jerk = args
+    path, object_name, index, X_start, X_goal, seed, cup, jerk, sweep = args
     return robust_trial(
         load_scenario(path).with_cup_physics(cup),
         object_name,
@@ -220,6 +303,7 @@ def _trial_job(args: tuple) -> dict[str, Any]:
         RigidTransform(X_goal),
         seed,
         jerk,
+        sweep,
     )
 
 
@@ -232,6 +316,7 @@ def run_robust_transport_experiment(
     progress: Callable[[int, int], None] | None = None,
     cup_physics: str | None = None,
     jerk_limits: bool = False,
+    sweep: bool = False,
 ) -> dict[str, Any]:
     """Run n trials (in ``workers`` processes); return results and a summary.
 
@@ -239,6 +324,10 @@ def run_robust_transport_experiment(
     ``cup_physics``: play the trials with this cup (``rim`` or ``bellows``;
     None: the scenario's ``cup_physics.kind``); the results name it. With
     ``jerk_limits``, every retime keeps the scenario's ``robot.jerk_limits``.
+    With ``sweep``, each robust plan is also played faster until it slips.
+
+    The trials the retimer refused are listed under ``not_retimed`` (not
+    played), and counted in the summary; the others under ``trials``.
 
     Raises:
         InputError: fewer than one trial or one worker.
@@ -252,10 +341,12 @@ def run_robust_transport_experiment(
     kind = scenario.cup_physics.kind
     jobs = [
         (str(scenario_path), name, i, X_s.GetAsMatrix4(), X_g.GetAsMatrix4(), seed)
-        + (kind, jerk_limits)
+        + (kind, jerk_limits, sweep)
         for i, (X_s, X_g) in enumerate(pairs)
     ]
-    trials = run_trials(_trial_job, jobs, workers, progress)
+    done = run_trials(_trial_job, jobs, workers, progress)
+    trials = [t for t in done if "not_retimed" not in t]
+    not_retimed = [t for t in done if "not_retimed" in t]
     obj = scenario.object(name)
     assert obj.uncertainty is not None
     return {
@@ -264,6 +355,7 @@ def run_robust_transport_experiment(
         "n": n,
         "cup_physics": kind,
         "jerk_limits": jerk_limits,
+        "sweep": sweep,
         "grasp_ramp_s": scenario.planning.grasp_ramp_s,
         "grasp_margin": scenario.planning.grasp_margin,
         "uncertainty": dataclasses.asdict(obj.uncertainty),
@@ -272,12 +364,29 @@ def run_robust_transport_experiment(
             "suction_force_min": scenario.cup.suction_force_min,
         },
         "trials": trials,
-        "summary": summarize_robust(trials),
+        "not_retimed": not_retimed,
+        "summary": summarize_robust(trials, len(not_retimed)),
     }
 
 
-def summarize_robust(trials: list[dict[str, Any]]) -> dict[str, Any]:
-    """Successes of both plans, durations, price and tightness statistics."""
+def summarize_robust(
+    trials: list[dict[str, Any]], not_retimed: int = 0
+) -> dict[str, Any]:
+    """Successes of both plans, durations, price and tightness statistics.
+
+    ``trials``: the played ones; ``not_retimed``: how many more the retimer
+    refused (``n`` counts the played trials, ``n_sampled`` both). With no
+    trial played, only the counts. The robust plans' critical speed factors
+    when the trials carry them (``sweep``): their median and minimum (None
+    if one never slipped up to the last speed factor, named then).
+    """
+    counts = {
+        "n": len(trials),
+        "n_sampled": len(trials) + not_retimed,
+        "not_retimed": not_retimed,
+    }
+    if not trials:
+        return counts
 
     def stats(key: str) -> dict[str, float]:
         values = np.array([t[key] for t in trials], dtype=float)
@@ -289,7 +398,8 @@ def summarize_robust(trials: list[dict[str, Any]]) -> dict[str, Any]:
         }
 
     return {
-        "n": len(trials),
+        **counts,
+        **(_speed_summary(trials) if "critical_speed_factor" in trials[0] else {}),
         "success_nominal": sum(t["success_nominal"] for t in trials),
         "success_robust": sum(t["success_robust"] for t in trials),
         "duration_nominal_s": stats("duration_nominal_s"),

@@ -139,11 +139,17 @@ def critical_speed(
     q_grasp: np.ndarray,
     move: Trajectory,
     factors: Sequence[float] = SPEED_FACTORS,
+    object_inertias: dict[str, SpatialInertia] | None = None,
 ) -> tuple[float | None, list[tuple[float, Rollout]]]:
-    """The first factor of ``factors`` at which the object slips (None: never)."""
+    """The first factor of ``factors`` at which the object slips (None: never).
+
+    ``object_inertias``: the objects' true inertias, as in :func:`simulate_move`.
+    """
     sweep: list[tuple[float, Rollout]] = []
     for factor in factors:
-        rollout = simulate_move(scenario, q_grasp, move, factor)
+        rollout = simulate_move(
+            scenario, q_grasp, move, factor, object_inertias=object_inertias
+        )
         sweep.append((factor, rollout))
         if not rollout.success:
             return factor, sweep

@@ -3,7 +3,8 @@
 :func:`write_robust_report` writes ``results.json``, ``report.md`` (the
 table: each trial's true object, both durations, whether each plan held it,
 the price of robustness and the tightness ratio) and ``robustness.png``
-(:func:`~._plots.plot_robustness`).
+(:func:`~._plots.plot_robustness`, when a trial was played). The trials
+the retimer refused (``not_retimed``) are listed under the table.
 """
 
 from __future__ import annotations
@@ -46,7 +47,47 @@ def robust_table(results: dict[str, Any]) -> str:
 
 
 def summary_lines(results: dict[str, Any]) -> list[str]:
-    """The comparison in a few lines."""
+    """The comparison in a few lines, and the trials the retimer refused."""
+    s = results["summary"]
+    refused = [
+        f"- path {t['index']} not retimed, not played: {t['not_retimed']}"
+        for t in results.get("not_retimed", [])
+    ]
+    if s.get("not_retimed"):
+        refused.insert(
+            0,
+            f"- not retimed (not played): {s['not_retimed']} of the "
+            f"{s['n_sampled']} sampled paths",
+        )
+    if not results["trials"]:
+        return refused
+    return _played_lines(results) + _speed_lines(s) + refused
+
+
+def _speed_lines(s: dict[str, Any]) -> list[str]:
+    """The robust plans' critical speed factors, if swept."""
+    if "critical_speed_factors" not in s:
+        return []
+    factors = ", ".join(
+        "never" if f is None else f"{f:g}" for f in s["critical_speed_factors"]
+    )
+    median, least = s["critical_speed_factor_median"], s["critical_speed_factor_min"]
+    return [
+        "- critical speed factor of the robust plans (true object): median "
+        + ("-" if median is None else f"{median:g}")
+        + ", min "
+        + ("-" if least is None else f"{least:g}")
+        + (
+            f" (some never slipped up to {s['never_slipped_up_to']:g}x)"
+            if s["never_slipped_up_to"] is not None
+            else ""
+        )
+        + f"; each: {factors}"
+    ]
+
+
+def _played_lines(results: dict[str, Any]) -> list[str]:
+    """Holds, price, tightness, soundness and retime time of the played trials."""
     s = results["summary"]
     price, tight = s["price"], s["tightness"]
     return [
@@ -88,7 +129,9 @@ def write_robust_report(results: dict[str, Any], out_dir: Path) -> list[Path]:
     """
     written = [out_dir / "results.json"]
     write_text_atomically(written[0], json.dumps(results, indent=1) + "\n")
-    written.append(plot_robustness(results["trials"], out_dir / "robustness.png"))
+    played = bool(results["trials"])
+    if played:
+        written.append(plot_robustness(results["trials"], out_dir / "robustness.png"))
     u, cup = results["uncertainty"], results["cup"]
     com = ", ".join(f"{1e3 * v:.3g}" for v in u["com"])
     ranges = [
@@ -101,7 +144,7 @@ def write_robust_report(results: dict[str, Any], out_dir: Path) -> list[Path]:
     ]
     text = [
         f"# Robust transports of the {results['object']} "
-        f"(seed {results['seed']}, n = {results['summary']['n']})",
+        f"(seed {results['seed']}, n = {results['n']})",
         "",
         f"Uncertainty set: mass +-{100 * u['mass']:.3g} %, CoM +-({com}) mm,",
         f"principal moments +-{100 * u['inertia']:.3g} %; cup: "
@@ -121,10 +164,10 @@ def write_robust_report(results: dict[str, Any], out_dir: Path) -> list[Path]:
         "checked at 1 kHz for that sample's objects by another route than the",
         "retimer's (Drake's body accelerations, Newton-Euler).",
         "",
-        robust_table(results),
+        robust_table(results) if played else "No trial was played.\n",
         *summary_lines(results),
         "",
-        "![price and gain of robustness](robustness.png)",
+        "![price and gain of robustness](robustness.png)" if played else "",
     ]
     written.append(out_dir / "report.md")
     write_text_atomically(written[-1], "\n".join(text) + "\n")

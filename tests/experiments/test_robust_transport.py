@@ -97,3 +97,48 @@ def test_robust_experiment_needs_an_uncertainty_set(tmp_path, capsys):
     assert main(argv) == 2
     error = capsys.readouterr().err.strip()
     assert "\n" not in error and "no uncertainty set" in error
+
+
+BELLOWS = scenarios_dir() / "random_transport_uncertain_bellows.yaml"
+BELLOWS_5MM = scenarios_dir() / "random_transport_uncertain_bellows_5mm.yaml"
+
+
+def rest_use_of_the_peel_set(path) -> float:
+    """Closed form: the share of the lip's peel set the worst object uses at rest.
+
+    Pointing down, the heaviest object with its centre of mass at a corner
+    of its box (along a corner of the peel octagon) loads the lip with the
+    moment ``m g d`` and pulls ``f_z = -m g``; the peel row ``|M_t| <= c r
+    (P A + f_z)`` with the pull's side shrunk by the margin reads ``(|M_t|
+    + c r m g) / (c r P A) <= 1 - margin``.
+    """
+    scenario = load_scenario(path)
+    cup, (obj,) = scenario.cup, scenario.objects
+    assert obj.uncertainty is not None and cup.peel_fraction is not None
+    mass = ObjectInertia.of_model(obj).mass  # kg, the model's
+    weight = 9.81 * (1.0 + obj.uncertainty.mass) * mass  # N, the heaviest
+    d = float(np.hypot(*obj.uncertainty.com[:2]))  # m, off the cup's axis
+    cr = cup.peel_fraction * cup.radius
+    return (weight * d + cr * weight) / (cr * cup.suction_force)
+
+
+def test_a_set_refused_at_rest_is_recorded_per_trial_and_the_run_goes_on(tmp_path):
+    margin = load_scenario(BELLOWS).planning.grasp_margin
+    assert rest_use_of_the_peel_set(BELLOWS) > 1.0 > 1.0 - margin
+    # The narrowed set fits at rest with room for its (derived) margin.
+    narrowed = load_scenario(BELLOWS_5MM).planning.grasp_margin
+    assert narrowed > margin
+    assert rest_use_of_the_peel_set(BELLOWS_5MM) < 1.0 - narrowed
+    out = tmp_path / "refused"
+    argv = ["experiment", "transport", "--robust", "--scenario", str(BELLOWS)]
+    assert main([*argv, "--n", "2", "--out", str(out)]) == 0
+    results = json.loads((out / "results.json").read_text())
+    assert results["trials"] == []
+    assert [t["index"] for t in results["not_retimed"]] == [0, 1]
+    for t in results["not_retimed"]:
+        assert t["not_retimed"].startswith("robust plan: object slips even at rest")
+    assert results["summary"] == {"n": 0, "n_sampled": 2, "not_retimed": 2}
+    report = (out / "report.md").read_text()
+    assert "No trial was played." in report
+    assert "path 1 not retimed, not played: robust plan" in report
+    assert not (out / "robustness.png").exists()
