@@ -67,7 +67,8 @@ Printed per transport (s): ``spl100`` the spline path at 100 uniform points
 shaped MOVE, ``T`` the KTO's own duration, ``kto``, ``kto1k``; the ratios
 to spl100 and ``kto/cma``; the checks and the solve's CPU time. The JSON
 (``--json``) is rewritten after every transport, so a run stopped early
-still reports what it finished.
+still reports what it finished. ``--paths DIR`` keeps each transport's
+spline, shaped and KTO waypoints in ``DIR/<seed>_<index>.npz``.
 
     OPENBLAS_NUM_THREADS=1 python tools/kto_reference.py --seed 0 --json out/kto0.json
     OPENBLAS_NUM_THREADS=1 python tools/kto_reference.py --seed 11 \\
@@ -480,8 +481,12 @@ def solve_and_check(setup, optimizer, move, grasp, result, args, extra=()):
     return kto, solved, path, check_path(scene, path[0])
 
 
-def measure(setup, optimizer, move, grasp, result, args) -> dict:
-    """One transport's KTO, its checks and retimes, and the anchors (s)."""
+def measure(setup, optimizer, move, grasp, result, args, save=None) -> dict:
+    """One transport's KTO, its checks and retimes, and the anchors (s).
+
+    ``save``: an .npz file for the paths' waypoints (rad): the spline path's
+    (``spline``), the shaped one's (``shaped``) and the KTO's (``kto``).
+    """
     plant, limits, chain = setup.plant, setup.limits, optimizer.chain
     kw = {"context": setup.context, "cup": setup.cup}
     spl100 = retime(plant, move.path, limits, grasp, 100, **kw).duration
@@ -520,6 +525,13 @@ def measure(setup, optimizer, move, grasp, result, args) -> dict:
     except RetimeError as error:
         print(f"    retime failed: {error}")
         kto_s = kto1k = worst = float("nan")
+    if save is not None:
+        save.parent.mkdir(parents=True, exist_ok=True)
+        np.savez(
+            save, spline=move.path.waypoints, shaped=result.path.waypoints,
+            kto=path.waypoints, kto_knots=path.knots, kto_s_up=s_up,
+            kto_s_down=s_down,
+        )  # fmt: skip
     # The optimiser's own acceptance (its _certify): collision-free by the
     # planner's check, tilt within the bound, vertical ends within 1 mm.
     valid = bool(
@@ -604,6 +616,7 @@ def main() -> None:
     parser.add_argument("--influence", type=float, default=0.02)
     parser.add_argument("--guess", choices=["optimised", "spline"], default="optimised")
     parser.add_argument("--json", type=Path, default=None)
+    parser.add_argument("--paths", type=Path, default=None)
     args = parser.parse_args()
 
     setup = Setup(args.scenario, args.seed)
@@ -632,7 +645,8 @@ def main() -> None:
         except PlanningError as error:
             print(f"{index:3d} planning failed: {error}")
             continue
-        row = measure(setup, optimizer, *found, args)
+        save = None if args.paths is None else args.paths / f"{args.seed}_{index}.npz"
+        row = measure(setup, optimizer, *found, args, save)
         rows.append({"index": index, **row})
         print(f"{index:3d} " + format_row(row), flush=True)
         if not row["collision_free"]:
