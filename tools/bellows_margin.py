@@ -56,6 +56,7 @@ import numpy as np
 from _bellows_common import trial_move
 from pydrake.math import RigidTransform, RotationMatrix
 
+from rt_drake.contact import LoadSharing, stiffness_shared_set
 from rt_drake.contact.load_sharing import SharedLoadSet
 from rt_drake.dynamics.wrench import object_wrench
 from rt_drake.experiments._transport_experiment import transport_inputs
@@ -101,7 +102,8 @@ def main() -> None:
     tool = scenario.tool_parameters()
     X_TCs = [RigidTransform(RotationMatrix(c.R_TC), c.p_TC) for c in tool.cups]
     K, C = tool_stiffness(cup, X_TCs), tool_damping(cup, X_TCs)
-    shared = Rows.of(SharedLoadSet.of(tool))
+    sharing = scenario.tool.load_sharing if scenario.tool is not None else "elastic"
+    shared = Rows.of(scenario_rows(tool, sharing))
     pairs = sample_transports(scenario, max(args.trials) + 1, args.seed)
     jerk = bool(scenario.robot.jerk_limits)
     m0 = scenario.planning.grasp_margin
@@ -251,6 +253,18 @@ class Rows:
     def of(cls, shared: SharedLoadSet) -> Rows:
         """The tool's set (``load_sharing`` as the scenario states)."""
         return cls(shared.F, shared.g)
+
+
+def scenario_rows(tool, sharing: str) -> SharedLoadSet:
+    """The tool's set under ``sharing``, the scenario's ``tool.load_sharing``.
+
+    ``stiffness``: every cup's share ``S_i w`` in its own rim set
+    (:func:`rt_drake.contact.stiffness_shared_set`); otherwise the elastic
+    split (``SharedLoadSet.of``).
+    """
+    if LoadSharing(sharing) is LoadSharing.STIFFNESS:
+        return stiffness_shared_set(tool)
+    return SharedLoadSet.of(tool)
 
 
 def rows(shared: Rows, w: np.ndarray) -> np.ndarray:
