@@ -29,6 +29,7 @@ import os
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import argparse  # noqa: E402
+import dataclasses  # noqa: E402
 import statistics  # noqa: E402
 import time  # noqa: E402
 
@@ -84,6 +85,39 @@ def planned_moves(n: int, seed: int) -> list[tuple[object, object]]:
         assert move.planned is not None
         moves.append((move.planned.path, move.grasp))
     return moves
+
+
+@dataclasses.dataclass(frozen=True)
+class JerkBench:
+    """What the jerk benches share: their arguments and Table I's MOVEs.
+
+    ``plant`` is the paper scenario's arm, ``shipped`` its shipped limits
+    with jerk, ``moves`` the (path, grasp) pairs of ``planned_moves``.
+    """
+
+    args: argparse.Namespace
+    scenario: object
+    plant: object
+    context: object
+    shipped: JointLimits
+    moves: list[tuple[object, object]]
+
+
+def jerk_bench(description: str) -> JerkBench:
+    """Parse ``--n --seed --repeats``, build the arm, warm up, plan the MOVEs."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("--n", type=int, default=20)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args()
+    scenario = load_scenario(scenarios_dir() / "random_transport_paper.yaml")
+    plant = make_arm_plant(scenario)
+    shipped = JointLimits.from_plant(plant, scenario.robot, jerk=True)
+    warm_up()
+    moves = planned_moves(args.n, args.seed)
+    return JerkBench(
+        args, scenario, plant, plant.CreateDefaultContext(), shipped, moves
+    )
 
 
 def third_difference_jerk(trajectory, step: float = 1e-3) -> np.ndarray:

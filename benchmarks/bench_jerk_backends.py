@@ -24,19 +24,15 @@ import os
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import argparse  # noqa: E402
 import time  # noqa: E402
 
 import highspy  # noqa: E402
 import numpy as np  # noqa: E402
-from bench_jerk import planned_moves  # noqa: E402
+from bench_jerk import jerk_bench  # noqa: E402
 from pydrake.solvers import ClarabelSolver, MathematicalProgram  # noqa: E402
 from scipy import sparse  # noqa: E402
 
-from rt_drake.model.plant import make_arm_plant  # noqa: E402
-from rt_drake.model.resources import scenarios_dir  # noqa: E402
-from rt_drake.model.scenario import load_scenario  # noqa: E402
-from rt_drake.retiming import JointLimits, _jerk_lp, retime, warm_up  # noqa: E402
+from rt_drake.retiming import _jerk_lp, retime  # noqa: E402
 
 _GUESS, _SOLVE = _jerk_lp.WarmLP.guess, _jerk_lp.WarmLP.solve
 #: (guess, arguments of WarmLP.solve) of each retime's first LP.
@@ -110,17 +106,9 @@ def clarabel(args: tuple) -> tuple[float, float | None]:
 
 def main() -> None:
     """Print each backend's CPU on the first LPs and its objective's agreement."""
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--n", type=int, default=20)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--repeats", type=int, default=3)
-    args = parser.parse_args()
-    scenario = load_scenario(scenarios_dir() / "random_transport_paper.yaml")
-    plant = make_arm_plant(scenario)
-    context = plant.CreateDefaultContext()
-    shipped = JointLimits.from_plant(plant, scenario.robot, jerk=True)
-    warm_up()
-    moves = planned_moves(args.n, args.seed)
+    bench = jerk_bench(__doc__.splitlines()[0])
+    args, plant, context = bench.args, bench.plant, bench.context
+    shipped, moves = bench.shipped, bench.moves
     _jerk_lp.WarmLP.guess = guess  # type: ignore[method-assign]
     _jerk_lp.WarmLP.solve = solve  # type: ignore[method-assign]
     for path, grasp in moves:

@@ -15,24 +15,18 @@ import os
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import argparse  # noqa: E402
 import collections  # noqa: E402
 import functools  # noqa: E402
 import statistics  # noqa: E402
 import time  # noqa: E402
 
-from bench_jerk import planned_moves  # noqa: E402
+from bench_jerk import jerk_bench  # noqa: E402
 
-from rt_drake.model.plant import make_arm_plant  # noqa: E402
-from rt_drake.model.resources import scenarios_dir  # noqa: E402
-from rt_drake.model.scenario import load_scenario  # noqa: E402
 from rt_drake.retiming import (  # noqa: E402
-    JointLimits,
     _jerk,
     _jerk_lp,
     _jerk_points,
     retime,
-    warm_up,
 )
 
 #: CPU ms of each part in the current retime.
@@ -55,17 +49,9 @@ def timed(name, function):  # noqa: ANN001, ANN201
 
 def main() -> None:
     """Print the median CPU ms per part of a jerk-limited retime."""
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--n", type=int, default=20)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--repeats", type=int, default=3)
-    args = parser.parse_args()
-    scenario = load_scenario(scenarios_dir() / "random_transport_paper.yaml")
-    plant = make_arm_plant(scenario)
-    context = plant.CreateDefaultContext()
-    shipped = JointLimits.from_plant(plant, scenario.robot, jerk=True)
-    warm_up()
-    moves = planned_moves(args.n, args.seed)
+    bench = jerk_bench(__doc__.splitlines()[0])
+    args, plant, context = bench.args, bench.plant, bench.context
+    shipped, moves = bench.shipped, bench.moves
     parts = {
         "jerk_limited (all but TOPP-RA)": (_jerk, "jerk_limited"),
         "LP rows and LPs (solve_lp)": (_jerk, "solve_lp"),

@@ -26,22 +26,17 @@ import os
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import argparse  # noqa: E402
 import time  # noqa: E402
 
 import numpy as np  # noqa: E402
-from bench_jerk import planned_moves, third_difference_jerk  # noqa: E402
+from bench_jerk import jerk_bench, third_difference_jerk  # noqa: E402
 
-from rt_drake.model.plant import make_arm_plant  # noqa: E402
-from rt_drake.model.resources import scenarios_dir  # noqa: E402
-from rt_drake.model.scenario import load_scenario  # noqa: E402
 from rt_drake.retiming import (  # noqa: E402
     JointLimits,
     _jerk,
     _solve,
     check_trajectory,
     retime,
-    warm_up,
 )
 
 #: (name, constants of _jerk) per variant; the first is the default.
@@ -69,19 +64,11 @@ def jerk_result(jerk, *args):  # noqa: ANN001, ANN002, ANN201
 
 def main() -> None:
     """Print each variant's CPU, LPs, rounds, durations and limits held."""
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--n", type=int, default=20)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--repeats", type=int, default=3)
-    args = parser.parse_args()
-    scenario = load_scenario(scenarios_dir() / "random_transport_paper.yaml")
-    plant = make_arm_plant(scenario)
-    context = plant.CreateDefaultContext()
-    plain = JointLimits.from_plant(plant, scenario.robot)
-    shipped = JointLimits.from_plant(plant, scenario.robot, jerk=True)
+    bench = jerk_bench(__doc__.splitlines()[0])
+    args, plant, context = bench.args, bench.plant, bench.context
+    shipped, moves = bench.shipped, bench.moves
+    plain = JointLimits.from_plant(plant, bench.scenario.robot)
     assert shipped.jerk is not None
-    warm_up()
-    moves = planned_moves(args.n, args.seed)
     _solve.jerk_result = jerk_result
     defaults = {key: getattr(_jerk, key) for _, values in VARIANTS for key in values}
 
