@@ -29,7 +29,6 @@ goes on.
 from __future__ import annotations
 
 import dataclasses
-import math
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -42,7 +41,7 @@ from pydrake.multibody.tree import SpatialInertia
 from rt_drake.contact import worst_cup_polytope
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.dynamics.newton_euler import reference_object_wrenches
-from rt_drake.errors import RtDrakeError, ScenarioError
+from rt_drake.errors import ScenarioError
 from rt_drake.experiments._rollout import (
     SPEED_FACTORS,
     critical_speed,
@@ -50,6 +49,9 @@ from rt_drake.experiments._rollout import (
     simulate_move,
 )
 from rt_drake.experiments._transport_experiment import (
+    NotRetimed,
+    not_retimed_trial,
+    pose_list,
     transport_inputs,
     transport_scenario,
 )
@@ -106,17 +108,8 @@ def robust_trial(
             scenario, object_name, index, X_WO_start, X_WO_goal, seed,
             jerk_limits, sweep,
         )  # fmt: skip
-    except _NotRetimed as error:
-        return {
-            "index": index,
-            "start": _pose_list(X_WO_start),
-            "goal": _pose_list(X_WO_goal),
-            "not_retimed": str(error),
-        }
-
-
-class _NotRetimed(RtDrakeError):
-    """The retimer refused the trial's nominal or robust MOVE (its message says)."""
+    except NotRetimed as error:
+        return not_retimed_trial(index, X_WO_start, X_WO_goal, error)
 
 
 def _played_trial(
@@ -132,7 +125,7 @@ def _played_trial(
     """:func:`robust_trial` once both MOVEs are retimed.
 
     Raises:
-        _NotRetimed: the retimer refused the nominal MOVE or its robust retime.
+        NotRetimed: the retimer refused the nominal MOVE or its robust retime.
     """
     obj = scenario.object(object_name)
     uncertainty = _uncertainty(obj)
@@ -152,7 +145,7 @@ def _played_trial(
     try:
         nominal = motions.move(q_grasp, planned_obj, reach)
     except RetimeError as error:
-        raise _NotRetimed(f"nominal plan: {error}") from None
+        raise NotRetimed(f"nominal plan: {error}") from None
     assert nominal.planned is not None and nominal.retimed is not None
     path, X_OC = nominal.planned.path, nominal.planned.X_OC
     robust_grasp = motions.grasp_for(planned_obj, X_OC, robust=True)
@@ -160,7 +153,7 @@ def _played_trial(
     try:
         robust = motions.retime_path(path, robust_grasp)
     except RetimeError as error:
-        raise _NotRetimed(f"robust plan: {error}") from None
+        raise NotRetimed(f"robust plan: {error}") from None
     robust_s = time.perf_counter() - start
 
     rng = np.random.default_rng([seed, index])
@@ -197,8 +190,8 @@ def _played_trial(
     d_n, d_r = nominal.retimed.duration, robust.duration
     return {
         "index": index,
-        "start": _pose_list(X_WO_start),
-        "goal": _pose_list(X_WO_goal),
+        "start": pose_list(X_WO_start),
+        "goal": pose_list(X_WO_goal),
         "true_object": true.as_dict(),
         "duration_nominal_s": d_n,
         "duration_robust_s": d_r,
@@ -284,12 +277,6 @@ def _uncertainty(obj: ObjectConfig) -> ObjectUncertainty:
             "scenario (objects[].uncertainty) to compare nominal and robust plans"
         )
     return obj.uncertainty
-
-
-def _pose_list(X: RigidTransform) -> list[float]:
-    """[x, y, z, yaw_deg]."""
-    R = X.rotation().matrix()
-    return [*map(float, X.translation()), math.degrees(math.atan2(R[1, 0], R[0, 0]))]
 
 
 def _trial_job(args: tuple) -> dict[str, Any]:

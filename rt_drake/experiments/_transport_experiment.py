@@ -127,17 +127,24 @@ def transport_trial(
             scenario, object_name, index, X_WO_start, X_WO_goal, seed, optimize,
             replay_path, jerk_limits,
         )  # fmt: skip
-    except _NotRetimed as error:
-        return {
-            "index": index,
-            "start": _pose_list(X_WO_start),
-            "goal": _pose_list(X_WO_goal),
-            "not_retimed": str(error),
-        }
+    except NotRetimed as error:
+        return not_retimed_trial(index, X_WO_start, X_WO_goal, error)
 
 
-class _NotRetimed(RtDrakeError):
+class NotRetimed(RtDrakeError):
     """The retimer refused one of a trial's MOVEs (its message says which)."""
+
+
+def not_retimed_trial(
+    index: int, X_WO_start: RigidTransform, X_WO_goal: RigidTransform, error: Exception
+) -> dict[str, Any]:
+    """A trial not played: ``{"index", "start", "goal", "not_retimed"}``."""
+    return {
+        "index": index,
+        "start": pose_list(X_WO_start),
+        "goal": pose_list(X_WO_goal),
+        "not_retimed": str(error),
+    }
 
 
 def _retimed_trial(
@@ -154,7 +161,7 @@ def _retimed_trial(
     """:func:`transport_trial` once both MOVEs are retimed.
 
     Raises:
-        _NotRetimed: the retimer refused the MOVE with or without the
+        NotRetimed: the retimer refused the MOVE with or without the
             grasp constraint.
     """
     planner_scenario = transport_scenario(scenario, object_name, X_WO_start, X_WO_goal)
@@ -172,7 +179,7 @@ def _retimed_trial(
         try:
             move_c = move_from_the_cup(constrained, planned_obj, X_WO_start)
         except RetimeError as error:
-            raise _NotRetimed(f"with the grasp constraint: {error}") from None
+            raise NotRetimed(f"with the grasp constraint: {error}") from None
         q_grasp = move_c.planned.q_start if move_c.planned is not None else None
     else:
         approach = constrained.approach(constrained.q_home, planned_obj)
@@ -182,7 +189,7 @@ def _retimed_trial(
         try:
             move_c = constrained.move(q_grasp, planned_obj, reach)
         except RetimeError as error:
-            raise _NotRetimed(f"with the grasp constraint: {error}") from None
+            raise NotRetimed(f"with the grasp constraint: {error}") from None
     assert move_c.planned is not None and move_c.retimed is not None
     assert q_grasp is not None
     assert move_c.grasp is not None
@@ -191,7 +198,7 @@ def _retimed_trial(
     try:
         result_u = constrained.retime_path(path, grasp=None)
     except RetimeError as error:
-        raise _NotRetimed(f"without the grasp constraint: {error}") from None
+        raise NotRetimed(f"without the grasp constraint: {error}") from None
     plan_s = time.perf_counter() - start
 
     rollout_world = rollout_scenario(planner_scenario, q_grasp)
@@ -201,8 +208,8 @@ def _retimed_trial(
     d_u, d_c = result_u.duration, result_c.duration
     trial = {
         "index": index,
-        "start": _pose_list(X_WO_start),
-        "goal": _pose_list(X_WO_goal),
+        "start": pose_list(X_WO_start),
+        "goal": pose_list(X_WO_goal),
         "duration_unconstrained_s": d_u,
         "duration_constrained_s": d_c,
         "time_extension_pct": 100.0 * (d_c - d_u) / d_c,
@@ -274,8 +281,8 @@ def move_from_the_cup(
     return best[1]
 
 
-def _pose_list(X: RigidTransform) -> list[float]:
-    """[x, y, z, yaw_deg]."""
+def pose_list(X: RigidTransform) -> list[float]:
+    """[x, y, z, yaw_deg] of X (m, deg: yaw about the world's z)."""
     yaw = math.degrees(
         math.atan2(X.rotation().matrix()[1, 0], X.rotation().matrix()[0, 0])
     )
