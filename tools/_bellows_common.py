@@ -13,7 +13,7 @@ import numpy as np
 from pydrake.math import RigidTransform
 
 from rt_drake.experiments._transport_experiment import (
-    move_from_the_cup,
+    played_move,
     transport_scenario,
 )
 from rt_drake.model.scenario import ObjectConfig, Scenario
@@ -71,12 +71,6 @@ def trial_move(
         jerk_limits=jerk_limits,
     )
     obj = planned.objects[0]
-    transport = scenario.random_transport
-    if transport is not None and transport.start_on_cup:
-        move = move_from_the_cup(motions, obj, X_WO_start)
-    else:
-        approach = motions.approach(motions.q_home, obj)
-        reach = motions.reach(approach.q_end, obj)
-        move = motions.move(reach.q_end, obj, reach)
+    move = played_move(scenario, motions, obj, X_WO_start)
     assert move.planned is not None
     return TrialMove(planned, motions, obj, move, move.planned.q_start)

@@ -37,7 +37,7 @@ from pydrake.multibody.plant import MultibodyPlant
 
 from rt_drake.experiments._rollout import rollout_scenario, simulate_move
 from rt_drake.experiments._transport_experiment import (
-    move_from_the_cup,
+    played_move,
     transport_inputs,
     transport_scenario,
 )
@@ -96,13 +96,7 @@ def stop_trial(
     if planning_budget_s is not None:
         motions.planner.budget_s = planning_budget_s
     obj = planner_scenario.objects[0]
-    transport = scenario.random_transport
-    if transport is not None and transport.start_on_cup:
-        move = move_from_the_cup(motions, obj, X_WO_start)
-    else:
-        approach = motions.approach(motions.q_home, obj)
-        reach = motions.reach(approach.q_end, obj)
-        move = motions.move(reach.q_end, obj, reach)
+    move = played_move(scenario, motions, obj, X_WO_start)
     assert move.planned is not None and move.retimed is not None
     assert move.grasp is not None
     q_grasp = move.planned.q_start

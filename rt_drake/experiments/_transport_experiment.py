@@ -240,6 +240,29 @@ def _retimed_trial(
     return trial
 
 
+def played_move(
+    scenario: Scenario,
+    motions: OnlineMotions,
+    obj: ObjectConfig,
+    X_WO_start: RigidTransform,
+) -> Motion:
+    """A trial's MOVE, planned and retimed as the experiments play it.
+
+    With ``random_transport.start_on_cup`` the MOVE from the object sealed
+    on the cup at ``X_WO_start`` (:func:`move_from_the_cup`); else APPROACH
+    and REACH from home, then the MOVE from the grasp they reach.
+
+    Raises:
+        PlanningError, RetimeError: a motion does not plan or retime.
+    """
+    transport = scenario.random_transport
+    if transport is not None and transport.start_on_cup:
+        return move_from_the_cup(motions, obj, X_WO_start)
+    approach = motions.approach(motions.q_home, obj)
+    reach = motions.reach(approach.q_end, obj)
+    return motions.move(reach.q_end, obj, reach)
+
+
 def move_from_the_cup(
     motions: OnlineMotions, obj: ObjectConfig, X_WO_start: RigidTransform
 ) -> Motion:
