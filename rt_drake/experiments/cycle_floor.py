@@ -11,24 +11,29 @@ set-down lines and the place. The object's motion floor is a sum of
 segments in sequence, each bounded on its own by
 :func:`rt_drake.retiming.segment_floor` (joint limits alone, no grasp):
 
-- the retreat, from rest up to the top of its line (the top free);
-- the transit from the top (or from rest) to the approach pose, each
-  joint's speed at either end bounded by the line's tangent there
-  (:func:`rt_drake.retiming.junction_speeds`: nearly at rest if it hardly
-  moves on the line, at rest if it moves there against the transit);
-- the descent, from the approach pose (free) to rest at the grasp;
-- the MOVE's lift, from rest at the grasp up to the top of its line (free);
-- the carry between the two lines' tops, the joints' speeds bounded at
-  either end by the lines' tangents, as the transit's;
-- the set-down, from the top of the place's line (free) to rest.
+- the retreat, from rest up to the top of its line;
+- the transit from the top (or from rest) to the approach pose;
+- the descent, from the approach pose to rest at the grasp;
+- the MOVE's lift, from rest at the grasp up to the top of its line;
+- the carry between the two lines' tops;
+- the set-down, from the top of the place's line to rest.
+
+Where a segment meets a line, each joint's speed and acceleration there are
+bounded by the line's tangent and bend
+(:func:`rt_drake.retiming.junction_speeds`,
+:func:`rt_drake.retiming.junction_accelerations`: nearly at rest if it
+hardly moves on the line, J1 on every line of this arm; a speed at most 0
+toward the goal if it moves there against the segment); at rest, both are
+0. With jerk limits each joint's bound is the jerk-limited one from those
+end states (:func:`rt_drake.retiming.joint_floor`).
 
 The MOVE's lines are the planner's (``PlannedPath.lines_m``); a shaped MOVE
 (:class:`~rt_drake.shaping.MoveOptimizer`) runs only its own vertical ends
 (``vertical_height``, 3 cm) straight, so with ``shaped`` each line counts up
 to the lower of the two heights: every MOVE of the run, shaped or not,
-passes through that line's top along the line. A line's top and its tangent
-there come from the cup's IK on the line (the tangent over its last
-``TANGENT_STEP_M``).
+passes through that line's top along the line. A line's top, its tangent
+and its bend there come from the cup's IK on the line (three points
+``TANGENT_STEP_M`` apart).
 
 The report adds the object's ATTACH and DETACH times as run (the vacuum's,
 which no motion changes) to make ``floor_s``, the fastest that object's
@@ -45,7 +50,12 @@ from pydrake.math import RigidTransform
 from rt_drake.model.plant import make_arm_plant
 from rt_drake.model.scenario import Scenario
 from rt_drake.planning import CyclePlanner, PlanningError
-from rt_drake.retiming import JointLimits, junction_speeds, segment_floor
+from rt_drake.retiming import (
+    JointLimits,
+    junction_accelerations,
+    junction_speeds,
+    segment_floor,
+)
 from rt_drake.shaping import MoveOptimizerOptions
 from rt_drake.types.phase import Phase
 
@@ -97,8 +107,8 @@ def cycle_floors(
     Args:
         scenario: The cell.
         seed: The planner's seed (the run's).
-        jerk: Joint jerk limits (rad/s^3) for the rest-to-rest segments, or
-            None (velocity and acceleration only).
+        jerk: Joint jerk limits (rad/s^3), or None (velocity and
+            acceleration only).
         shaped: Whether the run shapes its MOVEs (None: the scenario's
             ``planning.optimize_move``): the MOVE's lines then count up to
             the shaped path's vertical ends.
@@ -123,69 +133,108 @@ def cycle_floors(
             planner.set_object_pose(other.name, pose.GetDeterministicValue())
         retreat = index > 0
         pick = planner.plan_pick(q_from, obj.name, retreat)
-        path = pick.path.path
         descent = np.asarray(pick.path.descent)
-        q_top = path.value(pick.s_retreat).ravel()
-        q_approach = descent[0]
-        q_grasp = descent[-1]
-        transit = q_approach - q_top
-        speed_end = junction_speeds(-(descent[1] - descent[0]), -transit, limits)
+        q_approach, q_grasp = descent[0], descent[-1]
+        approach = _Line(descent[2::-1], leaving=True)  # the approach pose last
         if retreat:
-            line = path.value(np.linspace(0.0, pick.s_retreat, 20))
-            speed_start = junction_speeds(line[-1] - line[-2], transit, limits)
-            retreat_s = segment_floor(q_from, q_top, limits, 0.0, np.inf, jerk)
+            up = pick.path.path.value(np.linspace(0.0, pick.s_retreat, 20))
+            top: _Line | None = _Line(up, leaving=False)
+            q_top = up[-1]
+            retreat_s = _floor(q_from, q_top, None, top, limits, jerk)
         else:
-            speed_start, retreat_s = np.zeros(len(transit)), 0.0
-        transit_s = segment_floor(
-            q_top, q_approach, limits, speed_start, speed_end, jerk
-        )
-        descent_s = segment_floor(q_approach, q_grasp, limits, np.inf, 0.0, jerk)
+            top, q_top, retreat_s = None, q_from, 0.0
         move = planner.plan_move(q_grasp, obj.name, reach=pick.path)
         assert move.lines_m is not None  # plan_move sets it
         lift_m, set_down_m = (min(h, cap) for h in move.lines_m)
         q_place = move.q_goal
-        q_up, step_up = _line_top(planner, q_grasp, lift_m, obj.name)
-        q_down, step_down = _line_top(planner, q_place, set_down_m, obj.name)
-        carry = q_down - q_up
-        carry_from = junction_speeds(step_up, carry, limits)
-        carry_to = junction_speeds(step_down, -carry, limits)
+        lift = _Line(_line_top(planner, q_grasp, lift_m, obj.name), leaving=False)
+        set_down = _Line(_line_top(planner, q_place, set_down_m, obj.name), True)
+        q_up, q_down = lift.points[-1], set_down.points[-1]
         floors.append(
             ObjectFloor(
                 obj.name,
                 retreat_s,
-                transit_s,
-                descent_s,
-                lift_s=segment_floor(q_grasp, q_up, limits, 0.0, np.inf, jerk),
-                carry_s=segment_floor(q_up, q_down, limits, carry_from, carry_to, jerk),
-                set_down_s=segment_floor(q_down, q_place, limits, np.inf, 0.0, jerk),
+                transit_s=_floor(q_top, q_approach, top, approach, limits, jerk),
+                descent_s=_floor(q_approach, q_grasp, approach, None, limits, jerk),
+                lift_s=_floor(q_grasp, q_up, None, lift, limits, jerk),
+                carry_s=_floor(q_up, q_down, lift, set_down, limits, jerk),
+                set_down_s=_floor(q_down, q_place, set_down, None, limits, jerk),
             )
         )
         q_from = q_place
     return tuple(floors)
 
 
+@dataclasses.dataclass(frozen=True)
+class _Line:
+    """The end of a vertical line where a segment meets it.
+
+    Attributes:
+        points: (k >= 3, n) joint positions (rad) at equal steps along the
+            line, the junction last.
+        leaving: Whether the arm travels away from the junction along the
+            line (down the descent, down the set-down line) rather than
+            toward it (up the retreat and the lift).
+    """
+
+    points: np.ndarray
+
+    leaving: bool
+
+    def bounds(
+        self, displacement: np.ndarray, limits: JointLimits
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """(speeds, accelerations): each joint's bounds at the junction.
+
+        Toward the goal of the segment's ``displacement`` (rad), by
+        :func:`~rt_drake.retiming.junction_speeds` (the line's last step, in
+        its direction of travel) and
+        :func:`~rt_drake.retiming.junction_accelerations`.
+        """
+        step = self.points[-1] - self.points[-2]
+        speeds = junction_speeds(-step if self.leaving else step, displacement, limits)
+        return speeds, junction_accelerations(self.points[-3:], limits)
+
+
+def _floor(
+    q_from: np.ndarray,
+    q_to: np.ndarray,
+    start: _Line | None,
+    end: _Line | None,
+    limits: JointLimits,
+    jerk: np.ndarray | None,
+) -> float:
+    """The floor (s) of one segment, each end at rest (None) or on a line."""
+    at_rest = (np.zeros_like(q_from), np.zeros_like(q_from))
+    (u0, a0), (u1, a1) = (
+        at_rest if line is None else line.bounds(q_to - q_from, limits)
+        for line in (start, end)
+    )
+    return segment_floor(q_from, q_to, limits, u0, u1, jerk, a0, a1)
+
+
 def _line_top(
     planner: CyclePlanner, q_end: np.ndarray, height: float, name: str
-) -> tuple[np.ndarray, np.ndarray]:
-    """The top (rad) of the vertical line ``height`` m above the cup at ``q_end``.
+) -> np.ndarray:
+    """(3, n) joints (rad) on the vertical line ``height`` m above the cup at ``q_end``.
 
-    With the line's joint motion over its last ``TANGENT_STEP_M`` up to the
-    top (rad: its tangent there, upward). A line of height 0: ``q_end`` and
-    a zero step (the joints at rest there).
+    At the line's top and ``TANGENT_STEP_M`` and twice that below it (the
+    top last: its tangent and bend there); on a line shorter than
+    ``2 TANGENT_STEP_M`` the steps shrink to half its height. A line of
+    height 0: ``q_end`` three times (the joints at rest there).
     """
-    if height <= 0.0:
-        return q_end, np.zeros_like(q_end)
+    step = min(TANGENT_STEP_M, height / 2)
     X_WC = planner.scene.cup_pose(q_end)
-    points: list[np.ndarray] = []
-    for h in (height - min(TANGENT_STEP_M, height), height):
+    points = [q_end]
+    for h in (height - 2 * step, height - step, height) if height > 0.0 else ():
         X_up = RigidTransform(X_WC.rotation(), X_WC.translation() + [0.0, 0.0, h])
-        q = planner.ik.solve(X_up, q_end, q_end if not points else points[-1])
+        q = planner.ik.solve(X_up, q_end, points[-1])
         if q is None:
             raise PlanningError(
                 Phase.MOVE, name, f"floor: no IK {1e3 * h:.0f} mm above the cup"
             )
         points.append(q)
-    return points[1], points[1] - points[0]
+    return np.array(points[-3:] if height > 0.0 else [q_end] * 3)
 
 
 __all__ = ["ObjectFloor", "cycle_floors"]

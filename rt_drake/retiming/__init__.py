@@ -29,7 +29,8 @@ as ``q(s)``; the path type itself is
 kernels before anything is timed), ``_timed_path``, ``_time_scaled``,
 ``_check`` (dense 1 kHz verification; ``_check_report`` its margins),
 ``_floor`` (the least time the joint limits allow between two
-configurations, :func:`segment_floor`), ``_stop`` and ``_stop_pass``
+configurations, :func:`segment_floor`; ``_floor_envelope`` its jerk-limited
+bound between bounded end states), ``_stop`` and ``_stop_pass``
 (protective stops along the path), ``_jerk_stop``, ``_stop_distance`` and
 ``_set_slack`` (jerk-limited stops: the search over the stop distance and
 its first guess), ``_stop_table`` (stops computed ahead,
@@ -50,6 +51,7 @@ from rt_drake.retiming._check_report import (
 )
 from rt_drake.retiming._floor import (
     joint_floor,
+    junction_accelerations,
     junction_speeds,
     rest_to_rest_jerk,
     segment_floor,
@@ -134,6 +136,7 @@ __all__ = [
     "chord_knots",
     "joint_brake_stop",
     "joint_floor",
+    "junction_accelerations",
     "junction_speeds",
     "load_trajectory",
     "path_waypoints_and_knots",

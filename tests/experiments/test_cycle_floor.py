@@ -11,6 +11,8 @@ heights) and its lift against the per-joint ramp written out here.
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 from pydrake.math import RigidTransform
@@ -19,7 +21,7 @@ from toppra_reference import toppra_duration
 from rt_drake import CyclePlanner, JointLimits
 from rt_drake.experiments import cycle_floors
 from rt_drake.model.plant import make_arm_plant
-from rt_drake.retiming import GraspConstraint
+from rt_drake.retiming import GraspConstraint, retime
 from rt_drake.shaping import MoveOptimizerOptions, optimize_move
 from rt_drake.simulation.move_grasp import held_object, move_polytope
 
@@ -58,12 +60,16 @@ def test_no_planned_motion_through_the_lines_beats_its_floor(cycle):
 
 
 def test_the_move_floor_counts_its_vertical_lines(cycle, scenario):
-    """lift_s: the slowest joint's rest-to-free time to the line's top.
+    """lift_s: the slowest joint's time from rest to the line's top.
 
     The top is found here by the planner's IK and checked by forward
     kinematics: the cup ``lines_m[0]`` straight above the grasp, same
-    orientation. Per joint, from rest over d: ``d / v + v / (2 a)`` if
-    ``d >= v^2 / (2 a)``, else ``sqrt(2 d / a)``.
+    orientation. There every joint moves along the line's tangent ``delta``
+    (over its last 2 mm) at one speed, so joint j is at most ``u_j =
+    |delta_j| min_k v_k / |delta_k|`` fast. Per joint, from rest over d, the
+    larger of the time to a free end (``d / v + v / (2 a)`` if ``d >= v^2 /
+    (2 a)``, else ``sqrt(2 d / a)``) and the time to rest (``d / v + v / a``
+    if ``d >= v^2 / a``, else ``2 sqrt(d / a)``) less ``u / a``.
     """
     floors, plans, limits, _ = cycle
     planner = CyclePlanner(scenario, seed=0)
@@ -72,22 +78,43 @@ def test_the_move_floor_counts_its_vertical_lines(cycle, scenario):
         lift_m, set_down_m = move.lines_m
         assert lift_m > 0.0 and set_down_m > 0.0
         X_grasp = planner.scene.cup_pose(move.q_start)
-        X_top = RigidTransform(
-            X_grasp.rotation(), X_grasp.translation() + [0.0, 0.0, lift_m]
-        )
-        q_top = planner.ik.solve(X_top, move.q_start, move.q_start)
-        X_found = planner.scene.cup_pose(q_top)
-        assert np.allclose(X_found.translation(), X_top.translation(), atol=1e-5)
-        d = np.abs(q_top - move.q_start)
-        times = [
-            dj / vj + vj / (2 * aj)
-            if dj >= vj * vj / (2 * aj)
-            else np.sqrt(2 * dj / aj)
-            for dj, vj, aj in zip(d, v, a, strict=True)
-        ]
-        assert floor.lift_s == pytest.approx(max(times), rel=1e-3)  # two IK solves
+        tops = []
+        for h in (lift_m - 0.002, lift_m):
+            X_top = RigidTransform(
+                X_grasp.rotation(), X_grasp.translation() + [0.0, 0.0, h]
+            )
+            q_top = planner.ik.solve(X_top, move.q_start, move.q_start)
+            X_found = planner.scene.cup_pose(q_top)
+            assert np.allclose(X_found.translation(), X_top.translation(), atol=1e-5)
+            tops.append(q_top)
+        delta = tops[1] - tops[0]
+        d = tops[1] - move.q_start
+        u = np.abs(delta) * np.min(v / np.abs(delta))
+        u = np.where(delta * d > 0, u, 0.0)
+        d = np.abs(d)
+        free = np.where(d >= v * v / (2 * a), d / v + v / (2 * a), np.sqrt(2 * d / a))
+        rest = np.where(d >= v * v / a, d / v + v / a, 2 * np.sqrt(d / a))
+        times = np.maximum(free, rest - u / a)
+        assert floor.lift_s == pytest.approx(times.max(), rel=1e-3)  # IK solves
         assert floor.move_s == floor.lift_s + floor.carry_s + floor.set_down_s
         assert floor.carry_s > 0.0 and floor.set_down_s > 0.0
+
+
+@pytest.mark.slow
+def test_no_jerk_limited_retime_through_the_lines_beats_its_jerk_floor(cycle, scenario):
+    """The planner's picks and MOVEs retimed by the retimer under the
+    scenario's jerk limits (no grasp) take at least the floor with the jerk,
+    whose bound lies above the one without (by the jerk's share)."""
+    floors, plans, limits, _ = cycle
+    jerk = np.array(scenario.robot.jerk_limits or 20.0 * limits.acceleration)
+    with_jerk = cycle_floors(scenario, seed=0, jerk=jerk, shaped=False)
+    jerk_limits = dataclasses.replace(limits, jerk=jerk)
+    plant = make_arm_plant(scenario)
+    for floor, bare, (pick, move) in zip(with_jerk, floors, plans, strict=True):
+        pick_floor = floor.retreat_s + floor.transit_s + floor.descent_s
+        assert retime(plant, pick.path.path, jerk_limits).duration >= pick_floor
+        assert retime(plant, move.path, jerk_limits).duration >= floor.move_s
+        assert floor.motion_s > bare.motion_s + 0.05
 
 
 @pytest.mark.slow

@@ -22,6 +22,7 @@ from rt_drake.retiming import (
     JointLimits,
     RetimeInputError,
     joint_floor,
+    junction_accelerations,
     junction_speeds,
     rest_to_rest_jerk,
     segment_floor,
@@ -139,11 +140,37 @@ def test_the_double_s_time_is_the_least_a_jerk_profile_needs(d, v, a, j):
     with_jerk = joint_floor(np.full(6, d), limits, 0.0, 0.0, np.full(6, j))
     without = joint_floor(np.full(6, d), limits, 0.0, 0.0)
     assert np.all(with_jerk >= without) and with_jerk[0] == pytest.approx(closed)
-    # one end free: the jerk limit is not used, the bound without it holds
+    # one end free: between the bound without jerk and rest to rest; when
+    # the cruise is reached, the double-S's ramp to v counts once
     free_end = joint_floor(np.full(6, d), limits, 0.0, np.inf, np.full(6, j))
-    np.testing.assert_array_equal(
-        free_end, joint_floor(np.full(6, d), limits, 0.0, np.inf)
-    )
+    assert np.all(free_end >= joint_floor(np.full(6, d), limits, 0.0, np.inf))
+    assert np.all(free_end <= with_jerk)
+    ramp = a / j + v / a
+    if d >= v * ramp:
+        np.testing.assert_allclose(free_end, d / v + ramp / 2, rtol=1e-9)
+
+
+def test_junction_accelerations_bound_every_motion_along_the_line():
+    """On ``q(s) = delta s + kappa s^2`` (the junction at s = 0), the largest
+    ``|q''_j sdot^2 + q'_j sddot|`` over a dense grid of the path states
+    that every joint's velocity and acceleration limits allow stays under
+    the bound; a joint constant on the line gets 0."""
+    delta = np.array([0.0, 0.8, -0.5, 0.1, 0.3, 0.0])
+    kappa = np.array([0.0, 0.2, 0.4, -0.3, 0.0, 0.05])
+    h = 0.01
+    points = np.array([delta * s + kappa * s * s for s in (-2 * h, -h, 0.0)])
+    bound = junction_accelerations(points, LIMITS)
+    v, a = LIMITS.velocity, LIMITS.acceleration
+    sdot = np.linspace(-1.0, 1.0, 401)[:, None] * np.min(v[1:5] / np.abs(delta[1:5]))
+    sddot = np.linspace(-1.0, 1.0, 401)[None, :] * 100.0
+    states = [np.abs(2 * kappa[j] * sdot**2 + delta[j] * sddot) for j in range(6)]
+    feasible = np.all([(x <= a[j]) for j, x in enumerate(states)], axis=0)
+    largest = np.array([x[feasible].max() for x in states])
+    assert feasible.sum() > 1000  # and the grid holds every feasible sddot:
+    assert not feasible[:, 0].any() and not feasible[:, -1].any()
+    assert np.all(largest <= bound + 1e-9)
+    assert bound[0] == 0.0 and bound[5] > 0.0
+    assert np.all(bound <= a) and np.all(bound[1:5] <= 2.0 * largest[1:5] + 1e-9)
 
 
 @pytest.mark.parametrize(
