@@ -34,7 +34,7 @@ PRINTS = {
         "MOVE and stop within every limit, jerk included: True",
         "table: 9 stops; trip at 0.234 s -> stop at 0.300 s",
     ],
-    "docs/guides/cycle-floor.md": ["whetstone_box 1.329 s of motion at least"],
+    "docs/guides/cycle-floor.md": ["whetstone_box 1.332 s of motion at least"],
     "docs/reference/cli.md": ["True", ", 6) scene"],
     "docs/guides/jerk-limits.md": ["s with jerk limits", "jerk:", "holds: True"],
     "docs/guides/export.md": ["points to", "joints shoulder_pan_joint", "end: True"],

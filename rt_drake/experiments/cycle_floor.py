@@ -135,7 +135,8 @@ def cycle_floors(
         pick = planner.plan_pick(q_from, obj.name, retreat)
         descent = np.asarray(pick.path.descent)
         q_approach, q_grasp = descent[0], descent[-1]
-        approach = _Line(descent[2::-1], leaving=True)  # the approach pose last
+        down = (-2 * TANGENT_STEP_M, -TANGENT_STEP_M, 0.0)  # the approach last
+        approach = _Line(_vertical(planner, q_approach, down, obj.name), True)
         if retreat:
             up = pick.path.path.value(np.linspace(0.0, pick.s_retreat, 20))
             top: _Line | None = _Line(up, leaving=False)
@@ -187,11 +188,12 @@ class _Line:
         """(speeds, accelerations): each joint's bounds at the junction.
 
         Toward the goal of the segment's ``displacement`` (rad), by
-        :func:`~rt_drake.retiming.junction_speeds` (the line's last step, in
-        its direction of travel) and
+        :func:`~rt_drake.retiming.junction_speeds` (the line's tangent at the
+        junction, one-sided to second order, in its direction of travel) and
         :func:`~rt_drake.retiming.junction_accelerations`.
         """
-        step = self.points[-1] - self.points[-2]
+        p0, p1, p2 = self.points[-3:]
+        step = 1.5 * p2 - 2.0 * p1 + 0.5 * p0  # the tangent, to second order
         speeds = junction_speeds(-step if self.leaving else step, displacement, limits)
         return speeds, junction_accelerations(self.points[-3:], limits)
 
@@ -216,25 +218,47 @@ def _floor(
 def _line_top(
     planner: CyclePlanner, q_end: np.ndarray, height: float, name: str
 ) -> np.ndarray:
-    """(3, n) joints (rad) on the vertical line ``height`` m above the cup at ``q_end``.
+    """(3, n) joints (rad) up to the top of the line ``height`` m above ``q_end``.
 
     At the line's top and ``TANGENT_STEP_M`` and twice that below it (the
-    top last: its tangent and bend there); on a line shorter than
-    ``2 TANGENT_STEP_M`` the steps shrink to half its height. A line of
-    height 0: ``q_end`` three times (the joints at rest there).
+    top last), :func:`_vertical`; on a line shorter than ``2
+    TANGENT_STEP_M`` the steps shrink to half its height. A line of height
+    0: ``q_end`` three times (the joints at rest there).
     """
     step = min(TANGENT_STEP_M, height / 2)
-    X_WC = planner.scene.cup_pose(q_end)
-    points = [q_end]
-    for h in (height - 2 * step, height - step, height) if height > 0.0 else ():
+    heights = (height - 2 * step, height - step, height)
+    return _vertical(planner, q_end, heights, name) if height > 0.0 else (
+        np.array([q_end] * 3))  # fmt: skip
+
+
+def _vertical(
+    planner: CyclePlanner, q: np.ndarray, heights: tuple[float, ...], name: str
+) -> np.ndarray:
+    """(k, n) joints (rad): the cup at ``q`` raised by each height (m) in turn.
+
+    The cup's IK, each solve seeded by the previous point (``q`` first); a
+    height of 0 is ``q`` itself. Equal steps of height give
+    :func:`~rt_drake.retiming.junction_accelerations` its points.
+
+    Raises:
+        PlanningError: a point has no IK solution.
+    """
+    X_WC = planner.scene.cup_pose(q)
+    points = [q]
+    for h in heights:
+        if h == 0.0:
+            points.append(q)
+            continue
         X_up = RigidTransform(X_WC.rotation(), X_WC.translation() + [0.0, 0.0, h])
-        q = planner.ik.solve(X_up, q_end, points[-1])
-        if q is None:
+        solution = planner.ik.solve(X_up, q, points[-1])
+        if solution is None:
             raise PlanningError(
-                Phase.MOVE, name, f"floor: no IK {1e3 * h:.0f} mm above the cup"
+                Phase.MOVE,
+                name,
+                f"floor: no IK {1e3 * h:+.0f} mm vertically from the cup",
             )
-        points.append(q)
-    return np.array(points[-3:] if height > 0.0 else [q_end] * 3)
+        points.append(solution)
+    return np.array(points[1:])
 
 
 __all__ = ["ObjectFloor", "cycle_floors"]

@@ -7,19 +7,20 @@ the grid size and a scratch context, and retimes a path with
 
 Grids. TOPP-RA gives one path acceleration per grid segment, so on 100
 uniform points it leaves about 6 % of a motion unused where the profile
-changes fast (the ends, the turns at the lines). Under the acceleration
-limits the pick is retimed on an adaptive grid
-(:meth:`MotionRetimer.retime_free`, :func:`~rt_drake.shaping.retime_adaptive`:
-400 points placed by a 100-point profile; 4-6 % shorter). With jerk limits
-it stays on the uniform grid: on ``gridpoints`` adaptive points its
-jerk-limited retime (the first pick's was on the critical path) took 0.99-1.23 s
-of CPU against 0.57-0.60 s, for 0-2 % of motion. A shaped MOVE's
-jerk-limited retime takes ``gridpoints`` points placed by the optimiser's
-final (adaptive, acceleration-limited) profile
-(:meth:`MotionRetimer.retime_on_profile`, :func:`~rt_drake.shaping.adaptive_grid`):
-as many as the uniform grid, at about the same CPU, 0.1-4 % shorter. Every
-grid holds the limits between its points as any other
-(:func:`~rt_drake.retiming.retime`).
+changes fast (the ends, the turns at the lines). The pick is retimed on an
+adaptive grid (:meth:`MotionRetimer.retime_free`): under the acceleration
+limits on 400 points placed by a 100-point profile
+(:func:`~rt_drake.shaping.retime_adaptive`; 4-6 % shorter); with jerk
+limits on ``gridpoints`` points placed by that profile, as a shaped MOVE
+(1.5-2 % shorter than on the uniform grid, for 0.01-0.08 s more CPU per
+pick, ``tools/pick_jerk_cost.py``), except the staged first pick's REACH,
+which is planned while the APPROACH runs and gains 0.5 ms there: it keeps
+the uniform grid (``on_profile=False``). A shaped MOVE's jerk-limited retime
+takes ``gridpoints`` points placed by the optimiser's final (adaptive,
+acceleration-limited) profile (:meth:`MotionRetimer.retime_on_profile`,
+:func:`~rt_drake.shaping.adaptive_grid`): as many as the uniform grid, at
+about the same CPU, 0.1-4 % shorter. Every grid holds the limits between
+its points as any other (:func:`~rt_drake.retiming.retime`).
 """
 
 from __future__ import annotations
@@ -84,18 +85,28 @@ class MotionRetimer:
             cup=self.cup,
         )
 
-    def retime_free(self, path: GeometricPath) -> RetimeResult:
+    def retime_free(self, path: GeometricPath, on_profile: bool = True) -> RetimeResult:
         """Retime ``path`` without a held object (the pick).
 
         Under the acceleration limits on an adaptive grid
-        (:func:`~rt_drake.shaping.retime_adaptive`); with jerk limits on the
-        uniform one (:meth:`retime_path`). Module docstring.
+        (:func:`~rt_drake.shaping.retime_adaptive`); with jerk limits on
+        ``gridpoints`` points placed by that profile
+        (:meth:`retime_on_profile`), or, without ``on_profile``, on the
+        uniform grid (:meth:`retime_path`). Module docstring.
         """
-        if self.limits.jerk is not None:
+        if self.limits.jerk is not None and not on_profile:
             return self.retime_path(path, None)
-        return retime_adaptive(
-            self.plant, path, self.limits, None, context=self.context, cup=self.cup
+        profile = retime_adaptive(
+            self.plant,
+            path,
+            self.limits.without_jerk(),
+            None,
+            context=self.context,
+            cup=self.cup,
         )
+        if self.limits.jerk is None:
+            return profile
+        return self.retime_on_profile(path, None, profile)
 
     def retime_on_profile(
         self, path: GeometricPath, grasp: GraspConstraint | None, profile: RetimeResult

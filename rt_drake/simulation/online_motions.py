@@ -202,12 +202,12 @@ class OnlineMotions:
         """
         return self._retimer.retime_path(path, grasp)
 
-    def retime_free(self, path: GeometricPath) -> RetimeResult:
+    def retime_free(self, path: GeometricPath, on_profile: bool = True) -> RetimeResult:
         """Retime ``path`` without a held object (the pick).
 
         :meth:`._motion_retimer.MotionRetimer.retime_free`.
         """
-        return self._retimer.retime_free(path)
+        return self._retimer.retime_free(path, on_profile)
 
     def retime_on_profile(
         self, path: GeometricPath, grasp: GraspConstraint | None, profile: RetimeResult
@@ -294,12 +294,16 @@ class OnlineMotions:
             start = time.perf_counter()
             approach = self.straight_approach(q_start, obj)
             if approach is not None:
-                return then_reach(approach, self._planner, self.retime_free, obj.name)
+                return then_reach(approach, self._planner, self._retime_reach, obj.name)
             tried_s = time.perf_counter() - start
         self._place_objects_for(obj)
         return blended_pick(
             self._planner, self.retime_free, q_start, obj.name, retreat, tried_s
         )
+
+    def _retime_reach(self, path: GeometricPath) -> RetimeResult:
+        """The staged REACH's retime: on the uniform grid under jerk limits."""
+        return self.retime_free(path, on_profile=False)
 
     def move(
         self, q_start: np.ndarray, obj: ObjectConfig, pick: Motion | None = None

@@ -65,11 +65,12 @@ def test_the_move_floor_counts_its_vertical_lines(cycle, scenario):
     The top is found here by the planner's IK and checked by forward
     kinematics: the cup ``lines_m[0]`` straight above the grasp, same
     orientation. There every joint moves along the line's tangent ``delta``
-    (over its last 2 mm) at one speed, so joint j is at most ``u_j =
-    |delta_j| min_k v_k / |delta_k|`` fast. Per joint, from rest over d, the
-    larger of the time to a free end (``d / v + v / (2 a)`` if ``d >= v^2 /
-    (2 a)``, else ``sqrt(2 d / a)``) and the time to rest (``d / v + v / a``
-    if ``d >= v^2 / a``, else ``2 sqrt(d / a)``) less ``u / a``.
+    (one-sided, to second order, from points 2 and 4 mm below) at one speed,
+    so joint j is at most ``u_j = |delta_j| min_k v_k / |delta_k|`` fast.
+    Per joint, from rest over d, the larger of the time to a free end (``d
+    / v + v / (2 a)`` if ``d >= v^2 / (2 a)``, else ``sqrt(2 d / a)``) and
+    the time to rest (``d / v + v / a`` if ``d >= v^2 / a``, else ``2
+    sqrt(d / a)``) less ``u / a``.
     """
     floors, plans, limits, _ = cycle
     planner = CyclePlanner(scenario, seed=0)
@@ -78,17 +79,17 @@ def test_the_move_floor_counts_its_vertical_lines(cycle, scenario):
         lift_m, set_down_m = move.lines_m
         assert lift_m > 0.0 and set_down_m > 0.0
         X_grasp = planner.scene.cup_pose(move.q_start)
-        tops = []
-        for h in (lift_m - 0.002, lift_m):
+        tops = [move.q_start]
+        for h in (lift_m - 0.004, lift_m - 0.002, lift_m):
             X_top = RigidTransform(
                 X_grasp.rotation(), X_grasp.translation() + [0.0, 0.0, h]
             )
-            q_top = planner.ik.solve(X_top, move.q_start, move.q_start)
+            q_top = planner.ik.solve(X_top, move.q_start, tops[-1])
             X_found = planner.scene.cup_pose(q_top)
             assert np.allclose(X_found.translation(), X_top.translation(), atol=1e-5)
             tops.append(q_top)
-        delta = tops[1] - tops[0]
-        d = tops[1] - move.q_start
+        delta = 1.5 * tops[3] - 2.0 * tops[2] + 0.5 * tops[1]
+        d = tops[3] - move.q_start
         u = np.abs(delta) * np.min(v / np.abs(delta))
         u = np.where(delta * d > 0, u, 0.0)
         d = np.abs(d)

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 from toppra_reference import toppra_duration
 
 from rt_drake.model.plant import make_arm_plant
-from rt_drake.retiming import JointLimits, TimeScaled, check_trajectory
+from rt_drake.retiming import JointLimits, Margin, TimeScaled, check_trajectory
 from rt_drake.shaping import retime_adaptive
 from rt_drake.simulation import OnlineMotions
 from rt_drake.types.phase import Phase
@@ -104,3 +106,23 @@ def test_the_pick_is_retimed_within_a_percent_of_a_fine_grid(motions, scenario):
     price = with_grasp - toppra_duration(path, limits)
     assert move.grasp_price_s == pytest.approx(price, abs=0.01 * move.duration)
     assert move.grasp_price_s > 0.02 * move.duration
+
+
+def test_a_jerk_limited_pick_is_retimed_on_its_adaptive_grid(scenario):
+    """Under jerk limits (each joint's acceleration reached in 50 ms) the
+    pick is retimed on points placed by its acceleration-limited profile:
+    every limit, the jerk too, holds at 1 kHz, and it is faster than the
+    same path on the uniform grid (1.5-2 % on the default cycle's picks)."""
+    plant = make_arm_plant(scenario)
+    plain = JointLimits.from_plant(plant, scenario.robot)
+    robot = dataclasses.replace(
+        scenario.robot, jerk_limits=list(20.0 * plain.acceleration)
+    )
+    jerky = dataclasses.replace(scenario, robot=robot)
+    motions = OnlineMotions(jerky, split_first_pick=False, jerk_limits=True)
+    limits = JointLimits.from_plant(plant, robot, jerk=True)
+    pick = motions.pick(motions.q_home, jerky.objects[0])
+    check = check_trajectory(plant, pick.trajectory, limits)
+    assert Margin.JERK in check.margins and check.passed(), check.summary()
+    uniform = motions.retime_path(pick.planned.path, None).duration
+    assert pick.duration < uniform
