@@ -12,7 +12,7 @@ adaptive grid (:meth:`MotionRetimer.retime_free`): under the acceleration
 limits on 400 points placed by a 100-point profile
 (:func:`~rt_drake.shaping.retime_adaptive`; 4-6 % shorter); with jerk
 limits on ``gridpoints`` points placed by that profile, as a shaped MOVE
-(1.5-2 % shorter than on the uniform grid, for 0.01-0.08 s more CPU per
+(1.5-2 % shorter than on the uniform grid, for 0.00-0.04 s more CPU per
 pick, ``tools/pick_jerk_cost.py``), except the staged first pick's REACH,
 which is planned while the APPROACH runs and gains 0.5 ms there: it keeps
 the uniform grid (``on_profile=False``). A shaped MOVE's jerk-limited retime
