@@ -25,14 +25,21 @@ optimiser builds it (:class:`~rt_drake.shaping._surrogate.CoarseRetimer` on
 ``MoveOptimizer.search_grid``, rows from the spline path) and by the final
 retime (``MoveOptimizer.retime``): ``coarse K/P`` against ``final K/P``
 (below 1: the KTO path is faster), and each path's ``coarse / final``.
+``--options JSON`` builds the optimiser (and so the search's grid) with
+these ``MoveOptimizerOptions`` fields, e.g. ``{"search_end_points": 4}``
+for each candidate's own points over its vertical ends.
 
     python tools/kto_compare.py out/paths/1_*.npz out/paths/11_*.npz
     python tools/kto_compare.py --surrogate out/paths/1_*.npz
+    python tools/kto_compare.py --surrogate --options '{"search_end_points": 4}' \\
+        out/paths/1_*.npz
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
+import json
 import sys
 from pathlib import Path
 
@@ -76,9 +83,10 @@ def main() -> None:
     parser.add_argument("files", type=Path, nargs="+")
     parser.add_argument("--scenario", default="random_transport")
     parser.add_argument("--surrogate", action="store_true")
+    parser.add_argument("--options", type=json.loads, default={})
     args = parser.parse_args()
     if args.surrogate:
-        surrogate(args.files, args.scenario)
+        surrogate(args.files, args.scenario, args.options)
         return
     scenario = load_scenario(resolve_scenario_path(args.scenario))
     plant = make_arm_plant(scenario)
@@ -110,13 +118,16 @@ def main() -> None:
         )
 
 
-def surrogate(files: list[Path], scenario: str) -> None:
+def surrogate(files: list[Path], scenario: str, fields: dict) -> None:
     """Print the coarse and final durations of the shaped and KTO paths."""
     sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
     from bench_optimize import Setup
 
-    from rt_drake.shaping import MoveOptimizer
+    from rt_drake.shaping import MoveOptimizer, MoveOptimizerOptions
     from rt_drake.shaping._surrogate import CoarseRetimer
+
+    options = dataclasses.replace(MoveOptimizerOptions(), **fields)
+    rows = []
 
     print("transport  coarse K/P  final K/P  coarse/final P  coarse/final K")
     setups: dict[int, tuple] = {}
@@ -124,7 +135,7 @@ def surrogate(files: list[Path], scenario: str) -> None:
         seed, index = (int(v) for v in file.stem.split("_"))
         if seed not in setups:
             setup = Setup(scenario, seed)
-            optimizer = MoveOptimizer(setup.plant, setup.limits, cup=setup.cup)
+            optimizer = MoveOptimizer(setup.plant, setup.limits, options, setup.cup)
             setups[seed] = (setup, optimizer, setup.transports(20))
         setup, optimizer, transports = setups[seed]
         move, _ = setup.spline_move(index, *transports[index])
@@ -134,20 +145,35 @@ def surrogate(files: list[Path], scenario: str) -> None:
             W = {key: np.array(data[key]) for key in ("shaped", "kto")}
         baseline = optimizer.retime(move.path, grasp)
         coarse = CoarseRetimer(
-            optimizer.chain, setup.limits, grasp, optimizer.search_grid(baseline)
-        )
+            optimizer.chain, setup.limits, grasp, optimizer.search_grid(baseline),
+            ends=optimizer.end_grid(),
+        )  # fmt: skip
         coarse.select_rows(move.path.waypoints[None])
         c = {key: float(coarse.durations(w[None])[0]) for key, w in W.items()}
         f = {
             key: optimizer.retime(GeometricPath.from_waypoints(w), grasp).duration
             for key, w in W.items()
         }
+        row = (
+            c["kto"] / c["shaped"], f["kto"] / f["shaped"],
+            c["shaped"] / f["shaped"], c["kto"] / f["kto"],
+        )  # fmt: skip
+        rows.append(row)
         print(
-            f"{file.stem:>9}  {c['kto'] / c['shaped']:10.4f}  "
-            f"{f['kto'] / f['shaped']:9.4f}  {c['shaped'] / f['shaped']:14.3f}  "
-            f"{c['kto'] / f['kto']:14.3f}",
+            f"{file.stem:>9}  {row[0]:10.4f}  {row[1]:9.4f}  {row[2]:14.3f}"
+            f"  {row[3]:14.3f}",
             flush=True,
         )
+    table = np.array(rows)
+    agree = int(np.sum((table[:, 0] < 1.0) == (table[:, 1] < 1.0)))
+    print(
+        f"medians: coarse K/P {np.median(table[:, 0]):.4f}, final K/P"
+        f" {np.median(table[:, 1]):.4f}, the same ranking on {agree} / {len(table)};"
+        f" coarse / final: P {np.median(table[:, 2]):.3f}"
+        f" ({table[:, 2].min():.3f}-{table[:, 2].max():.3f}),"
+        f" K {np.median(table[:, 3]):.3f}"
+        f" ({table[:, 3].min():.3f}-{table[:, 3].max():.3f})"
+    )
 
 
 if __name__ == "__main__":

@@ -47,7 +47,7 @@ def warm_up() -> None:
     _batch_durations(
         dq, ddq, wrench, 0.0 * wrench, -0.1 * wrench, np.ones(n),
         np.vstack([np.eye(n), -np.eye(n)]), np.ones(2 * n), F, np.ones(12),
-        np.ascontiguousarray(F.T), np.ones(12, dtype=np.bool_), np.full(2, 0.5),
+        np.ascontiguousarray(F.T), np.ones(12, dtype=np.bool_), np.full((1, 2), 0.5),
         np.inf, np.empty(1), np.zeros(1, dtype=np.bool_),
         np.zeros((1, 12), dtype=np.bool_), np.zeros((1, points)),
     )  # fmt: skip

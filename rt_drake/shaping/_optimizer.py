@@ -63,7 +63,7 @@ from rt_drake.shaping._search import (
     cma_search,
 )
 from rt_drake.shaping._starts import start_parameters
-from rt_drake.shaping._surrogate import CoarseRetimer
+from rt_drake.shaping._surrogate import CoarseRetimer, EndGrid
 from rt_drake.shaping.cup_chain import CupChain
 from rt_drake.types.path import GeometricPath
 from rt_drake.types.phase import Phase
@@ -153,8 +153,9 @@ class MoveOptimizer:
             baseline = self.retime(spline.path, grasp)
         with watch("setup"):
             surrogate = CoarseRetimer(
-                chain, self.limits, grasp, self.search_grid(baseline)
-            )
+                chain, self.limits, grasp, self.search_grid(baseline),
+                ends=self.end_grid(),
+            )  # fmt: skip
             surrogate.select_rows(spline.path.waypoints[None])
 
             def objective_for(via: int) -> Objective:
@@ -226,6 +227,16 @@ class MoveOptimizer:
         return adaptive_grid(
             baseline.gridpoints, baseline.sd, options.search_gridpoints,
             options.search_grid_weight,
+        )  # fmt: skip
+
+    def end_grid(self) -> EndGrid | None:
+        """Each candidate's own grid over its vertical ends, or None (options)."""
+        options = self.options
+        if options.search_end_points == 0:
+            return None
+        return EndGrid(
+            options.search_end_points, options.search_end_span,
+            options.vertical_points,
         )  # fmt: skip
 
     def _family(self, spline: PlannedPath, via: int) -> PathFamily:

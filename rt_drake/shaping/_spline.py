@@ -36,21 +36,22 @@ def evaluate_splines(
 
     Args:
         waypoints: (P, K, n) joint waypoints (rad), no two consecutive equal.
-        s: (M,) nondecreasing parameters in [0, 1].
+        s: (M,) nondecreasing parameters in [0, 1], shared by the P paths, or
+            (P, M): each path's own.
     """
     # writeable C-ordered float64, the layout warm_up compiles (no other)
     waypoints = np.require(waypoints, float, ("C", "W"))
     knots = np.require(chord_knots_batch(waypoints), float, ("C", "W"))
-    s = np.require(s, float, ("C", "W"))
+    s = np.require(np.atleast_2d(s), float, ("C", "W"))
     count, _, n = waypoints.shape
-    out = np.empty((3, count, len(s), n))
+    out = np.empty((3, count, s.shape[1], n))
     _splines(waypoints, knots, s, out)
     return out[0], out[1], out[2]
 
 
 @njit(cache=True)
 def _splines(W, t, s, out):  # noqa: D417
-    """Fill out[0..2] with q, q', q'' of each clamped spline at s."""
+    """Fill out[0..2] with q, q', q'' of each clamped spline p at s[p] (or s[0])."""
     count, K, n = W.shape
     m = np.zeros((K, n))
     diag = np.empty(K)
@@ -84,11 +85,12 @@ def _splines(W, t, s, out):  # noqa: D417
                     value -= upper * m[i + 1, j]
                 m[i, j] = value / diag[i]
         k = 0
-        for r in range(s.shape[0]):
-            while k < K - 2 and s[r] > t[p, k + 1]:
+        row = p if s.shape[0] > 1 else 0
+        for r in range(s.shape[1]):
+            while k < K - 2 and s[row, r] > t[p, k + 1]:
                 k += 1
             h = t[p, k + 1] - t[p, k]
-            tau = (s[r] - t[p, k]) / h
+            tau = (s[row, r] - t[p, k]) / h
             tau2 = tau * tau
             tau3 = tau2 * tau
             h00, h10 = 2 * tau3 - 3 * tau2 + 1, tau3 - 2 * tau2 + tau
