@@ -65,4 +65,206 @@ def jerk_ratios(cols, X, U, K, z, dq, ddq, dddq, jerk, inner, out):  # noqa: D41
             out[p, j] = abs(root * bracket / jerk[j])
 
 
-__all__ = ["grasp_screen", "jerk_ratios"]
+@njit(cache=True)
+def jerk_block(  # noqa: D417
+    cols, X, U, K, index, keep, dq, ddq, dddq, x_root, x_power, jerk, kind, shift
+):
+    """The jerk rows of :func:`._jerk_rows.jerk_rows` (its docstring), compressed.
+
+    At each point ``p = index[i]`` and joint j with ``keep[i, j]``: ``B =
+    q'_j K + 3 q''_j U + q'''_j X`` (the band's three entries at p) and the
+    tangent ``J_j X / (2 xbar^1.5)``; the rows ``+-B + tangent <= 1.5 J_j /
+    sqrt(xbar)``, those of the sign +1 first (pairs in row-major order),
+    then those of -1, zero entries dropped (:func:`._jerk_rows.block`).
+    ``cols``, ``X``, ``U``, ``K``: (P, 3) the band of every point; ``dq``,
+    ``ddq``, ``dddq``: (P, n); ``index``: (I,); ``keep``: (I, n) bool;
+    ``x_root``, ``x_power``: (I,) ``sqrt(xbar)`` and ``xbar^1.5`` there
+    (> 0); ``jerk``: (n,); keys ``kind << shift + p << 24 + j`` (``kind +
+    1`` for the sign -1). Returns the block's ``values``, ``cols``,
+    ``counts``, ``bound`` and ``keys``.
+    """
+    pairs = 0
+    for i in range(keep.shape[0]):
+        for j in range(keep.shape[1]):
+            if keep[i, j]:
+                pairs += 1
+    rows = np.empty((2 * pairs, 3))
+    bound = np.empty(2 * pairs)
+    keys = np.empty(2 * pairs, dtype=np.int64)
+    at = np.empty(pairs, dtype=np.int64)
+    row = 0
+    for i in range(keep.shape[0]):
+        p = index[i]
+        for j in range(keep.shape[1]):
+            if not keep[i, j]:
+                continue
+            slope = 0.5 * jerk[j] / x_power[i]
+            bound[row] = 1.5 * jerk[j] / x_root[i]
+            bound[pairs + row] = bound[row]
+            three = 3.0 * ddq[p, j]
+            for e in range(3):
+                B = dq[p, j] * K[p, e] + three * U[p, e] + dddq[p, j] * X[p, e]
+                tangent = slope * X[p, e]
+                rows[row, e] = B + tangent
+                rows[pairs + row, e] = tangent - B
+            point = np.int64(p) << 24
+            keys[row] = (np.int64(kind) << shift) + point + j
+            keys[pairs + row] = (np.int64(kind + 1) << shift) + point + j
+            at[row] = p
+            row += 1
+    values = np.empty(6 * pairs)
+    columns = np.empty(6 * pairs, dtype=cols.dtype)
+    counts = np.empty(2 * pairs, dtype=np.int64)
+    entries = 0
+    for r in range(2 * pairs):
+        p = at[r % pairs] if pairs else 0
+        count = 0
+        for e in range(3):
+            if rows[r, e] != 0.0:
+                values[entries] = rows[r, e]
+                columns[entries] = cols[p, e]
+                entries += 1
+                count += 1
+        counts[r] = count
+    return values[:entries], columns[:entries], counts, bound, keys
+
+
+@njit(cache=True)
+def affine_block(cols, X, U, points, alpha, beta, bound, kind, shift):  # noqa: D417
+    """The rows of :func:`._jerk_rows.affine_rows` (its docstring), compressed.
+
+    At each point i (``cols``, ``X``, ``U``: (I, 3), its band) and column m
+    with ``bound[i, m]`` finite: the row ``alpha[i, m] U + beta[i, m] X <=
+    bound[i, m]`` (pairs in row-major order, zero entries dropped, as
+    :func:`._jerk_rows.block`), key ``kind << shift + points[i] << 24 + m``.
+    ``alpha``, ``beta``, ``bound``: (I, M). Returns the block's ``values``,
+    ``cols``, ``counts``, ``bound`` and ``keys``.
+    """
+    rows = 0
+    for i in range(bound.shape[0]):
+        for m in range(bound.shape[1]):
+            if np.isfinite(bound[i, m]):
+                rows += 1
+    values = np.empty(3 * rows)
+    columns = np.empty(3 * rows, dtype=cols.dtype)
+    counts = np.empty(rows, dtype=np.int64)
+    bounds = np.empty(rows)
+    keys = np.empty(rows, dtype=np.int64)
+    row = entries = 0
+    for i in range(bound.shape[0]):
+        for m in range(bound.shape[1]):
+            if not np.isfinite(bound[i, m]):
+                continue
+            count = 0
+            for e in range(3):
+                value = alpha[i, m] * U[i, e] + beta[i, m] * X[i, e]
+                if value != 0.0:
+                    values[entries] = value
+                    columns[entries] = cols[i, e]
+                    entries += 1
+                    count += 1
+            counts[row] = count
+            bounds[row] = bound[i, m]
+            keys[row] = (np.int64(kind) << shift) + (np.int64(points[i]) << 24) + m
+            row += 1
+    return values[:entries], columns[:entries], counts, bounds, keys
+
+
+@njit(cache=True)
+def _block_sum(a, start, n):  # noqa: D417
+    """The pairwise sum (numpy's) of ``a[start : start + n]``, ``n <= 128``."""
+    if n < 8:
+        total = 0.0
+        for i in range(n):
+            total += a[start + i]
+        return total
+    r = a[start : start + 8].copy()
+    i = 8
+    while i < n - n % 8:
+        for j in range(8):
+            r[j] += a[start + i + j]
+        i += 8
+    total = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]))
+    while i < n:
+        total += a[start + i]
+        i += 1
+    return total
+
+
+@njit(cache=True)
+def _pairwise(a):  # noqa: D417
+    """``np.sum(a)`` of a 1-D array, bit for bit: numpy's pairwise order.
+
+    Blocks of at most 128 by :func:`_block_sum`; a longer range is split at
+    half its length rounded down to a multiple of 8 and the two sums added
+    (numpy's recursion, here on an explicit stack: numba's cache cannot
+    hold a recursive function).
+    """
+    starts = np.empty(128, dtype=np.int64)
+    lengths = np.empty(128, dtype=np.int64)
+    values = np.empty(128)
+    tasks, results = 1, 0
+    starts[0], lengths[0] = 0, len(a)
+    while tasks:
+        tasks -= 1
+        start, n = starts[tasks], lengths[tasks]
+        if n < 0:  # both halves summed: add them
+            results -= 1
+            values[results - 1] += values[results]
+        elif n <= 128:
+            values[results] = _block_sum(a, start, n)
+            results += 1
+        else:
+            half = n // 2
+            half -= half % 8
+            # Popped in the order: left half, right half, then their sum.
+            starts[tasks], lengths[tasks] = 0, -1
+            starts[tasks + 1], lengths[tasks + 1] = start + half, n - half
+            starts[tasks + 2], lengths[tasks + 2] = start, half
+            tasks += 3
+    return values[0]
+
+
+@njit(cache=True)
+def interior_duration(ds, x, u, u_next, rise, square, weights):  # noqa: D417
+    """``sum ds / sqrt(x(sigma))`` over interior segments (Gauss-Legendre), or inf.
+
+    On segment i, ``x(sigma) = x_i + ds_i (rise(sigma) u_i + square(sigma)
+    u_{i+1})`` (``rise = 2 sigma - sigma^2``, ``square = sigma^2`` at the
+    nodes, (G,)); ``weights``: (G,) the nodes' weights on [-1, 1]. Inf where
+    the lowest x of a segment (at an end or at the vertex of the quadratic)
+    is <= 0. The sums are numpy's pairwise ones, so the result is
+    :func:`._jerk_timed_path.quadrature_duration`'s numpy form bit for bit.
+    ``ds``, ``x``, ``u``, ``u_next``: (N,) per segment, s and 1/s^2.
+    """
+    count = len(ds)
+    for i in range(count):
+        a, b = ds[i] * u[i], ds[i] * u_next[i]
+        curvature = b - a
+        lowest = min(x[i], x[i] + a + b)
+        if curvature > 0.0:
+            vertex = -a / curvature
+            if 0.0 < vertex < 1.0:
+                square_v = vertex * vertex
+                lowest = min(
+                    lowest, x[i] + (2.0 * vertex - square_v) * a + square_v * b
+                )
+        if lowest <= 0.0:
+            return np.inf
+    terms = np.empty(len(weights))
+    parts = np.empty(count)
+    for i in range(count):
+        for k in range(len(weights)):
+            at = x[i] + ds[i] * (rise[k] * u[i] + square[k] * u_next[i])
+            terms[k] = weights[k] / np.sqrt(at)
+        parts[i] = 0.5 * ds[i] * _pairwise(terms)
+    return _pairwise(parts)
+
+
+__all__ = [
+    "affine_block",
+    "grasp_screen",
+    "interior_duration",
+    "jerk_block",
+    "jerk_ratios",
+]

@@ -93,7 +93,7 @@ class WarmLP:
             near = GUESS if self._keys is None else WARM_GUESS
             working |= A_ub @ self._start >= b_ub - near * slack
         if self._keys is not None:
-            working |= np.isin(keys, self._keys[self._rows != _BASIC])
+            working |= _member(keys, self._keys[self._rows != _BASIC])
         order = np.flatnonzero(working)
         z, status = self._load(c, A_ub, order, b_ub, keys, A_eq, b_eq, bounds)
         while True:
@@ -228,6 +228,15 @@ _ANSWERS = (
     highspy.HighsModelStatus.kUnbounded,
     highspy.HighsModelStatus.kUnboundedOrInfeasible,
 )
+
+
+def _member(keys: np.ndarray, of: np.ndarray) -> np.ndarray:
+    """``np.isin(keys, of)`` for int64 keys, by a binary search in ``of`` sorted."""
+    if not of.size:
+        return np.zeros(len(keys), dtype=bool)
+    ordered = np.sort(of)
+    at = np.minimum(np.searchsorted(ordered, keys), len(ordered) - 1)
+    return ordered[at] == keys
 
 
 def _rows_of(

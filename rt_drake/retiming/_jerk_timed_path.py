@@ -38,6 +38,7 @@ import enum
 import numpy as np
 from pydrake.trajectories import Trajectory
 
+from rt_drake.retiming._jerk_kernels import interior_duration
 from rt_drake.retiming._joint_path import JointPath
 from rt_drake.retiming._retime_errors import RetimeInputError
 from rt_drake.retiming._timed_path import PathTrajectory
@@ -104,15 +105,12 @@ def quadrature_duration(s: np.ndarray, x: np.ndarray, u: np.ndarray) -> float:
             return np.inf
         total += float(np.sqrt(6.0 * ds[i] / a))
     inner = np.flatnonzero(kinds == Piece.INTERIOR)
-    d, x0, u0, u1 = ds[inner], x[inner], u[inner], u[inner + 1]
-    if np.any(_lowest_x(x0, d * u0, d * u1) <= 0.0):
-        return np.inf
     nodes, weights = _GAUSS
     sigma = 0.5 * (nodes + 1.0)
-    xs = x0[:, None] + d[:, None] * (
-        (2.0 * sigma - sigma**2) * u0[:, None] + sigma**2 * u1[:, None]
-    )
-    return total + float(np.sum(0.5 * d * np.sum(weights / np.sqrt(xs), axis=1)))
+    return total + interior_duration(
+        ds[inner], x[inner], np.ascontiguousarray(u[inner]),
+        np.ascontiguousarray(u[inner + 1]), 2.0 * sigma - sigma**2, sigma**2, weights,
+    )  # fmt: skip
 
 
 def piece_kinds(x: np.ndarray) -> np.ndarray:

@@ -82,3 +82,133 @@ def test_jerk_ratios_match_the_jerk_by_finite_differences():
             2.0 * (h * step) ** 3
         )
         np.testing.assert_allclose(out[p], np.abs(third) / jerk, rtol=2e-3, atol=2e-4)
+
+
+def _random_band(rng, points=12, segments=4):
+    """A band of random points on interior segments of a random grid."""
+    from rt_drake.retiming._jerk_rows import Band
+    from rt_drake.retiming._jerk_timed_path import Piece
+
+    s = np.sort(np.concatenate([[0.0, 1.0], rng.random(segments - 1)]))
+    segment = rng.integers(0, segments, size=points)
+    sigma = rng.random(points)
+    sigma[:2] = 0.0, 1.0  # a segment's ends: some band entries are 0
+    kinds = np.full(segments, Piece.INTERIOR)
+    return s, Band.of(s, kinds, segment, sigma)
+
+
+def _rows_at(block, z):
+    """Each compressed row's value at z, (R,)."""
+    from scipy import sparse
+
+    indptr = np.concatenate([[0], np.cumsum(block.counts)])
+    A = sparse.csr_matrix(
+        (block.values, block.cols, indptr), shape=(len(indptr) - 1, len(z))
+    )
+    return A @ z
+
+
+def test_jerk_rows_bound_the_joint_jerk_and_are_exact_at_the_iterate():
+    """``row(z) - bound`` is ``(+-jerk_j - J_j) / sqrt(xbar)`` at ``x = xbar``.
+
+    Reference: the joint jerk ``sqrt(x) (q' k + 3 q'' u + q''' x)`` of
+    :func:`._jerk_rows.jerk_values` (numpy) at x, u, k of the band times z.
+    The row is the tangent of the convex bound ``J / sqrt(x)`` at ``xbar``:
+    at other x its right side lies below ``J / sqrt(x)`` (an inner row).
+    """
+    from rt_drake.retiming._jerk_rows import KIND_SHIFT, jerk_rows, jerk_values
+
+    rng = np.random.default_rng(5)
+    s, band = _random_band(rng)
+    P, n = len(band.cols), 3
+    z = np.concatenate([1.0 + rng.random(len(s)), rng.normal(size=len(s))])
+    dq, ddq, dddq = (rng.normal(size=(P, n)) for _ in range(3))
+    index = np.flatnonzero(rng.random(P) < 0.7)
+    keep = rng.random((len(index), n)) < 0.6
+    x = np.einsum("pe,pe->p", band.X, z[band.cols])
+    u = np.einsum("pe,pe->p", band.U, z[band.cols])
+    k = np.einsum("pe,pe->p", band.K, z[band.cols])
+    jerk_limit = 1.0 + rng.random(n)
+    rows = jerk_rows(band, index, 7, (dq, ddq, dddq), x[index], jerk_limit, keep)
+    p, j = np.nonzero(keep)
+    jerk = jerk_values(x, u, k, dq, ddq, dddq)[index[p], j]
+    root = np.sqrt(x[index[p]])
+    expected = np.concatenate([jerk - jerk_limit[j], -jerk - jerk_limit[j]])
+    expected /= np.tile(root, 2)
+    np.testing.assert_allclose(_rows_at(rows, z) - rows.bound, expected, atol=1e-12)
+    assert np.all(rows.values != 0.0) and np.all(rows.counts <= 3)
+    kinds = rows.keys >> KIND_SHIFT
+    np.testing.assert_array_equal(kinds, np.repeat([7, 8], len(p)))
+    np.testing.assert_array_equal(rows.keys & 0xFFFFFF, np.tile(j, 2))
+    np.testing.assert_array_equal((rows.keys >> 24) & 0xFFFFFFF, np.tile(index[p], 2))
+    # The tangent at xbar of J / sqrt(x) stays below it at any other x > 0.
+    other = x[index[p]] * (0.2 + 3.0 * rng.random(len(p)))
+    tangent = 1.5 / root - other / (2.0 * root**3)
+    assert np.all(tangent <= 1.0 / np.sqrt(other) + 1e-12)
+
+
+def test_affine_rows_evaluate_the_affine_limit_where_it_is_finite():
+    """``alpha u + beta x`` at the band's (x, u) times z, for finite bounds only.
+
+    Reference: x and u from the band's entries (numpy), the products
+    formed directly; rows and keys in row-major (point, column) order.
+    """
+    from rt_drake.retiming._jerk_rows import KIND_SHIFT, affine_rows
+
+    rng = np.random.default_rng(6)
+    s, band = _random_band(rng)
+    P, M = len(band.cols), 4
+    z = np.concatenate([1.0 + rng.random(len(s)), rng.normal(size=len(s))])
+    alpha, beta = rng.normal(size=(P, M)), rng.normal(size=(P, M))
+    bound = np.where(rng.random((P, M)) < 0.6, rng.normal(size=(P, M)), np.inf)
+    points = 100 + np.arange(P)
+    rows = affine_rows(band, points, 2, alpha, beta, bound)
+    x = np.einsum("pe,pe->p", band.X, z[band.cols])
+    u = np.einsum("pe,pe->p", band.U, z[band.cols])
+    p, m = np.nonzero(np.isfinite(bound))
+    np.testing.assert_allclose(
+        _rows_at(rows, z), alpha[p, m] * u[p] + beta[p, m] * x[p], atol=1e-12
+    )
+    np.testing.assert_array_equal(rows.bound, bound[p, m])
+    np.testing.assert_array_equal(rows.keys >> KIND_SHIFT, np.full(len(p), 2))
+    np.testing.assert_array_equal((rows.keys >> 24) & 0xFFFFFFF, points[p])
+    np.testing.assert_array_equal(rows.keys & 0xFFFFFF, m)
+    assert np.all(rows.values != 0.0)
+
+
+def test_the_compiled_quadrature_is_numpys_bit_for_bit_and_exact_where_x_is_flat():
+    """``interior_duration`` against the numpy sums it replaced, and closed forms.
+
+    References: (1) the numpy form ``sum(0.5 ds sum(w / sqrt(x(sigma))))``
+    with numpy's pairwise sums, to the bit, on random segments of many
+    sizes; (2) ``u = 0``: x constant on each segment, the duration ``sum ds
+    / sqrt(x)``; (3) ``u_i = u_{i+1} = u``: x linear, ``2 ds / (sqrt(x_i) +
+    sqrt(x_{i+1}))``; (4) inf where x reaches 0 inside a segment.
+    """
+    from rt_drake.retiming._jerk_kernels import interior_duration
+
+    nodes, weights = np.polynomial.legendre.leggauss(16)
+    sigma = 0.5 * (nodes + 1.0)
+    rise, square = 2.0 * sigma - sigma**2, sigma**2
+    rng = np.random.default_rng(7)
+    for count in (0, 1, 7, 8, 9, 17, 113, 129, 300):
+        ds = 0.01 + rng.random(count)
+        x = 20.0 + 10.0 * rng.random(count)  # x > 0 all along
+        u, u_next = 0.5 * rng.normal(size=count), 0.5 * rng.normal(size=count)
+        xs = x[:, None] + ds[:, None] * (rise * u[:, None] + square * u_next[:, None])
+        expected = float(np.sum(0.5 * ds * np.sum(weights / np.sqrt(xs), axis=1)))
+        assert interior_duration(ds, x, u, u_next, rise, square, weights) == expected
+    ds, x = 0.01 + rng.random(20), 1.0 + rng.random(20)
+    zero = np.zeros(20)
+    flat = interior_duration(ds, x, zero, zero, rise, square, weights)
+    np.testing.assert_allclose(flat, np.sum(ds / np.sqrt(x)), rtol=1e-14)
+    slope = np.full(20, 0.3)
+    x_next = x + 2.0 * ds * slope
+    linear = interior_duration(ds, x, slope, slope, rise, square, weights)
+    np.testing.assert_allclose(
+        linear, np.sum(2.0 * ds / (np.sqrt(x) + np.sqrt(x_next))), rtol=1e-12
+    )
+    # x = 1 - 4 sigma + 4 sigma^2 on [0, 1] (ds 1, u_0 = -2, u_1 = 2): 0 at 1/2.
+    one = np.ones(1)
+    stops = interior_duration(one, one, -2.0 * one, 2.0 * one, rise, square, weights)
+    assert stops == np.inf
