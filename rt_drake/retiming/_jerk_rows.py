@@ -156,9 +156,9 @@ def affine_rows(
     Pairs (p, m) in row-major order, compressed
     (:func:`._jerk_kernels.affine_block`).
     """
+    # Copies: writable and contiguous, so that one compiled form serves.
     alpha, beta = (
-        np.ascontiguousarray(np.broadcast_to(v, bound.shape), dtype=float)
-        for v in (alpha, beta)
+        np.array(np.broadcast_to(v, bound.shape), dtype=float) for v in (alpha, beta)
     )
     return Block(
         *affine_block(
@@ -193,7 +193,7 @@ def jerk_rows(
         *jerk_block(
             band.cols, band.X, band.U, band.K, np.asarray(index, dtype=np.int64),
             np.ascontiguousarray(keep), dq, ddq, dddq, np.sqrt(x_bar),
-            x_bar**1.5, np.asarray(jerk, dtype=float), int(kind), KIND_SHIFT,
+            x_bar**1.5, np.array(jerk, dtype=float), int(kind), KIND_SHIFT,
         )
     )  # fmt: skip
 
