@@ -178,13 +178,15 @@ def _block_sum(a, start, n):  # noqa: D417
         for i in range(n):
             total += a[start + i]
         return total
-    r = a[start : start + 8].copy()
+    r0, r1, r2, r3 = a[start], a[start + 1], a[start + 2], a[start + 3]
+    r4, r5, r6, r7 = a[start + 4], a[start + 5], a[start + 6], a[start + 7]
     i = 8
     while i < n - n % 8:
-        for j in range(8):
-            r[j] += a[start + i + j]
+        at = start + i
+        r0, r1, r2, r3 = r0 + a[at], r1 + a[at + 1], r2 + a[at + 2], r3 + a[at + 3]
+        r4, r5, r6, r7 = r4 + a[at + 4], r5 + a[at + 5], r6 + a[at + 6], r7 + a[at + 7]
         i += 8
-    total = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]))
+    total = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
     while i < n:
         total += a[start + i]
         i += 1
@@ -200,6 +202,8 @@ def _pairwise(a):  # noqa: D417
     (numpy's recursion, here on an explicit stack: numba's cache cannot
     hold a recursive function).
     """
+    if len(a) <= 128:
+        return _block_sum(a, 0, len(a))
     starts = np.empty(128, dtype=np.int64)
     lengths = np.empty(128, dtype=np.int64)
     values = np.empty(128)

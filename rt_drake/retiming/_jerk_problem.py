@@ -141,7 +141,7 @@ def solve_lp(
     # are implied by the Bernstein rows (rest pieces: by u's bounds): they
     # join only if broken.
     kind = keys >> KIND_SHIFT
-    always = (kind == Kind.VELOCITY) | (kind == Kind.BERNSTEIN)
+    always = (kind == int(Kind.VELOCITY)) | (kind == int(Kind.BERNSTEIN))
     z, status = solver.solve(
         weight / np.max(np.abs(weight)), A_ub, b_ub, keys, *problem.equalities,
         problem.variable_bounds, always,
@@ -257,7 +257,7 @@ def _capped(kinds: np.ndarray) -> np.ndarray:
 
     The interior segments but the first (``x_0`` is given: its row stays).
     """
-    capped = kinds == Piece.INTERIOR
+    capped = kinds == int(Piece.INTERIOR)
     capped[0] = False
     return capped
 
