@@ -265,8 +265,48 @@ def interior_duration(ds, x, u, u_next, rise, square, weights):  # noqa: D417
     return _pairwise(parts)
 
 
+@njit(cache=True)
+def csr_product(indptr, indices, data, z):  # noqa: D417
+    """``A z`` of a CSR matrix A (``indptr``, ``indices``, ``data``), (R,).
+
+    Each row's sum from 0.0 in the order of its entries: scipy's
+    ``csr_matvec`` bit for bit.
+    """
+    out = np.empty(len(indptr) - 1)
+    for r in range(len(indptr) - 1):
+        total = 0.0
+        for e in range(indptr[r], indptr[r + 1]):
+            total += data[e] * z[indices[e]]
+        out[r] = total
+    return out
+
+
+@njit(cache=True)
+def csr_rows(indptr, indices, data, rows):  # noqa: D417
+    """The rows ``rows`` of a CSR matrix: their starts (int32), columns (int32), values.
+
+    Entries in their order within each row (as ``A[rows]``); starts
+    ``(len(rows) + 1,)``.
+    """
+    start = np.empty(len(rows) + 1, dtype=np.int32)
+    start[0] = 0
+    for i in range(len(rows)):
+        start[i + 1] = start[i] + indptr[rows[i] + 1] - indptr[rows[i]]
+    index = np.empty(start[-1], dtype=np.int32)
+    value = np.empty(start[-1])
+    for i in range(len(rows)):
+        at = start[i]
+        for e in range(indptr[rows[i]], indptr[rows[i] + 1]):
+            index[at] = indices[e]
+            value[at] = data[e]
+            at += 1
+    return start, index, value
+
+
 __all__ = [
     "affine_block",
+    "csr_product",
+    "csr_rows",
     "grasp_screen",
     "interior_duration",
     "jerk_block",

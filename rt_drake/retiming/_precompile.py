@@ -13,6 +13,7 @@ from __future__ import annotations
 import functools
 
 import numpy as np
+from scipy import sparse
 
 from rt_drake.dynamics import chain_kernels as _chain_kernels
 from rt_drake.dynamics.wrench import PathCoefficients
@@ -23,7 +24,12 @@ from rt_drake.retiming import (
     stage_rows as rows,
 )
 from rt_drake.retiming._between_kernels import position_excess
-from rt_drake.retiming._jerk_kernels import grasp_screen, jerk_ratios
+from rt_drake.retiming._jerk_kernels import (
+    csr_product,
+    csr_rows,
+    grasp_screen,
+    jerk_ratios,
+)
 from rt_drake.retiming._jerk_rows import Band, affine_rows, jerk_rows
 from rt_drake.retiming._jerk_timed_path import quadrature_duration
 from rt_drake.retiming._joint_path import as_joint_path
@@ -92,6 +98,10 @@ def warm_up() -> None:
               np.ones((3, 1), dtype=bool))  # fmt: skip
     affine_rows(jerk_band, every, 2, zeros, ones, ones)
     quadrature_duration(grid, np.ones(3), np.zeros(3))
+    # Its LPs' sparse rows (scipy's int32 indices).
+    matrix = sparse.csr_matrix(np.eye(3))
+    csr_product(matrix.indptr, matrix.indices, matrix.data, grid)
+    csr_rows(matrix.indptr, matrix.indices, matrix.data, every)
     # The object wrench on a serial chain (rt_drake.dynamics.chain): two joints.
     q, steps = np.zeros((3, 2)), np.tile(np.eye(4), (2, 1, 1))
     z, o = np.empty((3, 2, 3)), np.empty((3, 2, 3))

@@ -212,3 +212,25 @@ def test_the_compiled_quadrature_is_numpys_bit_for_bit_and_exact_where_x_is_flat
     one = np.ones(1)
     stops = interior_duration(one, one, -2.0 * one, 2.0 * one, rise, square, weights)
     assert stops == np.inf
+
+
+def test_the_sparse_kernels_are_scipys_product_and_row_selection():
+    """``csr_product`` is scipy's ``A @ z`` to the bit; ``csr_rows`` is ``A[rows]``.
+
+    Reference: scipy's CSR product and row indexing on a random sparse
+    matrix (rows with 0 to 6 entries), rows taken repeated and out of order.
+    """
+    from scipy import sparse
+
+    from rt_drake.retiming._jerk_kernels import csr_product, csr_rows
+
+    rng = np.random.default_rng(8)
+    A = sparse.random(60, 30, density=0.1, random_state=9, format="csr")
+    z = rng.normal(size=30)
+    assert np.array_equal(csr_product(A.indptr, A.indices, A.data, z), A @ z)
+    rows = np.array([5, 0, 59, 5, 17], dtype=np.int64)
+    start, index, value = csr_rows(A.indptr, A.indices, A.data, rows)
+    taken = A[rows]
+    np.testing.assert_array_equal(start, taken.indptr)
+    np.testing.assert_array_equal(index, taken.indices)
+    np.testing.assert_array_equal(value, taken.data)
