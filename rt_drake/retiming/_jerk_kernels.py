@@ -5,7 +5,14 @@ u_p + b_p x_p + c_p`` (N, N m, in the cup frame of :mod:`._samples`) and
 each grasp row's ratio ``F_r w_p / g_r`` (``scaled = F / g``), reduced as it
 is made to the largest ratio per point and the (point, row) pairs at or
 above a threshold. The (P, R) ratios are never stored: with numpy they
-were three (P, R) temporaries per call. Arrays are C-contiguous float64.
+were three (P, R) temporaries per call. :func:`jerk_ratios`: the joint
+jerk at every jerk point. The LPs' rows, made straight into the compressed
+blocks the LP stacks: :func:`jerk_block` (the jerk's tangent rows) and
+:func:`affine_block` (velocity, acceleration, torque, ``x >= 0``); their
+sparse products and row selections :func:`csr_product`, :func:`csr_rows`
+(scipy's sums and rows, bit for bit). :func:`interior_duration`: the
+duration by quadrature, its sums in numpy's pairwise order. Arrays are
+C-contiguous float64 (int64 indices, scipy's int32 for the CSR arrays).
 """
 
 from __future__ import annotations
