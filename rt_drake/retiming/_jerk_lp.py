@@ -21,7 +21,7 @@ import highspy
 import numpy as np
 from scipy import sparse
 
-from rt_drake.retiming._jerk_kernels import csr_product, csr_rows
+from rt_drake.retiming._jerk_row_kernels import csr_product, csr_rows
 
 _STATUS = np.array(
     [highspy.HighsBasisStatus(v) for v in range(5)], dtype=object

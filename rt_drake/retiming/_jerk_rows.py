@@ -28,7 +28,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy import sparse
 
-from rt_drake.retiming._jerk_kernels import affine_block, jerk_block
+from rt_drake.retiming._jerk_row_kernels import affine_block, jerk_block
 from rt_drake.retiming._jerk_timed_path import Piece
 
 

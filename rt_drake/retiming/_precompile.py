@@ -24,12 +24,8 @@ from rt_drake.retiming import (
     stage_rows as rows,
 )
 from rt_drake.retiming._between_kernels import position_excess
-from rt_drake.retiming._jerk_kernels import (
-    csr_product,
-    csr_rows,
-    grasp_screen,
-    jerk_ratios,
-)
+from rt_drake.retiming._jerk_kernels import grasp_screen, jerk_ratios
+from rt_drake.retiming._jerk_row_kernels import csr_product, csr_rows
 from rt_drake.retiming._jerk_rows import Band, affine_rows, jerk_rows
 from rt_drake.retiming._jerk_timed_path import quadrature_duration
 from rt_drake.retiming._joint_path import as_joint_path
