@@ -8,7 +8,11 @@ jerk-limited retimer's parts wrapped by thread-CPU timers
 (``time.thread_time``; the machine is shared); per part, the median over
 the retimes of its CPU ms per retime. The parts nest: "LPs (HiGHS)" is
 inside "LP wrapper", which is inside "LP rows and LPs"; "TOPP-RA and the
-rest" is the retime's CPU outside ``jerk_limited``.
+rest" is the retime's CPU outside ``jerk_limited``. An acceleration-limited
+retime of the same MOVE is timed before each (not a part), and the floor
+of this scheme printed: TOPP-RA and the rest, HiGHS's runs and the dense
+points (Drake's path coefficients), the parts that no Python around the
+LPs can remove, as a multiple of the acceleration-limited retime.
 """
 
 import os
@@ -23,9 +27,11 @@ import time  # noqa: E402
 from bench_jerk import jerk_bench  # noqa: E402
 
 from rt_drake.retiming import (  # noqa: E402
+    JointLimits,
     _jerk,
     _jerk_lp,
     _jerk_points,
+    _jerk_problem,
     retime,
 )
 
@@ -57,6 +63,8 @@ def main() -> None:
         "LP rows and LPs (solve_lp)": (_jerk, "solve_lp"),
         "LP wrapper (WarmLP.solve)": (_jerk_lp.WarmLP, "solve"),
         "LPs (HiGHS run)": (_jerk_lp.WarmLP, "_run"),
+        "LP rows per selection (_fixed_rows)": (_jerk_problem, "_fixed_rows"),
+        "jerk rows per LP": (_jerk_problem, "jerk_rows"),
         "grasp screen": (_jerk_points.DensePoints, "grasp_screen"),
         "jerk ratios": (_jerk_points.JerkPoints, "per_joint"),
         "duration by quadrature": (_jerk, "quadrature_duration"),
@@ -73,10 +81,16 @@ def main() -> None:
     from rt_drake.retiming import _solve
 
     _solve.jerk_limited = _jerk.jerk_limited
+    plain = JointLimits.from_plant(plant, bench.scenario.robot)
     per_part: dict[str, list[float]] = collections.defaultdict(list)
+    plain_cpu: list[float] = []
+    floor: list[float] = []
     for path, grasp in moves:
         retime(plant, path, shipped, grasp, 100, context=context)  # not timed
         for _ in range(args.repeats):
+            start = time.thread_time()
+            retime(plant, path, plain, grasp, 100, context=context)
+            plain_cpu.append(1e3 * (time.thread_time() - start))
             SPENT.clear()
             start = time.thread_time()
             retime(plant, path, shipped, grasp, 100, context=context)
@@ -84,12 +98,20 @@ def main() -> None:
             per_part["retime (total)"].append(total)
             for name in [*parts, "dense points", "jerk points"]:
                 per_part[name].append(SPENT[name])
-            per_part["TOPP-RA and the rest"].append(
-                total - SPENT["jerk_limited (all but TOPP-RA)"]
-            )
+            topp = total - SPENT["jerk_limited (all but TOPP-RA)"]
+            per_part["TOPP-RA and the rest"].append(topp)
+            floor.append(topp + SPENT["LPs (HiGHS run)"] + SPENT["dense points"])
     print(f"{len(moves)} MOVEs x {args.repeats}: median CPU ms per jerk-limited retime")
     for name, values in per_part.items():
-        print(f"  {name:34s} {statistics.median(values):6.1f}")
+        print(f"  {name:36s} {statistics.median(values):6.1f}")
+    accelerated = statistics.median(plain_cpu)
+    total = statistics.median(per_part["retime (total)"])
+    print(
+        f"acceleration-limited retime {accelerated:.1f} ms; the jerk-limited one "
+        f"{total / accelerated:.1f}x it (with the timers); its floor (TOPP-RA and "
+        f"the rest + HiGHS runs + dense points) {statistics.median(floor):.1f} ms, "
+        f"{statistics.median(floor) / accelerated:.1f}x"
+    )
 
 
 if __name__ == "__main__":

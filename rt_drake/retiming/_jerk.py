@@ -182,7 +182,7 @@ def jerk_limited(
     rest = rest_bounds(spline, s, kinds, limits.jerk)
     middle = np.flatnonzero(dense.k == len(DENSE) // 2)
     problem = Problem(
-        s, kinds, dense, points, limits, rest, middle, dense.maps.X[middle],
+        s, kinds, dense, points, limits, rest, middle, dense.maps.X[middle].T.tocsr(),
         bernstein_rows(s, kinds), continuity(s, kinds),
         variable_bounds(
             s, kinds, grid_caps(dense, kinds), rest, sd_start, sd_end, sdd_start
@@ -215,7 +215,7 @@ def jerk_limited(
     x_jerk = np.interp(points.s, s, x_bar)
     solver.guess(_topp_start(s, x_bar, problem.variable_bounds))
     lps = rounds = 0
-    best: tuple[float, np.ndarray] | None = None
+    best: tuple[float, np.ndarray, np.ndarray] | None = None  # duration, z, per joint
     # The duration of the profile the next LP is linearised at (a new round
     # starts from the last LP's: if its first LP changes it by less than
     # CONVERGED, the round is done).
@@ -231,12 +231,13 @@ def jerk_limited(
             if not np.isfinite(duration):  # s' = 0 between the LP's points
                 chosen.active |= dense.maps.X @ z <= 0.0
                 chosen.fixed = None
+            per_joint = points.per_joint(z, limits)
             if np.isfinite(duration) and (best is None or duration < best[0]):
-                best = (duration, z)
+                best = (duration, z, per_joint)
             x_bar = x
             x_dense = np.maximum(dense.maps.X @ z, 0.0)
             x_jerk = np.maximum(points.maps.X @ z, 0.0)
-            near = points.per_joint(z, limits) >= JOINT_SCREEN
+            near = per_joint >= JOINT_SCREEN
             # Once in, a row stays in (dropping it again made LPs alternate).
             keep = chosen.jerk_keep
             chosen.jerk_keep = near if keep is None else keep | near
@@ -246,6 +247,7 @@ def jerk_limited(
         if best is None:  # every LP of the round stops the motion somewhere
             _refuse_stop(dense, z)
         z = best[1]
+        jerk_ratio = points.ratio(z, problem.bounds, best[2])
         x_z, u_z = dense.maps.X @ z, dense.maps.U @ z
         grasp_over, grasp_max = None, None
         if grasp is not None:  # the pairs over the contract, each point's worst
@@ -257,7 +259,8 @@ def jerk_limited(
             set_worst = pairs.worst(x_z, u_z)
             grasp_max = set_worst.ratio
         ratios = dense.ratios(z, limits, grasp_max)
-        excess, jerk_excess = largest_excess(ratios), _point_excess(problem, z)
+        excess = largest_excess(ratios)
+        jerk_excess = _point_excess(problem, z, jerk_ratio)
         over, jerk_over = excess > tolerance, jerk_excess > tolerance
         if not (over.any() or jerk_over.any()) or rounds == MAX_ROUNDS:
             break
@@ -281,7 +284,7 @@ def jerk_limited(
     _refuse(problem, excess, jerk_excess)
     x, u = _split(z, len(s))
     margins = dense.margins(ratios)
-    margins[Margin.JERK] = points.margins(z, limits, problem.bounds)
+    margins[Margin.JERK] = points.margins(jerk_ratio)
     return JerkProfile(
         trajectory=JerkTimedPath(spline, s, x, u, start_time),
         s=s,
@@ -294,11 +297,12 @@ def jerk_limited(
     )
 
 
-def _point_excess(problem: Problem, z: np.ndarray) -> np.ndarray:
-    """Excess of the jerk, velocity or acceleration at the jerk points, (P,)."""
-    points = problem.jerk
-    ratio = points.ratio(z, problem.limits, problem.bounds)
-    return np.maximum(ratio, points.joint_ratio(z, problem.limits)) - 1.0
+def _point_excess(problem: Problem, z: np.ndarray, jerk: np.ndarray) -> np.ndarray:
+    """Excess of the jerk, velocity or acceleration at the jerk points, (P,).
+
+    ``jerk``: (P,) the largest jerk ratio there (:meth:`JerkPoints.ratio`).
+    """
+    return np.maximum(jerk, problem.jerk.joint_ratio(z, problem.limits)) - 1.0
 
 
 def _grasp_rows(chosen: Selection) -> int:

@@ -5,7 +5,10 @@ u_p + b_p x_p + c_p`` (N, N m, in the cup frame of :mod:`._samples`) and
 each grasp row's ratio ``F_r w_p / g_r`` (``scaled = F / g``), reduced as it
 is made to the largest ratio per point and the (point, row) pairs at or
 above a threshold. The (P, R) ratios are never stored: with numpy they
-were three (P, R) temporaries per call. Arrays are C-contiguous float64.
+were three (P, R) temporaries per call. :func:`jerk_ratios`: the joint
+jerk at every jerk point. :func:`interior_duration`: the duration by
+quadrature, its sums in numpy's pairwise order. The LPs' rows are
+:mod:`._jerk_row_kernels`'. Arrays are C-contiguous float64.
 """
 
 from __future__ import annotations
@@ -65,4 +68,103 @@ def jerk_ratios(cols, X, U, K, z, dq, ddq, dddq, jerk, inner, out):  # noqa: D41
             out[p, j] = abs(root * bracket / jerk[j])
 
 
-__all__ = ["grasp_screen", "jerk_ratios"]
+@njit(cache=True)
+def _block_sum(a, start, n):  # noqa: D417
+    """The pairwise sum (numpy's) of ``a[start : start + n]``, ``n <= 128``."""
+    if n < 8:
+        total = 0.0
+        for i in range(n):
+            total += a[start + i]
+        return total
+    r0, r1, r2, r3 = a[start], a[start + 1], a[start + 2], a[start + 3]
+    r4, r5, r6, r7 = a[start + 4], a[start + 5], a[start + 6], a[start + 7]
+    i = 8
+    while i < n - n % 8:
+        at = start + i
+        r0, r1, r2, r3 = r0 + a[at], r1 + a[at + 1], r2 + a[at + 2], r3 + a[at + 3]
+        r4, r5, r6, r7 = r4 + a[at + 4], r5 + a[at + 5], r6 + a[at + 6], r7 + a[at + 7]
+        i += 8
+    total = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
+    while i < n:
+        total += a[start + i]
+        i += 1
+    return total
+
+
+@njit(cache=True)
+def _pairwise(a):  # noqa: D417
+    """``np.sum(a)`` of a 1-D array, bit for bit: numpy's pairwise order.
+
+    Blocks of at most 128 by :func:`_block_sum`; a longer range is split at
+    half its length rounded down to a multiple of 8 and the two sums added
+    (numpy's recursion, here on an explicit stack: numba's cache cannot
+    hold a recursive function).
+    """
+    if len(a) <= 128:
+        return _block_sum(a, 0, len(a))
+    starts = np.empty(128, dtype=np.int64)
+    lengths = np.empty(128, dtype=np.int64)
+    values = np.empty(128)
+    tasks, results = 1, 0
+    starts[0], lengths[0] = 0, len(a)
+    while tasks:
+        tasks -= 1
+        start, n = starts[tasks], lengths[tasks]
+        if n < 0:  # both halves summed: add them
+            results -= 1
+            values[results - 1] += values[results]
+        elif n <= 128:
+            values[results] = _block_sum(a, start, n)
+            results += 1
+        else:
+            half = n // 2
+            half -= half % 8
+            # Popped in the order: left half, right half, then their sum.
+            starts[tasks], lengths[tasks] = 0, -1
+            starts[tasks + 1], lengths[tasks + 1] = start + half, n - half
+            starts[tasks + 2], lengths[tasks + 2] = start, half
+            tasks += 3
+    return values[0]
+
+
+@njit(cache=True)
+def interior_duration(ds, x, u, u_next, rise, square, weights):  # noqa: D417
+    """``sum ds / sqrt(x(sigma))`` over interior segments (Gauss-Legendre), or inf.
+
+    On segment i, ``x(sigma) = x_i + ds_i (rise(sigma) u_i + square(sigma)
+    u_{i+1})`` (``rise = 2 sigma - sigma^2``, ``square = sigma^2`` at the
+    nodes, (G,)); ``weights``: (G,) the nodes' weights on [-1, 1]. Inf where
+    the lowest x of a segment (at an end or at the vertex of the quadratic)
+    is <= 0. The sums are numpy's pairwise ones, so the result is
+    :func:`._jerk_timed_path.quadrature_duration`'s numpy form bit for bit.
+    ``ds``, ``x``, ``u``, ``u_next``: (N,) per segment, s and 1/s^2.
+    """
+    count = len(ds)
+    for i in range(count):
+        a, b = ds[i] * u[i], ds[i] * u_next[i]
+        curvature = b - a
+        lowest = min(x[i], x[i] + a + b)
+        if curvature > 0.0:
+            vertex = -a / curvature
+            if 0.0 < vertex < 1.0:
+                square_v = vertex * vertex
+                lowest = min(
+                    lowest, x[i] + (2.0 * vertex - square_v) * a + square_v * b
+                )
+        if lowest <= 0.0:
+            return np.inf
+    terms = np.empty(len(weights))
+    parts = np.empty(count)
+    for i in range(count):
+        for k in range(len(weights)):
+            at = x[i] + ds[i] * (rise[k] * u[i] + square[k] * u_next[i])
+            terms[k] = weights[k] / np.sqrt(at)
+        parts[i] = 0.5 * ds[i] * _pairwise(terms)
+    return _pairwise(parts)
+
+
+__all__ = [
+    "grasp_screen",
+    "interior_duration",
+    "jerk_ratios",
+]

@@ -21,6 +21,8 @@ import highspy
 import numpy as np
 from scipy import sparse
 
+from rt_drake.retiming._jerk_row_kernels import csr_product, csr_rows
+
 _STATUS = np.array(
     [highspy.HighsBasisStatus(v) for v in range(5)], dtype=object
 )  # kLower, kBasic, kUpper, kZero, kNonbasic
@@ -91,9 +93,9 @@ class WarmLP:
         slack = np.maximum(1.0, np.abs(b_ub))
         if self._start is not None:
             near = GUESS if self._keys is None else WARM_GUESS
-            working |= A_ub @ self._start >= b_ub - near * slack
+            working |= _product(A_ub, self._start) >= b_ub - near * slack
         if self._keys is not None:
-            working |= np.isin(keys, self._keys[self._rows != _BASIC])
+            working |= _member(keys, self._keys[self._rows != _BASIC])
         order = np.flatnonzero(working)
         z, status = self._load(c, A_ub, order, b_ub, keys, A_eq, b_eq, bounds)
         while True:
@@ -105,7 +107,9 @@ class WarmLP:
                 order = np.arange(len(b_ub))
                 z, status = self._load(c, A_ub, order, b_ub, keys, A_eq, b_eq, bounds)
                 continue
-            broken = np.flatnonzero(~working & (A_ub @ z > b_ub + FEASIBLE * slack))
+            broken = np.flatnonzero(
+                ~working & (_product(A_ub, z) > b_ub + FEASIBLE * slack)
+            )
             if not broken.size:
                 break
             working[broken] = True
@@ -176,7 +180,9 @@ class WarmLP:
             cols, rows = self._cols, np.concatenate([self._row_status(keys), eq])
         elif self._start is not None:  # crash: the rows within GUESS of a bound
             cols = _at_bound(self._start, bounds[:, 0], bounds[:, 1], GUESS)
-            value_at = np.concatenate([(A_ub @ self._start)[order], A_eq @ self._start])
+            value_at = np.concatenate(
+                [_product(A_ub, self._start)[order], _product(A_eq, self._start)]
+            )
             rows = _at_bound(value_at, lower, upper, GUESS)
         if cols is not None and rows is not None:
             basis = highspy.HighsBasis()
@@ -230,6 +236,15 @@ _ANSWERS = (
 )
 
 
+def _member(keys: np.ndarray, of: np.ndarray) -> np.ndarray:
+    """``np.isin(keys, of)`` for int64 keys, by a binary search in ``of`` sorted."""
+    if not of.size:
+        return np.zeros(len(keys), dtype=bool)
+    ordered = np.sort(of)
+    at = np.minimum(np.searchsorted(ordered, keys), len(ordered) - 1)
+    return ordered[at] == keys
+
+
 def _rows_of(
     A: sparse.csr_matrix, rows: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -238,11 +253,12 @@ def _rows_of(
     The same arrays as ``A[rows]``'s (entries in their order within a row),
     without scipy's indexing; indices and starts as int32 (HiGHS's).
     """
-    counts = np.diff(A.indptr)[rows]
-    start = np.zeros(len(rows) + 1, dtype=np.int64)
-    np.cumsum(counts, out=start[1:])
-    flat = np.repeat(A.indptr[rows] - start[:-1], counts) + np.arange(start[-1])
-    return start.astype(np.int32), A.indices[flat].astype(np.int32), A.data[flat]
+    return csr_rows(A.indptr, A.indices, A.data, np.asarray(rows, dtype=np.int64))
+
+
+def _product(A: sparse.csr_matrix, z: np.ndarray) -> np.ndarray:
+    """``A @ z`` (the same sums as scipy's), without scipy's dispatch."""
+    return csr_product(A.indptr, A.indices, A.data, np.asarray(z, dtype=float))
 
 
 def _status(

@@ -301,13 +301,17 @@ class JerkPoints:
         return out
 
     def ratio(
-        self, z: np.ndarray, limits: JointLimits, bounds: dict[int, tuple[int, float]]
+        self,
+        z: np.ndarray,
+        bounds: dict[int, tuple[int, float]],
+        per_joint: np.ndarray,
     ) -> np.ndarray:
         """The largest jerk ratio at every point, (P,).
 
-        Start and stop pieces in closed form, ``(|u| / bound)^1.5``.
+        ``per_joint``: (P, n) :meth:`per_joint` at z. Start and stop pieces
+        in closed form, ``(|u| / bound)^1.5``.
         """
-        out = np.max(self.per_joint(z, limits), axis=1)
+        out = np.max(per_joint, axis=1)
         for segment, (variable, bound) in bounds.items():
             out[self.segment == segment] = (abs(z[variable]) / bound) ** 1.5
         return out
@@ -325,12 +329,13 @@ class JerkPoints:
         acceleration = np.abs(self.dq * u[:, None] + self.ddq * x[:, None])
         return np.maximum(velocity, np.max(acceleration / limits.acceleration, axis=1))
 
-    def margins(
-        self, z: np.ndarray, limits: JointLimits, bounds: dict[int, tuple[int, float]]
-    ) -> np.ndarray:
-        """``1 - ratio`` at the grid points (segment starts, and the end)."""
+    def margins(self, ratio: np.ndarray) -> np.ndarray:
+        """``1 - ratio`` at the grid points (segment starts, and the end).
+
+        ``ratio``: (P,) the largest jerk ratio at every point (:meth:`ratio`).
+        """
         grid = np.append(np.flatnonzero(self.k == 0), len(self.s) - 1)
-        return 1.0 - self.ratio(z, limits, bounds)[grid]
+        return 1.0 - ratio[grid]
 
 
 __all__ = [

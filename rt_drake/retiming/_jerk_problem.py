@@ -35,6 +35,7 @@ from rt_drake.retiming._jerk_rows import (
     affine_rows,
     block,
     jerk_rows,
+    joined,
     key,
     stacked,
 )
@@ -70,7 +71,8 @@ class Problem:
     limits: JointLimits
     bounds: dict[int, tuple[int, float]]
     middle: np.ndarray
-    X_middle: sparse.csr_matrix
+    #: x at the middle points as rows of z, transposed: (2(N+1), N).
+    X_middle_T: sparse.csr_matrix
     bernstein: Rows
     equalities: tuple[sparse.csr_matrix, np.ndarray]
     variable_bounds: np.ndarray
@@ -112,17 +114,16 @@ def solve_lp(
     s, size = problem.s, len(problem.s)
     if chosen.fixed is None:  # made once per selection, kept compressed
         rows_before, rows_after = _fixed_rows(problem, chosen)
-        chosen.fixed = block(rows_before), block(rows_after)
+        chosen.fixed = joined(rows_before), joined(rows_after)
     before, after = chosen.fixed
     index = np.flatnonzero(chosen.jerk_active & points.inner)
-    floor = 1e-6 * max(float(np.max(x_jerk)), 1e-12)
+    x_index = np.maximum(x_jerk, 1e-6 * max(float(np.max(x_jerk)), 1e-12))[index]
     jerk_keep = np.ones((len(index), len(limits.jerk)), dtype=bool)
     if chosen.jerk_keep is not None:  # rows near the limit (where exceeded too)
         jerk_keep = chosen.jerk_keep[index]
     jerk = jerk_rows(
-        points.band.take(index), index, Kind.JERK, points.dq[index],
-        points.ddq[index], points.dddq[index],
-        np.maximum(x_jerk, floor)[index], limits.jerk, jerk_keep,
+        points.band, index, Kind.JERK, (points.dq, points.ddq, points.dddq),
+        x_index, limits.jerk, jerk_keep,
     )  # fmt: skip
     ds = np.diff(s)
     # Simpson's rule on each segment: T = sum ds / sqrt(x) at its ends and
@@ -131,16 +132,16 @@ def solve_lp(
     scale = max(float(np.max(x_bar)), 1e-12)
     x_middle = np.maximum(x_dense[middle], 1e-3 * scale)
     width = (np.append(ds, 0.0) + np.insert(ds, 0, 0.0)) / 6.0
-    weight = -problem.X_middle.T @ (4.0 / 6.0 * ds / (2.0 * x_middle**1.5))
+    weight = -(problem.X_middle_T @ (4.0 / 6.0 * ds / (2.0 * x_middle**1.5)))
     weight[:size] -= width / (2.0 * np.maximum(x_bar, 1e-3 * scale) ** 1.5)
-    A_ub, b_ub, keys = stacked([before, block([jerk]), after], 2 * size)
+    A_ub, b_ub, keys = stacked([before, jerk, after], 2 * size)
     # Every sub-LP takes the velocity rows between grid points and the
     # Bernstein rows (at the grid points the velocity is a bound of z): with
     # the continuity rows they bound it. The rows x >= 0 inside a segment
     # are implied by the Bernstein rows (rest pieces: by u's bounds): they
     # join only if broken.
     kind = keys >> KIND_SHIFT
-    always = (kind == Kind.VELOCITY) | (kind == Kind.BERNSTEIN)
+    always = (kind == int(Kind.VELOCITY)) | (kind == int(Kind.BERNSTEIN))
     z, status = solver.solve(
         weight / np.max(np.abs(weight)), A_ub, b_ub, keys, *problem.equalities,
         problem.variable_bounds, always,
@@ -152,7 +153,7 @@ def solve_lp(
     return z
 
 
-def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Rows], list[Rows]]:
+def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Block], list[Block]]:
     """The LP rows other than the jerk's: those before them, those after.
 
     They depend on the selection alone, not on the previous profile. The
@@ -169,7 +170,7 @@ def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Rows], list[R
     band = dense.band.take(once)
     smp = dense.samples
     dq, ddq = smp.dq[once], smp.ddq[once]
-    blocks: list[Rows] = []
+    blocks: list[Block] = []
 
     def add(kind: int, alpha: np.ndarray, beta: np.ndarray, bound: np.ndarray) -> None:
         blocks.append(affine_rows(band, once, kind, alpha, beta, bound))
@@ -191,10 +192,10 @@ def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Rows], list[R
             bound = np.where(keep.torque[once], limits.torque - sign * c, np.inf)
             add(Kind.TORQUE + offset, sign * a, sign * b, bound)
     if chosen.rows is not None and dense.grasp is not None and smp.wrench is not None:
-        blocks.append(_grasp_rows_at(dense, once, chosen.rows[once]))
+        blocks.append(block([_grasp_rows_at(dense, once, chosen.rows[once])]))
     if chosen.pairs is not None and len(chosen.pairs):
-        blocks.append(chosen.pairs.rows(dense.band, once, Kind.GRASP))
-    after: list[Rows] = []
+        blocks.append(block([chosen.pairs.rows(dense.band, once, Kind.GRASP)]))
+    after: list[Block] = []
     added = np.flatnonzero(chosen.jerk_active)
     near = chosen.jerk_acceleration
     if near is None:
@@ -224,7 +225,7 @@ def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Rows], list[R
             dense.band.take(middle), middle, Kind.MIDDLE, zeros, zeros - 1.0, zeros
         )
     )
-    after.append(problem.bernstein)  # x >= 0 all along each segment
+    after.append(block([problem.bernstein]))  # x >= 0 all along each segment
     return blocks, after
 
 
@@ -256,7 +257,7 @@ def _capped(kinds: np.ndarray) -> np.ndarray:
 
     The interior segments but the first (``x_0`` is given: its row stays).
     """
-    capped = kinds == Piece.INTERIOR
+    capped = kinds == int(Piece.INTERIOR)
     capped[0] = False
     return capped
 

@@ -28,6 +28,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy import sparse
 
+from rt_drake.retiming._jerk_row_kernels import affine_block, jerk_block
 from rt_drake.retiming._jerk_timed_path import Piece
 
 
@@ -126,65 +127,6 @@ def key(kind: int, point: np.ndarray, column: np.ndarray) -> np.ndarray:
     )
 
 
-def affine_rows(
-    band: Band,
-    points: np.ndarray,
-    kind: int,
-    alpha: np.ndarray,
-    beta: np.ndarray,
-    bound: np.ndarray,
-) -> Rows:
-    """Rows ``alpha[p, m] u_p + beta[p, m] x_p <= bound[p, m]`` (finite bounds).
-
-    ``band``: the P points; ``points``: (P,) their indices among all points
-    (for the keys); ``alpha``, ``beta``, ``bound``: (P, M).
-    """
-    p, m = np.nonzero(np.isfinite(bound))
-    a, b = alpha[p, m][:, None], beta[p, m][:, None]
-    return Rows(
-        band.cols[p],
-        a * band.U[p] + b * band.X[p],
-        bound[p, m],
-        key(kind, points[p], m),
-    )
-
-
-def jerk_rows(
-    band: Band,
-    points: np.ndarray,
-    kind: int,
-    dq: np.ndarray,
-    ddq: np.ndarray,
-    dddq: np.ndarray,
-    x_bar: np.ndarray,
-    jerk: np.ndarray,
-    keep: np.ndarray,
-) -> Rows:
-    """``+-B_j + J_j x / (2 xbar^1.5) <= 1.5 J_j / sqrt(xbar)`` at interior points.
-
-    ``band``, ``points``: the P points (on interior pieces) and their
-    indices; ``dq``, ``ddq``, ``dddq``: (P, n) the path's derivatives there
-    (the third on the piece's own side of a knot); ``x_bar``: (P,) > 0 the
-    previous iterate; ``keep``: (P, n) which joints' rows to make. Rows of
-    the sign +1 have keys of ``kind``, those of -1 of ``kind + 1``.
-    """
-    p, j = np.nonzero(keep)
-    slope = (0.5 * jerk[j] / x_bar[p] ** 1.5)[:, None]
-    bound = 1.5 * jerk[j] / np.sqrt(x_bar[p])
-    B = (
-        dq[p, j][:, None] * band.K[p]
-        + 3.0 * ddq[p, j][:, None] * band.U[p]
-        + dddq[p, j][:, None] * band.X[p]
-    )
-    X = slope * band.X[p]
-    return Rows(
-        np.concatenate([band.cols[p]] * 2),
-        np.concatenate([B + X, X - B]),
-        np.concatenate([bound, bound]),
-        np.concatenate([key(kind, points[p], j), key(kind + 1, points[p], j)]),
-    )
-
-
 class Block(NamedTuple):
     """Rows in compressed form: their nonzero entries row by row.
 
@@ -199,6 +141,63 @@ class Block(NamedTuple):
     keys: np.ndarray
 
 
+def affine_rows(
+    band: Band,
+    points: np.ndarray,
+    kind: int,
+    alpha: np.ndarray,
+    beta: np.ndarray,
+    bound: np.ndarray,
+) -> Block:
+    """Rows ``alpha[p, m] u_p + beta[p, m] x_p <= bound[p, m]`` (finite bounds).
+
+    ``band``: the P points; ``points``: (P,) their indices among all points
+    (for the keys); ``alpha``, ``beta``: broadcast to ``bound``'s (P, M).
+    Pairs (p, m) in row-major order, compressed
+    (:func:`._jerk_kernels.affine_block`).
+    """
+    # Copies: writable and contiguous, so that one compiled form serves.
+    alpha, beta = (
+        np.array(np.broadcast_to(v, bound.shape), dtype=float) for v in (alpha, beta)
+    )
+    return Block(
+        *affine_block(
+            np.ascontiguousarray(band.cols), np.ascontiguousarray(band.X),
+            np.ascontiguousarray(band.U), np.asarray(points, dtype=np.int64), alpha,
+            beta, np.ascontiguousarray(bound, dtype=float), int(kind), KIND_SHIFT,
+        )
+    )  # fmt: skip
+
+
+def jerk_rows(
+    band: Band,
+    index: np.ndarray,
+    kind: int,
+    derivatives: tuple[np.ndarray, np.ndarray, np.ndarray],
+    x_bar: np.ndarray,
+    jerk: np.ndarray,
+    keep: np.ndarray,
+) -> Block:
+    """``+-B_j + J_j x / (2 xbar^1.5) <= 1.5 J_j / sqrt(xbar)`` at interior points.
+
+    ``band``: x, u, k of every point; ``index``: (I,) the points (on
+    interior pieces); ``derivatives``: the path's first, second and third
+    derivatives (P, n) at every point (the third on the piece's own side of
+    a knot); ``x_bar``: (I,) > 0 the previous iterate there; ``keep``: (I,
+    n) which joints' rows to make. ``B_j = q'_j k + 3 q''_j u + q'''_j x``.
+    Rows of the sign +1 (keys of ``kind``) first, then those of -1 (``kind
+    + 1``); compressed (:func:`._jerk_kernels.jerk_block`).
+    """
+    dq, ddq, dddq = derivatives
+    return Block(
+        *jerk_block(
+            band.cols, band.X, band.U, band.K, np.asarray(index, dtype=np.int64),
+            np.ascontiguousarray(keep), dq, ddq, dddq, np.sqrt(x_bar),
+            x_bar**1.5, np.array(jerk, dtype=float), int(kind), KIND_SHIFT,
+        )
+    )  # fmt: skip
+
+
 def block(rows: list[Rows]) -> Block:
     """The rows, one after the other, with their zero entries dropped."""
     cols = np.concatenate([r.cols for r in rows])
@@ -211,6 +210,11 @@ def block(rows: list[Rows]) -> Block:
         np.concatenate([r.bound for r in rows]),
         np.concatenate([r.keys for r in rows]),
     )
+
+
+def joined(blocks: list[Block]) -> Block:
+    """The blocks, one after the other."""
+    return Block(*(np.concatenate(parts) for parts in zip(*blocks, strict=True)))
 
 
 def stacked(
@@ -283,6 +287,7 @@ __all__ = [
     "Rows",
     "affine_rows",
     "block",
+    "joined",
     "key",
     "stacked",
     "jerk_rows",

@@ -13,6 +13,7 @@ from __future__ import annotations
 import functools
 
 import numpy as np
+from scipy import sparse
 
 from rt_drake.dynamics import chain_kernels as _chain_kernels
 from rt_drake.dynamics.wrench import PathCoefficients
@@ -24,6 +25,9 @@ from rt_drake.retiming import (
 )
 from rt_drake.retiming._between_kernels import position_excess
 from rt_drake.retiming._jerk_kernels import grasp_screen, jerk_ratios
+from rt_drake.retiming._jerk_row_kernels import csr_product, csr_rows
+from rt_drake.retiming._jerk_rows import Band, affine_rows, jerk_rows
+from rt_drake.retiming._jerk_timed_path import quadrature_duration
 from rt_drake.retiming._joint_path import as_joint_path
 from rt_drake.retiming._robust_rows import (
     Layout,
@@ -82,6 +86,18 @@ def warm_up() -> None:
     entries = np.zeros((3, 3))
     jerk_ratios(cols, entries, entries, entries, np.ones(4), path, path, path,
                 np.ones(1), np.ones(3, dtype=bool), np.empty((3, 1)))  # fmt: skip
+    # Its LP rows (jerk, affine) and its duration by quadrature.
+    kinds = np.zeros(2, dtype=int)
+    jerk_band = Band.of(grid, kinds, np.zeros(3, dtype=np.int64), grid)
+    every = np.arange(3, dtype=np.int64)
+    jerk_rows(jerk_band, every, 7, (path, path, path), np.ones(3), np.ones(1),
+              np.ones((3, 1), dtype=bool))  # fmt: skip
+    affine_rows(jerk_band, every, 2, zeros, ones, ones)
+    quadrature_duration(grid, np.ones(3), np.zeros(3))
+    # Its LPs' sparse rows (scipy's int32 indices).
+    matrix = sparse.csr_matrix(np.eye(3))
+    csr_product(matrix.indptr, matrix.indices, matrix.data, grid)
+    csr_rows(matrix.indptr, matrix.indices, matrix.data, every)
     # The object wrench on a serial chain (rt_drake.dynamics.chain): two joints.
     q, steps = np.zeros((3, 2)), np.tile(np.eye(4), (2, 1, 1))
     z, o = np.empty((3, 2, 3)), np.empty((3, 2, 3))

@@ -1,4 +1,8 @@
-"""The jerk-limited retimer's compiled grasp screen against numpy's products."""
+"""The jerk-limited retimer's compiled loops against numpy and closed forms.
+
+The grasp screen against numpy's products, the jerk ratios against
+finite differences, the quadrature against numpy's sums and closed forms.
+"""
 
 import numpy as np
 
@@ -82,3 +86,41 @@ def test_jerk_ratios_match_the_jerk_by_finite_differences():
             2.0 * (h * step) ** 3
         )
         np.testing.assert_allclose(out[p], np.abs(third) / jerk, rtol=2e-3, atol=2e-4)
+
+
+def test_the_compiled_quadrature_is_numpys_bit_for_bit_and_exact_where_x_is_flat():
+    """``interior_duration`` against the numpy sums it replaced, and closed forms.
+
+    References: (1) the numpy form ``sum(0.5 ds sum(w / sqrt(x(sigma))))``
+    with numpy's pairwise sums, to the bit, on random segments of many
+    sizes; (2) ``u = 0``: x constant on each segment, the duration ``sum ds
+    / sqrt(x)``; (3) ``u_i = u_{i+1} = u``: x linear, ``2 ds / (sqrt(x_i) +
+    sqrt(x_{i+1}))``; (4) inf where x reaches 0 inside a segment.
+    """
+    from rt_drake.retiming._jerk_kernels import interior_duration
+
+    nodes, weights = np.polynomial.legendre.leggauss(16)
+    sigma = 0.5 * (nodes + 1.0)
+    rise, square = 2.0 * sigma - sigma**2, sigma**2
+    rng = np.random.default_rng(7)
+    for count in (0, 1, 7, 8, 9, 17, 113, 129, 300):
+        ds = 0.01 + rng.random(count)
+        x = 20.0 + 10.0 * rng.random(count)  # x > 0 all along
+        u, u_next = 0.5 * rng.normal(size=count), 0.5 * rng.normal(size=count)
+        xs = x[:, None] + ds[:, None] * (rise * u[:, None] + square * u_next[:, None])
+        expected = float(np.sum(0.5 * ds * np.sum(weights / np.sqrt(xs), axis=1)))
+        assert interior_duration(ds, x, u, u_next, rise, square, weights) == expected
+    ds, x = 0.01 + rng.random(20), 1.0 + rng.random(20)
+    zero = np.zeros(20)
+    flat = interior_duration(ds, x, zero, zero, rise, square, weights)
+    np.testing.assert_allclose(flat, np.sum(ds / np.sqrt(x)), rtol=1e-14)
+    slope = np.full(20, 0.3)
+    x_next = x + 2.0 * ds * slope
+    linear = interior_duration(ds, x, slope, slope, rise, square, weights)
+    np.testing.assert_allclose(
+        linear, np.sum(2.0 * ds / (np.sqrt(x) + np.sqrt(x_next))), rtol=1e-12
+    )
+    # x = 1 - 4 sigma + 4 sigma^2 on [0, 1] (ds 1, u_0 = -2, u_1 = 2): 0 at 1/2.
+    one = np.ones(1)
+    stops = interior_duration(one, one, -2.0 * one, 2.0 * one, rise, square, weights)
+    assert stops == np.inf

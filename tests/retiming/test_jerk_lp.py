@@ -123,3 +123,14 @@ def test_the_carried_basis_is_highs_own_and_needs_no_repair(seed):
     assert recorder.given[-1] is False
     assert lp.iterations == before
     assert c @ z == pytest.approx(_reference(c, A, b, E, e, bounds), abs=1e-7)
+
+
+def test_member_is_numpys_isin():
+    """``_member(keys, of)`` against ``np.isin`` on random int64 keys (and none)."""
+    from rt_drake.retiming._jerk_lp import _member
+
+    rng = np.random.default_rng(2)
+    keys = rng.integers(0, 1 << 60, size=300)
+    of = np.concatenate([rng.choice(keys, 40), rng.integers(0, 1 << 60, size=20)])
+    np.testing.assert_array_equal(_member(keys, of), np.isin(keys, of))
+    assert not _member(keys, of[:0]).any()
