@@ -231,4 +231,4 @@ def run_cycle(
     )
 
 
-__all__ = ["CycleResult", "CycleTimeout", "build_cycle", "run_cycle"]
+__all__ = ["CycleResult", "CycleTimeout", "build_cycle", "hold_at_start", "run_cycle"]
