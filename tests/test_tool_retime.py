@@ -356,3 +356,30 @@ def test_rt_drake_constraint_refuses_a_multi_cup_tool_by_name(tmp_path):
     message = "key 'tool': rt-drake constraint takes one cup"
     with pytest.raises(ScenarioError, match=message):
         scenario.single_cup("rt-drake constraint")
+
+
+PEEL = "\n      peel_fraction: 0.5"
+
+
+def test_a_stiffness_tool_states_each_cups_peel_limit(tmp_path):
+    from rt_drake import load_scenario
+
+    text = STIFF_SCENARIO.replace("suction_force: 25.0", "suction_force: 25.0" + PEEL)
+    tool = load_scenario(_write(tmp_path, text)).tool_parameters()
+    assert [m.cup.peel_fraction for m in tool.cups] == [0.5, None]
+
+
+@pytest.mark.parametrize("sharing", ["", "  load_sharing: any\n"])
+def test_a_peel_limit_without_the_stiffness_split_is_refused(tmp_path, sharing):
+    from rt_drake import ScenarioError, load_scenario
+
+    text = TOOL_SCENARIO.replace("tool:\n", "tool:\n" + sharing).replace(
+        "suction_force: 25.0", "suction_force: 25.0" + PEEL
+    )
+    name = "any" if sharing else "elastic"
+    message = (
+        r"tool.yaml: key 'tool.cups\[0\].peel_fraction': needs 'tool.load_sharing: "
+        rf"stiffness' .*, got load_sharing '{name}'$"
+    )
+    with pytest.raises(ScenarioError, match=message):
+        load_scenario(_write(tmp_path, text))

@@ -1,12 +1,14 @@
 """Each bellows lip's load along a rollout, against the planner's grasp rows.
 
     python tools/bellows_lip_loads.py SCENARIO [--trial 0] [--seed 0]
-        [--still] [--times T ...]
+        [--still] [--times T ...] [--relaxed]
 
 Plays trial ``--trial`` of ``experiment transport`` (as
 ``tools/bellows_trial.py``: same sampling, grasp, jerk limits, ramp and
 margin) under the bellows cup, or with ``--still`` the arm held at the grasp
-for 1.6 s, and records every millisecond, per lip L_i: the contact force
+for 1.6 s (the object starts held, as ``experiment transport``'s rollouts
+start it; ``--relaxed``: on relaxed bellows, as before session 6), and
+records every millisecond, per lip L_i: the contact force
 and moment the object puts on the lip (Drake's contact results, in L_i, at
 its origin), the bushing's deflection X_CiLi, the object's pose on the lip
 X_LiO and the seal.
@@ -66,7 +68,7 @@ from rt_drake.model.plant import home_configuration
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.planning import sample_transports
 from rt_drake.simulation import OnlineMotions
-from rt_drake.simulation._cycle_runner import build_cycle
+from rt_drake.simulation._cycle_runner import build_cycle, hold_at_start
 from rt_drake.simulation.move_grasp import held_object
 
 STILL_S = 1.6  # s, the arm held still
@@ -118,6 +120,11 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--still", action="store_true")
     parser.add_argument("--times", type=float, nargs="*", default=[0.1])
+    parser.add_argument(
+        "--relaxed",
+        action="store_true",
+        help="start the object on relaxed bellows (not held at its sag)",
+    )
     args = parser.parse_args()
     scenario, name = transport_inputs(
         resolve_scenario_path(args.scenario), args.trial + 1, 1, None
@@ -148,12 +155,18 @@ def main() -> None:
     X_TC0 = RigidTransform(RotationMatrix(tool.cups[0].R_TC), tool.cups[0].p_TC)
     pulls = [bellows.suction_force] * len(tool.cups)
 
-    diagram, station, sequencer = build_cycle(world, Replay(q_grasp, trajectory))
+    transport = world.random_transport
+    held = transport is not None and transport.start_on_cup and not args.relaxed
+    diagram, station, sequencer = build_cycle(
+        world, Replay(q_grasp, trajectory), held_at_start=held
+    )
     simulator = Simulator(diagram)
     root = simulator.get_mutable_context()
     plant = station.plant
     context = plant.GetMyMutableContextFromRoot(root)
     plant.SetPositions(context, station.models.robot, home_configuration(plant, world))
+    if held:
+        hold_at_start(world, station, root)
     sequencer_context = sequencer.GetMyContextFromRoot(root)
     suction = station.diagram.GetSubsystemByName("suction")
     body = plant.GetBodyByName(OBJECT_BODY, station.models.objects[obj.name])

@@ -55,7 +55,12 @@ from rt_drake.contact._cup import (
     contact_positions,
     contact_rotations,
 )
-from rt_drake.contact.tool import ToolParameterError, ToolParameters
+from rt_drake.contact.tool import (
+    LoadSharing,
+    ToolParameterError,
+    ToolParameters,
+    refuse_peel,
+)
 from rt_drake.contact.wrench_polytope import check_h_representation, is_realizable
 
 #: m and rad: how far a cup may sit off T's z = 0 plane, or tilt its axis
@@ -102,6 +107,7 @@ def rim_springs(tool: ToolParameters) -> RimSprings:
             line (the split is not unique).
     """
     tool.validate()
+    refuse_peel(tool, LoadSharing.ELASTIC)
     positions, polygons, f_max = [], [], []
     suction = np.zeros(3)
     for i, mount in enumerate(tool.cups):

@@ -164,11 +164,6 @@ class ToolParameters:
             except ValueError as error:
                 message = str(error).removeprefix("cup ")
                 raise ToolParameterError(f"cup {i}: {message}") from None
-            if len(self.cups) > 1 and mount.cup.peel_fraction is not None:
-                raise ToolParameterError(
-                    f"cup {i}: peel_fraction {mount.cup.peel_fraction!r} is for one "
-                    f"cup; a tool of {len(self.cups)} cups has no peel rows"
-                )
 
     @property
     def length_scale(self) -> float:
@@ -201,6 +196,26 @@ class LoadSharing(enum.Enum):
     ELASTIC = "elastic"
     ANY = "any"
     STIFFNESS = "stiffness"
+
+
+def refuse_peel(tool: ToolParameters, sharing: LoadSharing) -> None:
+    """Raise ToolParameterError if a cup of a tool of several states a peel limit.
+
+    A cup's ``peel_fraction`` bounds the tilting moment that cup carries.
+    ``LoadSharing.STIFFNESS`` gives each cup its share ``S_i w`` and keeps
+    it in the cup's own set, peel rows included; ``ELASTIC`` and ``ANY``
+    have no per-cup moment to bound, so they refuse it. One cup: its own set.
+    """
+    if len(tool.cups) == 1:
+        return
+    for i, mount in enumerate(tool.cups):
+        if mount.cup.peel_fraction is not None:
+            raise ToolParameterError(
+                f"cup {i}: peel_fraction {mount.cup.peel_fraction!r} needs load "
+                f"sharing 'stiffness' (each cup's share in its own set, peel rows "
+                f"and all); '{sharing.value}' has no peel rows for a tool of "
+                f"{len(tool.cups)} cups"
+            )
 
 
 def is_identity_pose(mount: CupMount) -> bool:

@@ -42,7 +42,12 @@ from rt_drake.contact._cup import (
 )
 from rt_drake.contact._lp import is_realizable_lp
 from rt_drake.contact.exact_cost import DEFAULT_MAX_MEMORY
-from rt_drake.contact.tool import ToolParameters, is_identity_pose
+from rt_drake.contact.tool import (
+    LoadSharing,
+    ToolParameters,
+    is_identity_pose,
+    refuse_peel,
+)
 from rt_drake.contact.wrench_polytope import (
     WrenchPolytope,
     contact_wrench_polytope,
@@ -154,6 +159,7 @@ def tool_wrench_polytope(
             g=cup.g / norms,
             vertices=cup.vertices @ adjoint.T,
         )
+    refuse_peel(tool, LoadSharing.ANY)
     scale = wrench_scale(tool)
     summands, offset = tool_summands(tool)
     exact = minkowski_sum_walk(

@@ -2,13 +2,17 @@
 
 A rollout runs the cycle's Diagram (the station and sequencer of ``rt-drake
 run``) for one object: the arm starts at the grasp, the valve is on for the
-attach wait, then the MOVE runs. It succeeds when, during the MOVE, the
-object moves less than :data:`SLIP_TRANSLATION` and turns less than
-:data:`SLIP_ROTATION` relative to what touches it: the bellows cup's lip
-(``cup_physics: bellows``), else the tool's cup frame. Its motion relative
-to the tool's cup frame (the slip plus the bellows' elastic deflection; the
-slip itself under the rim cup) is reported beside it. :func:`critical_speed` plays a
-MOVE faster and faster until it slips (the paper saw slip at 120-140 %).
+attach wait, then the MOVE runs. An object that starts on the cup
+(``random_transport.start_on_cup``) starts held: under the bellows cup at
+rest on the bellows stretched by its weight, sealed, the valve on from t = 0
+(:mod:`rt_drake.simulation._held_start`), not dropped onto relaxed bellows.
+It succeeds when, during the MOVE, the object moves less than
+:data:`SLIP_TRANSLATION` and turns less than :data:`SLIP_ROTATION` relative
+to what touches it: the bellows cup's lip (``cup_physics: bellows``), else
+the tool's cup frame. Its motion relative to the tool's cup frame (the slip
+plus the bellows' elastic deflection; the slip itself under the rim cup) is
+reported beside it. :func:`critical_speed` plays a MOVE faster and faster
+until it slips (the paper saw slip at 120-140 %).
 """
 
 from __future__ import annotations
@@ -116,14 +120,19 @@ def simulate_move(
     With ``meshcat``, the run is recorded there for an offline replay
     (``meshcat.StaticHtml()``). ``object_inertias``: the objects' true
     inertias, if not their models' (:func:`~rt_drake.simulation.run_cycle`).
+    An object that starts on the cup (``random_transport.start_on_cup``)
+    starts held: under the bellows cup, sealed and at rest on the stretched
+    bellows, as a pick leaves it (``run_cycle``'s ``held_at_start``).
     """
     trajectory = move if speed == 1.0 else TimeScaled(move, speed)
+    transport = scenario.random_transport
     result = run_cycle(
         scenario,
         Replay(q_grasp, trajectory),
         meshcat=meshcat,
         max_sim_time=30.0,
         object_inertias=object_inertias,
+        held_at_start=transport is not None and transport.start_on_cup,
     )
     (record,) = result.records
     return Rollout(

@@ -210,7 +210,8 @@ def check_tool(path: Path, tool: ToolConfig, key: str = "tool") -> None:
     At least one cup; each cup's parameters in range and its pose fixed; a
     known ``load_sharing``, and for ``elastic`` with several cups, the
     planar rims it needs (:func:`~rt_drake.contact.load_sharing.rim_springs`);
-    for ``stiffness``, every cup's ``stiffness`` (four values > 0).
+    for ``stiffness``, every cup's ``stiffness`` (four values > 0); a cup's
+    ``peel_fraction`` on a tool of several cups only with ``stiffness``.
 
     Args:
         path: The file, for messages.
@@ -242,6 +243,14 @@ def check_tool(path: Path, tool: ToolConfig, key: str = "tool") -> None:
             raise ScenarioError(f"{where}.{name}': {message}") from None
         _check_grip(path, f"{key}.cups[{index}]", entry.friction, None)
         _check_stiffness(where, entry, tool.load_sharing)
+        sharing = tool.load_sharing
+        if entry.peel_fraction is not None and len(tool.cups) > 1:
+            if sharing != LoadSharing.STIFFNESS.value:
+                raise ScenarioError(
+                    f"{where}.peel_fraction': needs '{key}.load_sharing: "
+                    f"stiffness' (each cup's share in its own set with its peel "
+                    f"rows), got load_sharing {sharing!r}"
+                )
     parameters = tool.parameters()
     if tool.load_sharing == LoadSharing.ELASTIC.value and len(parameters.cups) > 1:
         try:

@@ -215,6 +215,10 @@ class ToolCupConfig:
             The cup's :class:`~rt_drake.contact.CupParameters` (same defaults).
         stiffness: The bellows' stiffness, for ``tool.load_sharing:
             stiffness`` (None: not stated).
+        peel_fraction: The cup's compliant lip (``cup.peel_fraction``): each
+            cup's share of the load keeps its tilting moment within ``c r
+            (P A + f_z)``; only with ``load_sharing: stiffness``, which
+            gives each cup its share (None: the rigid rim).
     """
 
     pose: Transform = dataclasses.field(default_factory=Transform)
@@ -225,6 +229,7 @@ class ToolCupConfig:
     suction_force: float = CupParameters.suction_force
     max_normal_force: float = CupParameters.max_normal_force
     stiffness: StiffnessConfig | None = None
+    peel_fraction: float | None = None
 
     def parameters(self) -> CupParameters:
         """The cup's point-contact model (validated)."""
@@ -235,6 +240,7 @@ class ToolCupConfig:
             sides=self.sides,
             suction_force=self.suction_force,
             max_normal_force=self.max_normal_force,
+            peel_fraction=self.peel_fraction,
         )
 
 

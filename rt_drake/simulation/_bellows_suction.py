@@ -170,6 +170,17 @@ class BellowsSuction(SuctionCup):
         self._seal_index = self.DeclareDiscreteState(len(lips))
         self.DeclarePeriodicDiscreteUpdateEvent(time_step, 0.0, self._UpdateSeal)
 
+    def start_sealed(self, context: Context) -> None:
+        """Set every lip SEALED (and a first-order vacuum at full level) in ``context``.
+
+        For an object that starts held on the lips (:mod:`._held_start`),
+        before the simulation starts; the valve must be on from then on.
+        """
+        sealed = np.full(len(self._lips), float(SealState.SEALED))
+        context.SetDiscreteState(self._seal_index, sealed)
+        if self._level_index is not None:
+            context.SetDiscreteState(self._level_index, np.ones(len(self._lips)))
+
     def seal_states(self, context: Context) -> list[SealState]:
         """Each lip's seal."""
         vector = context.get_discrete_state(self._seal_index).CopyToVector()

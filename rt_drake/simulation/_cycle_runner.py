@@ -17,7 +17,7 @@ import numpy as np
 from pydrake.geometry import Meshcat
 from pydrake.multibody.tree import SpatialInertia
 from pydrake.systems.analysis import Simulator
-from pydrake.systems.framework import DiagramBuilder, EventStatus
+from pydrake.systems.framework import Context, DiagramBuilder, EventStatus
 
 from rt_drake import arguments
 from rt_drake.errors import RtDrakeError
@@ -27,6 +27,7 @@ from rt_drake.model.plant import (
     scenario_cup_frame,
 )
 from rt_drake.model.scenario import Scenario
+from rt_drake.simulation._held_start import hang_on_lips
 from rt_drake.simulation._sequencer import Sequencer
 from rt_drake.simulation._station import (
     MakeStation,
@@ -65,10 +66,13 @@ def build_cycle(
     meshcat: Meshcat | None = None,
     options: StationOptions | None = None,
     pipelined: bool = True,
+    held_at_start: bool = False,
 ):
     """Return (diagram, station, sequencer) of the cycle of ``scenario``.
 
     ``pipelined``: the sequencer plans each motion ahead (:mod:`._sequencer`).
+    ``held_at_start``: under the bellows cup, the first object starts sealed
+    on the lips, the valve on from t = 0 (:func:`hold_at_start` poses it).
     """
     station: Station = MakeStation(scenario, meshcat=meshcat, options=options)
     plant = station.plant
@@ -97,6 +101,7 @@ def build_cycle(
             pipelined=pipelined,
             command_period=scenario.robot.command_period_s,
             lip_bodies=[lip.body_index for lip in station.lips],
+            held_at_start=held_at_start and bool(station.lips),
         ),
     )
     for name in ("body_poses", "body_spatial_velocities"):
@@ -115,6 +120,25 @@ def build_cycle(
     return builder.Build(), station, sequencer
 
 
+def hold_at_start(scenario: Scenario, station: Station, root: Context) -> None:
+    """Pose the first object held on the bellows lips, sealed, in ``root``.
+
+    The object and the lips sag to their static equilibrium on the bushings
+    (:func:`~._held_start.hang_on_lips`) and every lip starts SEALED
+    (:meth:`~._bellows_suction.BellowsSuction.start_sealed`): the state an
+    object already picked and at rest is in. ``root`` is the cycle's root
+    context, the arm posed.
+    """
+    assert station.bellows is not None, "hold_at_start needs the bellows cup"
+    plant = station.plant
+    name = scenario.objects[0].name
+    body = plant.GetBodyByName(OBJECT_BODY, station.models.objects[name])
+    plant_context = plant.GetMyMutableContextFromRoot(root)
+    hang_on_lips(plant, plant_context, station.lips, station.bellows, body)
+    suction = station.diagram.GetSubsystemByName("suction")
+    suction.start_sealed(suction.GetMyMutableContextFromRoot(root))
+
+
 def run_cycle(
     scenario: Scenario,
     motions: MotionSource,
@@ -124,6 +148,7 @@ def run_cycle(
     pipelined: bool = True,
     progress: Callable[[int, Phase], None] | None = None,
     object_inertias: dict[str, SpatialInertia] | None = None,
+    held_at_start: bool = False,
 ) -> CycleResult:
     """Simulate the whole cycle; raise CycleTimeout past ``max_sim_time`` s.
 
@@ -139,6 +164,10 @@ def run_cycle(
         object_inertias: Per object name, its true spatial inertia ``M_OOo_O``
             (about its body origin, in its body frame), in place of its
             model's.
+        held_at_start: Under the bellows cup, the first object starts held:
+            sealed on the lips, at rest at its static equilibrium on the
+            bellows, the valve on from t = 0 (:func:`hold_at_start`; the
+            object must start on the lips). The rim cup ignores it.
     """
     arguments.instance(scenario, "scenario", Scenario, where="run_cycle")
     arguments.having(
@@ -146,7 +175,7 @@ def run_cycle(
     )
     arguments.number(max_sim_time, "max_sim_time", where="run_cycle", above=0.0)
     diagram, station, sequencer = build_cycle(
-        scenario, motions, meshcat, options, pipelined
+        scenario, motions, meshcat, options, pipelined, held_at_start
     )
     simulator = Simulator(diagram)
     context = simulator.get_mutable_context()
@@ -158,6 +187,8 @@ def run_cycle(
     for name, M_OOo_O in (object_inertias or {}).items():
         body = plant.GetBodyByName(OBJECT_BODY, station.models.objects[name])
         body.SetSpatialInertiaInBodyFrame(plant_context, M_OOo_O)
+    if held_at_start and station.lips:
+        hold_at_start(scenario, station, context)
     sequencer_context = sequencer.GetMyContextFromRoot(context)
     worst = [0.0]
     seen: list[tuple[int, Phase]] = []
@@ -200,4 +231,4 @@ def run_cycle(
     )
 
 
-__all__ = ["CycleResult", "CycleTimeout", "build_cycle", "run_cycle"]
+__all__ = ["CycleResult", "CycleTimeout", "build_cycle", "hold_at_start", "run_cycle"]

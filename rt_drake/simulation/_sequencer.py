@@ -135,6 +135,7 @@ class Sequencer(LeafSystem):
         pipelined: bool = True,
         command_period: float | None = None,
         lip_bodies: Sequence[BodyIndex] = (),
+        held_at_start: bool = False,
     ) -> None:
         """Make the sequencer.
 
@@ -154,6 +155,9 @@ class Sequencer(LeafSystem):
             lip_bodies: the bellows cups' lips L_i, one per cup, each frame
                 its cup's frame at rest: the slip is the largest on any of
                 them; none: on C (the rim cup).
+            held_at_start: the first object starts sealed on the cup (a
+                rollout's object already picked): the valve is on from t = 0,
+                through its APPROACH and REACH too.
         """
         super().__init__()
         self._motions = motions
@@ -166,6 +170,7 @@ class Sequencer(LeafSystem):
         self._vacuum = vacuum
         self._pipelined = pipelined
         self._command_period = command_period
+        self._held_at_start = bool(held_at_start)
         self._n = len(q_home)
         initial = SequencerState(Phase.APPROACH, 0, 0.0, np.array(q_home))
         self._state_index = self.DeclareAbstractState(AbstractValue.Make(initial))
@@ -220,8 +225,10 @@ class Sequencer(LeafSystem):
 
     def _CalcValve(self, context: Context, output: BasicVector) -> None:
         state = self.sequencer_state(context)
+        held = self._held_at_start and state.object_index == 0
         on = (
             state.phase is Phase.ATTACH
+            or (held and state.phase in (Phase.APPROACH, Phase.REACH))
             or (state.phase is Phase.MOVE and not self._closes_early(context, state))
             or self._opens_early(context, state)
         )

@@ -51,7 +51,7 @@ from pydrake.systems.framework import Diagram, DiagramBuilder
 
 from rt_drake import arguments
 from rt_drake.errors import InputError
-from rt_drake.model.cup_physics import CupPhysics, load_bellows_cup
+from rt_drake.model.cup_physics import BellowsCup, CupPhysics, load_bellows_cup
 from rt_drake.model.object_model import OBJECT_BODY
 from rt_drake.model.plant import (
     ObjectMode,
@@ -103,6 +103,8 @@ class Station:
     #: The bellows cup's lips (``cup_physics: bellows``), one per cup; empty
     #: for the rim cup.
     lips: tuple[Lip, ...] = ()
+    #: The catalogue cup of the lips (``cup_physics: bellows``), else None.
+    bellows: BellowsCup | None = None
 
 
 def MakeStation(
@@ -218,6 +220,7 @@ def MakeStation(
         object_names=tuple(o.name for o in scenario.objects),
         controller_plant=controller_plant,
         lips=tuple(lips),
+        bellows=bellows if lips else None,
     )
 
 
