@@ -2,7 +2,7 @@
 
     python tools/bellows_trial.py SCENARIO [--trials 0 1] [--seed 0]
         [--scale NAME=FACTOR ...] [--cup-physics bellows] [--no-jerk-limits]
-        [--constrained-only] [--sweep]
+        [--constrained-only | --free-only] [--sweep]
 
 For each trial of ``experiment transport`` (same sampling and planner seed,
 the same grasp: from the cup, or APPROACH and REACH from home): plan the
@@ -50,6 +50,11 @@ def main() -> None:
         "--constrained-only", action="store_true", help="skip the joint-limits MOVE"
     )
     parser.add_argument(
+        "--free-only",
+        action="store_true",
+        help="play only the joint-limits MOVE (without the grasp constraint)",
+    )
+    parser.add_argument(
         "--sweep",
         action="store_true",
         help="also play the constrained MOVE faster until it slips (critical speed)",
@@ -75,7 +80,9 @@ def main() -> None:
             continue
         q_grasp = trial.q_grasp
         world = rollout_scenario(dataclasses.replace(trial.scenario), q_grasp)
-        plays = [] if args.sweep else [("constrained", move.trajectory)]
+        plays = (
+            [] if args.sweep or args.free_only else [("constrained", move.trajectory)]
+        )
         if not args.constrained_only:
             plays.append(("joint limits only", free.trajectory))
         if args.sweep:  # its first rollout, at speed 1, is the constrained one
