@@ -228,7 +228,7 @@ def run(args: argparse.Namespace) -> int:
             )
     limits = JointLimits.from_plant(plant, scenario.robot, jerk=not args.no_jerk_limits)
     cup = CupFrame.of(plant, scenario.robot.cup_frame)
-    ring = None if grasp is None else ring_tool(scenario)
+    ring = None if grasp is None else ring_tool(scenario, uncertain)
     ring_words = ""
     if grasp is not None and ring is not None:  # planning.grasp_margin: ring
 

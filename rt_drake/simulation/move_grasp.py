@@ -32,9 +32,10 @@ from rt_drake.contact import (
     worst_cup_polytope,
 )
 from rt_drake.dynamics.bellows_modes import BellowsTool
+from rt_drake.errors import ScenarioError
 from rt_drake.model.cup_physics import load_bellows_cup
 from rt_drake.model.held import held_object_of
-from rt_drake.model.scenario import ObjectConfig, Scenario
+from rt_drake.model.scenario import RING, ObjectConfig, Scenario
 from rt_drake.retiming import GraspConstraint, JointLimits, ObjectSetGrasp
 from rt_drake.types.held_object import HeldObject
 from rt_drake.types.object_uncertainty import ObjectUncertainty
@@ -150,7 +151,7 @@ def grasp_for(
     return grasp.with_margin(margin)
 
 
-def ring_tool(scenario: Scenario) -> BellowsTool | None:
+def ring_tool(scenario: Scenario, robust: bool = False) -> BellowsTool | None:
     """The bellows cups whose ring sets each MOVE's margin, or None.
 
     With ``planning.grasp_margin: ring``: the catalogue cup
@@ -158,9 +159,24 @@ def ring_tool(scenario: Scenario) -> BellowsTool | None:
     at the tool frame), whatever ``cup_physics.kind`` the simulation plays:
     the margin is the planner's statement about that cup's modes
     (:func:`rt_drake.retiming.retime_for_ring`). Else None.
+
+    Raises:
+        ScenarioError: ``ring`` with ``robust`` and an object with an
+            uncertainty set (the bound rings one object, not a set).
     """
     if not scenario.planning.ring_margin:
         return None
+    uncertain = [
+        obj.name
+        for obj in scenario.objects
+        if obj.uncertainty is not None and not obj.uncertainty.is_zero()
+    ]
+    if robust and uncertain:
+        raise ScenarioError(
+            f"{scenario.key('planning.grasp_margin')}: '{RING}' bounds the ring "
+            f"of one object, not of the uncertainty set of {', '.join(uncertain)}; "
+            "give a number (python tools/bellows_margin.py SCENARIO --robust)"
+        )
     cup = load_bellows_cup(scenario.cup_physics.cup)
     X_TCs = tuple(
         RigidTransform(RotationMatrix(mount.R_TC), mount.p_TC)

@@ -154,7 +154,7 @@ class OnlineMotions:
         self._ring = None
         if grasp_constraint:
             self._polytope = move_polytope(scenario)
-            self._ring = ring_tool(scenario)
+            self._ring = ring_tool(scenario, robust)
         self._robust = robust
         # One cup with a friction or suction range: its worst-case rows, once.
         self._worst_cup = None
