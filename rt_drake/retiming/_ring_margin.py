@@ -23,8 +23,10 @@ at m gives ``r_ring(m)``; held (``<= 1``) makes m an upper end of the
 bracket, not held a lower end, and a margin the retimer refuses (gravity
 alone, or the path, outside the shrunk set) an upper end too. The next m is
 ``1 - (1 - m) / r_ring`` (shrink the set by the overshoot: with a row active,
-the fixed point ``m = 1 - 1 / D(m)``) when it falls inside the bracket, else
-the bracket's midpoint; the upper end starts at the largest m gravity allows
+the fixed point ``m = 1 - 1 / D(m)``), moved to at least ``tolerance`` from
+m (so that a step from below that falls just short of the edge does not
+creep up on it), when it falls inside the bracket, else the bracket's
+midpoint; the upper end starts at the largest m gravity allows
 along the path's grid (``1 - max_s max_rows F w_rest(s) / g``), so no retime
 is spent above it. It stops when a held m lies within ``tolerance`` of a
 lower end, after at most ``max_retimes`` retimes, deterministically. It
@@ -207,7 +209,11 @@ def retime_for_ring(
             lo = m
         if best is not None and hi - lo <= tolerance:
             break
-        proposal = 1.0 - (1.0 - m) / load.ring
+        proposal = 1.0 - (1.0 - m) / load.ring  # at least a tolerance away
+        if load.ring > 1.0:
+            proposal = max(proposal, m + tolerance)
+        else:
+            proposal = min(proposal, m - tolerance)
         m = proposal if lo < proposal < hi else 0.5 * (lo + hi)
     if best is None:
         rows = ", ".join(
