@@ -72,7 +72,6 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
         tool_wrench_polytope,
     )
     from rt_drake.contact.worst_cup import worst_cup_polytope
-    from rt_drake.dynamics.bellows_modes import BellowsTool
     from rt_drake.dynamics.cup_frame import CupFrame
     from rt_drake.dynamics.wrench import object_wrench
     from rt_drake.errors import InputError, RtDrakeError, ScenarioError, TooLargeError
@@ -106,7 +105,6 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
         path_waypoints_and_knots,
         protective_stop,
         retime,
-        retime_for_ring,
         sample_trajectory,
         save_trajectory,
         stop_table,
@@ -139,7 +137,6 @@ _LAZY: dict[str, str] = {
     "is_realizable": "rt_drake.contact",
     "is_realizable_lp": "rt_drake.contact",
     "worst_cup_polytope": "rt_drake.contact",
-    "BellowsTool": "rt_drake.dynamics.bellows_modes",
     "CupFrame": "rt_drake.dynamics.cup_frame",
     "HeldObject": "rt_drake.types.held_object",
     "held_object_of": "rt_drake.model.held",
@@ -177,7 +174,6 @@ _LAZY: dict[str, str] = {
     "load_trajectory": "rt_drake.retiming",
     "path_waypoints_and_knots": "rt_drake.types.path",
     "retime": "rt_drake.retiming",
-    "retime_for_ring": "rt_drake.retiming",
     "sample_trajectory": "rt_drake.retiming",
     "save_trajectory": "rt_drake.retiming",
     "Scenario": "rt_drake.model.scenario",
@@ -191,7 +187,6 @@ _LAZY: dict[str, str] = {
 
 __all__ = [
     "__version__",
-    "BellowsTool",
     "CupFrame",
     "CupMount",
     "CupParameters",
@@ -246,7 +241,6 @@ __all__ = [
     "protective_stop",
     "stop_table",
     "retime",
-    "retime_for_ring",
     "run_cycle",
     "sample_trajectory",
     "save_trajectory",

@@ -50,6 +50,7 @@ from pydrake.multibody.plant import MultibodyPlant
 from pydrake.systems.framework import Context
 from pydrake.trajectories import Trajectory
 
+from rt_drake import arguments
 from rt_drake.dynamics.bellows_modes import BellowsTool
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.dynamics.wrench import object_wrench, path_wrench_coefficients
@@ -136,6 +137,7 @@ def ring_load(
     :meth:`BellowsTool.carried`. Rows: ``grasp.F``, ``grasp.g`` as given
     (pass the unshrunk set).
     """
+    _check(plant, grasp, tool, "ring_load")
     start, end = trajectory.start_time(), trajectory.end_time()
     n = max(int(np.ceil((end - start) / STEP_S)), 1)
     t = np.linspace(start, end, n + 1)
@@ -172,6 +174,7 @@ def retime_for_ring(
             ring), or :class:`RingNotHeldError`: the ring exceeds the set at
             every margin tried, up to the largest gravity allows at rest.
     """
+    _check(plant, grasp, tool, "retime_for_ring")
     if grasp.is_robust:
         raise RetimeInputError(
             "retime_for_ring: the ring of a set of objects is not bounded (one "
@@ -266,6 +269,17 @@ def _states(
     v = np.array([np.ravel(trajectory.EvalDerivative(x, 1)) for x in t])
     a = np.array([np.ravel(trajectory.EvalDerivative(x, 2)) for x in t])
     return q, v, a
+
+
+def _check(plant: object, grasp: object, tool: object, where: str) -> None:
+    """The types of ``plant``, ``grasp`` and ``tool`` (RetimeInputError, named)."""
+    arguments.instance(
+        plant, "plant", MultibodyPlant, where=where, error=RetimeInputError
+    )
+    arguments.instance(
+        grasp, "grasp", GraspConstraint, where=where, error=RetimeInputError
+    )
+    arguments.instance(tool, "tool", BellowsTool, where=where, error=RetimeInputError)
 
 
 def _rows(grasp: GraspConstraint, w: np.ndarray) -> np.ndarray:
