@@ -272,6 +272,11 @@ CASES = [
      lambda e: export_trajectory(e.result.trajectory, "m.mcap", period=0.008,
                                  joint_names=["a"] * 6),
      ["export_trajectory: joint_names", "'a' is given twice"]),
+    ("retime_for_ring", lambda e: retiming.retime_for_ring(
+        lambda g: None, PATH, CUP, None, e.plant),
+     ["retime_for_ring: grasp must be a GraspConstraint", "got CupParameters"]),
+    ("ring_load", lambda e: retiming.ring_load(e.plant, None, CUP, None),
+     ["ring_load: grasp must be a GraspConstraint", "got CupParameters"]),
     ("retime", lambda e: retime(None, PATH, e.limits),
      ["retime: plant must be a MultibodyPlant", "got None"]),
     ("retime", lambda e: retime(e.plant, PATH, None),
@@ -415,6 +420,8 @@ NOT_CALLED = {
     "OptimizedMove",
     "PlannedPath",
     "RetimeResult",
+    "RingLoad",  # built by ring_load
+    "RingRetime",  # built by retime_for_ring
     "SavedTrajectory",
     "StopResult",  # built by protective_stop and joint_brake_stop
     "StopTable",  # built by stop_table

@@ -22,7 +22,7 @@ time"), at most ``1 + 0.217`` for ``x >= 1`` (at ``pi x = 4.493``, where
 that ``planning.grasp_margin``.
 
 T_n is the longest period of the modes of the held object on the tool's
-bellows (:mod:`rt_drake.simulation._bellows_modes`): the eigenvalues of the
+bellows (:mod:`rt_drake.dynamics.bellows_modes`): the eigenvalues of the
 tool's 6 x 6 stiffness, every cup's bushing in parallel at its pose X_TC
 (two cups 2 d apart stiffen torsion by ``2 k_lateral d^2`` and tilt across
 the pair by ``2 k_axial d^2``), against the spatial inertia of the object
@@ -43,13 +43,13 @@ import argparse
 import numpy as np
 from pydrake.math import RigidTransform, RotationMatrix
 
+from rt_drake.dynamics.bellows_modes import held_inertia, mode_periods, tool_stiffness
 from rt_drake.model.cup_physics import DEFAULT_BELLOWS_CUP, load_bellows_cup
 from rt_drake.model.held import held_object_of
 from rt_drake.model.plant import make_arm_plant, robot_position_indices
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.model.scenario import load_scenario
 from rt_drake.retiming import JointLimits
-from rt_drake.simulation import held_inertia, mode_periods, tool_stiffness
 from rt_drake.uncertainty.object_samples import ObjectInertia, corners
 
 

@@ -8,7 +8,7 @@ held object's inertia and weight, in the tool frame T, the wrench the grasp
 rows see) inside ``F w <= (1 - m) g``. On bellows cups the object rings: the
 cups carry ``K d(t)``, the tool's stiffness times the held body's deflection,
 driven by ``w(t)`` through the tool's modes
-(:func:`rt_drake.simulation.bellows_wrench`: each mode a damped oscillator
+(:func:`rt_drake.dynamics.bellows_modes.bellows_wrench`: each mode a damped oscillator
 with the natural frequency and damping ratio the cup catalogue states, as
 ``planning.grasp_ramp_s`` does; integrated exactly for a load linear between
 samples, from rest in equilibrium; held at the MOVE's last load for
@@ -58,19 +58,19 @@ from pydrake.math import RigidTransform, RotationMatrix
 
 from rt_drake.contact import LoadSharing, stiffness_shared_set
 from rt_drake.contact.load_sharing import SharedLoadSet
-from rt_drake.dynamics.wrench import object_wrench
-from rt_drake.experiments._transport_experiment import transport_inputs
-from rt_drake.model.cup_physics import load_bellows_cup
-from rt_drake.model.resources import resolve_scenario_path
-from rt_drake.planning import sample_transports
-from rt_drake.retiming import RetimeError
-from rt_drake.simulation import (
+from rt_drake.dynamics.bellows_modes import (
     bellows_wrench,
     held_inertia,
     modal_damping_ratios,
     tool_damping,
     tool_stiffness,
 )
+from rt_drake.dynamics.wrench import object_wrench
+from rt_drake.experiments._transport_experiment import transport_inputs
+from rt_drake.model.cup_physics import load_bellows_cup
+from rt_drake.model.resources import resolve_scenario_path
+from rt_drake.planning import sample_transports
+from rt_drake.retiming import RetimeError
 from rt_drake.simulation.move_grasp import held_object
 from rt_drake.uncertainty.object_samples import ObjectInertia, perturbed
 

@@ -70,9 +70,15 @@ def main() -> None:
     pairs = sample_transports(scenario, max(args.trials) + 1, args.seed)
     jerk = bool(scenario.robot.jerk_limits) and not args.no_jerk_limits
     for i in args.trials:
+        cpu = time.process_time()
         try:
             trial = trial_move(scenario, name, *pairs[i], args.seed, i, jerk)
             move = trial.move
+            print(
+                f"trial {i} planned: grasp margin {move.grasp_margin:.3f}, planning "
+                f"and retiming {time.process_time() - cpu:.1f} s CPU; {move.guarantee}",
+                flush=True,
+            )
             free = trial.motions.retime_path(move.planned.path, grasp=None)
         except Exception as error:  # noqa: BLE001 (a study: report and go on)
             message = " ".join(str(error).split())[:150]

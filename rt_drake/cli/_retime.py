@@ -195,7 +195,9 @@ def run(args: argparse.Namespace) -> int:
         save_trajectory,
     )
     from rt_drake.model.plant import make_arm_plant
+    from rt_drake.retiming import RetimeResult, retime_for_ring
     from rt_drake.retiming.grid import MAX_GRIDPOINTS
+    from rt_drake.simulation.move_grasp import ring_tool
 
     if not 2 <= args.gridpoints <= MAX_GRIDPOINTS:
         raise InputError(
@@ -224,11 +226,25 @@ def run(args: argparse.Namespace) -> int:
             grasp = GraspConstraint.for_tool(
                 held, cup_model, load_sharing=scenario.tool.load_sharing
             )
-    if grasp is not None:
-        grasp = grasp.with_margin(scenario.planning.grasp_margin)
     limits = JointLimits.from_plant(plant, scenario.robot, jerk=not args.no_jerk_limits)
     cup = CupFrame.of(plant, scenario.robot.cup_frame)
-    result = retime(plant, waypoints, limits, grasp, args.gridpoints, cup=cup)
+    ring = None if grasp is None else ring_tool(scenario, uncertain)
+    ring_words = ""
+    if grasp is not None and ring is not None:  # planning.grasp_margin: ring
+
+        def retime_with(shrunk: GraspConstraint) -> RetimeResult:
+            return retime(plant, waypoints, limits, shrunk, args.gridpoints, cup=cup)
+
+        found = retime_for_ring(retime_with, waypoints, grasp, ring, plant, cup=cup)
+        result, grasp = found.result, found.grasp
+        ring_words = (
+            f", grasp margin {found.margin:.3f} for the bellows' ring (D "
+            f"{found.load.factor:.2f}, {found.retimes} retimes)"
+        )
+    else:
+        if grasp is not None:
+            grasp = grasp.with_margin(scenario.planning.fixed_margin)
+        result = retime(plant, waypoints, limits, grasp, args.gridpoints, cup=cup)
     saved = sample_trajectory(
         plant, result, held, grasp, cup_model, obj.name, waypoints, knots,
         cup_frame=cup.frame,
@@ -245,6 +261,7 @@ def run(args: argparse.Namespace) -> int:
         )
     if limits.jerk is not None:
         constraint += ", jerk limits"
+    constraint += ring_words
     # A binding constraint is at 0 to the LP's tolerance (about -1e-12): no "-0.000".
     margin = round(float(result.margin.min()), 3) + 0.0
     print(

@@ -47,6 +47,7 @@ from rt_drake.model.scenario_checks import (
 from rt_drake.model.scenario_sections import (
     AUTO,
     MOVE_EVALUATIONS,
+    RING,
     ObjectConfig,
     PlanningConfig,
     RandomTransport,
@@ -219,6 +220,7 @@ __all__ = [
     "MAX_DEPTH",
     "MAX_SCENARIO_BYTES",
     "MOVE_EVALUATIONS",
+    "RING",
     "ObjectConfig",
     "PlanningConfig",
     "RandomTransport",

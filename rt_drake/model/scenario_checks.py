@@ -22,6 +22,7 @@ from rt_drake.model.object_model import model_file, read_model_inertia
 from rt_drake.model.scenario_sections import (
     AUTO,
     MOVE_EVALUATIONS,
+    RING,
     ObjectConfig,
     PlanningConfig,
     RandomTransport,
@@ -166,7 +167,7 @@ def _check_grip(
 def check_planning(path: Path, planning: PlanningConfig) -> None:
     """``max_tilt_deg`` in [0, 90), ``max_evaluations`` >= 1, no ``budget_s``.
 
-    And the approach keys, ``grasp_margin`` in [0, 0.9] and
+    And the approach keys, ``grasp_margin`` in [0, 0.9] or ``ring``, and
     ``grasp_ramp_s`` None or in (0, :data:`MAX_GRASP_RAMP_S`].
     """
     if not 0 <= planning.max_tilt_deg < 90:
@@ -191,10 +192,15 @@ def check_planning(path: Path, planning: PlanningConfig) -> None:
             f"{path}: key 'planning.approach_clearance': must be in "
             f"(0, {MAX_APPROACH_CLEARANCE}] m, got {planning.approach_clearance}"
         )
-    if not 0.0 <= planning.grasp_margin <= 0.9:
+    margin = planning.grasp_margin
+    if (
+        isinstance(margin, str)
+        and margin != RING
+        or not (isinstance(margin, str) or 0.0 <= margin <= 0.9)
+    ):
         raise ScenarioError(
             f"{path}: key 'planning.grasp_margin': must be in [0, 0.9] (a share "
-            f"of g), got {planning.grasp_margin}"
+            f"of g) or '{RING}', got {margin!r}"
         )
     ramp = planning.grasp_ramp_s
     if ramp is not None and not 0.0 < ramp <= MAX_GRASP_RAMP_S:

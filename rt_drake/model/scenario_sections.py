@@ -26,6 +26,10 @@ from rt_drake.types.object_uncertainty import ObjectUncertainty
 #: The word of ``approach_offset`` for lines from the cell's geometry.
 AUTO = "auto"
 
+#: The word of ``planning.grasp_margin`` for a margin chosen per MOVE from
+#: the bellows cup's ring (:func:`rt_drake.retiming.retime_for_ring`).
+RING = "ring"
+
 
 @dataclasses.dataclass
 class RobotConfig:
@@ -153,6 +157,11 @@ class PlanningConfig:
             are retimed under ``F w <= (1 - m) g``, so that a controller's
             interpolation between samples stays in the set (docs: the export
             guide gives the m that covers each interpolation and period).
+            Or ``"ring"``: m chosen per MOVE, the least (within 0.01) for
+            which the linear modes of the bellows cup ``cup_physics.cup``
+            (with the held object) driven by that MOVE's planned wrench keep
+            the wrench they carry in the unshrunk set
+            (:func:`rt_drake.retiming.retime_for_ring`).
         grasp_ramp_s: s, a margin for a compliant cup (None: none). The MOVE
             retimed under the grasp constraint reaches each joint's
             acceleration limit a_j in this time at the earliest: its jerk
@@ -171,8 +180,18 @@ class PlanningConfig:
     budget_s: float | None = None
     approach_offset: float | str = 0.2
     approach_clearance: float = 0.02
-    grasp_margin: float = 0.0
+    grasp_margin: float | str = 0.0
     grasp_ramp_s: float | None = None
+
+    @property
+    def ring_margin(self) -> bool:
+        """Whether ``grasp_margin`` is chosen per MOVE from the bellows' ring."""
+        return self.grasp_margin == RING
+
+    @property
+    def fixed_margin(self) -> float:
+        """``grasp_margin`` as a number; 0 with ``ring`` (its search starts there)."""
+        return 0.0 if isinstance(self.grasp_margin, str) else float(self.grasp_margin)
 
 
 @dataclasses.dataclass
@@ -279,6 +298,7 @@ class ToolConfig:
 
 __all__ = [
     "AUTO",
+    "RING",
     "MOVE_EVALUATIONS",
     "ObjectConfig",
     "PlanningConfig",

@@ -38,7 +38,8 @@ its first guess), ``_stop_table`` (stops computed ahead,
 pass), ``_jerk_smooth`` (the path's smoothness check), ``_jerk_rows``,
 ``_jerk_points`` and ``_jerk_timed_path`` (jerk limits: LPs after TOPP-RA,
 and the motion they give), ``_trajectory_file`` (the ``.npz`` format) and
-``_retime_errors`` (typed errors and statuses).
+``_retime_errors`` (typed errors and statuses), ``_ring_margin`` (a MOVE's
+grasp margin from the bellows cup's ring, :func:`retime_for_ring`).
 """
 
 from rt_drake.retiming._check import check_trajectory
@@ -70,6 +71,13 @@ from rt_drake.retiming._retime_errors import (
     RetimeInputError,
     RetimeStatus,
     TorqueLimitAtRestError,
+)
+from rt_drake.retiming._ring_margin import (
+    RingLoad,
+    RingNotHeldError,
+    RingRetime,
+    retime_for_ring,
+    ring_load,
 )
 from rt_drake.retiming._solve import (
     RetimeResult,
@@ -121,6 +129,9 @@ __all__ = [
     "RetimeInputError",
     "RetimeResult",
     "RetimeStatus",
+    "RingLoad",
+    "RingNotHeldError",
+    "RingRetime",
     "SavedTrajectory",
     "StopNotFoundError",
     "StopResult",
@@ -144,6 +155,8 @@ __all__ = [
     "stop_table",
     "rest_to_rest_jerk",
     "retime",
+    "retime_for_ring",
+    "ring_load",
     "sample_trajectory",
     "save_trajectory",
     "segment_floor",

@@ -16,6 +16,7 @@ class RetimeStatus(enum.Enum):
     TORQUE_LIMIT_AT_REST = "torque limit exceeded at rest"
     NOT_CONTROLLABLE = "path not controllable"
     LIMITS_BETWEEN_GRID_POINTS = "limit exceeded between grid points"
+    RING_NOT_HELD = "bellows ring exceeds the grasp set"
 
 
 class RetimeError(RtDrakeError):

@@ -10,23 +10,14 @@
 - :mod:`.online_motions`: the planner plus retimer as the online motion
   source (``OnlineMotions``).
 - :mod:`._retimer_system`: the retimer as a LeafSystem (``Retimer``).
-- :mod:`._bellows_modes`: the natural periods of an object on a tool of
-  bellows cups (``tool_stiffness``, ``held_inertia``, ``mode_periods``)
-  and their ring under a load (``tool_damping``, ``modal_damping_ratios``,
-  ``bellows_wrench``).
+- :mod:`rt_drake.dynamics.bellows_modes`: the natural periods of an object
+  on a tool of bellows cups and their ring under a load (in dynamics, so
+  that the retimer's ring margin can use them too).
 - :mod:`._cycle_runner`: station + sequencer, simulated to the end
   (``run_cycle``).
 """
 
 from rt_drake.model.vacuum import VacuumTimeout
-from rt_drake.simulation._bellows_modes import (
-    bellows_wrench,
-    held_inertia,
-    modal_damping_ratios,
-    mode_periods,
-    tool_damping,
-    tool_stiffness,
-)
 from rt_drake.simulation._cycle_runner import (
     CycleResult,
     CycleTimeout,
@@ -77,14 +68,8 @@ __all__ = [
     "StationOptions",
     "SuctionCup",
     "VacuumTimeout",
-    "bellows_wrench",
     "build_cycle",
-    "held_inertia",
     "held_object",
-    "modal_damping_ratios",
-    "mode_periods",
     "pose_difference",
     "run_cycle",
-    "tool_damping",
-    "tool_stiffness",
 ]

@@ -138,7 +138,7 @@ def with_release(
     ):
         return move
     full = cached_wrench_polytope(scenario.cup)
-    margin = scenario.planning.grasp_margin
+    margin = move.grasp_margin
 
     def grasp_at(force: float) -> GraspConstraint:
         polytope = with_suction_force(full, force)

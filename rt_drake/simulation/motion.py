@@ -108,6 +108,9 @@ class Motion:
             ``times`` its own, and each is needed only when the arm begins
             it (the module docstring); False: the whole motion is needed
             before it starts.
+        grasp_margin: for a MOVE retimed under a grasp, the share m of the
+            set kept free (``planning.grasp_margin``, or the one its ring
+            needed with ``ring``); 0 for other motions.
     """
 
     trajectory: Trajectory
@@ -120,6 +123,7 @@ class Motion:
     release_s: float = 0.0
     grasp_price_s: float = float("nan")
     staged: bool = False
+    grasp_margin: float = 0.0
 
     def phase_end(self, phase: Phase) -> float:
         """Seconds after the start at which ``phase`` ends (duration if no parts)."""

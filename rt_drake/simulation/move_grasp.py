@@ -5,8 +5,10 @@ What :class:`~rt_drake.simulation.OnlineMotions` (and the campaigns and the
 ``F w <= g`` of a MOVE: the held object's inertia in the cup frame
 (:func:`held_object`), the set W of the cup or tool (:func:`move_polytope`),
 the cup with the suction range a MOVE may rely on (:func:`move_cup`), and
-the joint limits of a grasp-constrained MOVE (:func:`grasp_limits`), and
-the grasp constraint itself, nominal or robust (:func:`grasp_for`). Units:
+the joint limits of a grasp-constrained MOVE (:func:`grasp_limits`), the
+grasp constraint itself, nominal or robust (:func:`grasp_for`), and the
+bellows cups whose ring sets the margin with ``planning.grasp_margin:
+ring`` (:func:`ring_tool`). Units:
 SI; wrenches about the cup (or tool) frame, in it.
 """
 
@@ -16,7 +18,7 @@ import dataclasses
 
 import numpy as np
 from pydrake.common.schema import Transform
-from pydrake.math import RigidTransform
+from pydrake.math import RigidTransform, RotationMatrix
 
 from rt_drake.contact import (
     CupParameters,
@@ -29,8 +31,11 @@ from rt_drake.contact import (
     with_suction_force,
     worst_cup_polytope,
 )
+from rt_drake.dynamics.bellows_modes import BellowsTool
+from rt_drake.errors import ScenarioError
+from rt_drake.model.cup_physics import load_bellows_cup
 from rt_drake.model.held import held_object_of
-from rt_drake.model.scenario import ObjectConfig, Scenario
+from rt_drake.model.scenario import RING, ObjectConfig, Scenario
 from rt_drake.retiming import GraspConstraint, JointLimits, ObjectSetGrasp
 from rt_drake.types.held_object import HeldObject
 from rt_drake.types.object_uncertainty import ObjectUncertainty
@@ -126,11 +131,12 @@ def grasp_for(
     range: :class:`~rt_drake.retiming.ObjectSetGrasp`) when ``robust`` and
     the scenario gives a set or a range; else the nominal object and cup
     (:func:`move_polytope`, or ``polytope`` if computed already). Shrunk by
-    the scenario's ``planning.grasp_margin``. ``worst_cup``: the cup's
+    the scenario's ``planning.grasp_margin`` (not with ``ring``: the MOVE's
+    retime shrinks it, :func:`ring_tool`). ``worst_cup``: the cup's
     worst-case rows ``(F, g)`` (:func:`~rt_drake.contact.worst_cup_polytope`
     of :func:`move_cup`) if computed already.
     """
-    margin = scenario.planning.grasp_margin
+    margin = scenario.planning.fixed_margin
     held = held_object(obj, X_OC)
     uncertainty = obj.uncertainty or ObjectUncertainty()
     uncertain_cup = scenario.tool is None and scenario.cup.is_uncertain()
@@ -145,4 +151,45 @@ def grasp_for(
     return grasp.with_margin(margin)
 
 
-__all__ = ["grasp_for", "grasp_limits", "held_object", "move_cup", "move_polytope"]
+def ring_tool(scenario: Scenario, robust: bool = False) -> BellowsTool | None:
+    """The bellows cups whose ring sets each MOVE's margin, or None.
+
+    With ``planning.grasp_margin: ring``: the catalogue cup
+    ``cup_physics.cup`` at each of the tool's cup poses ``X_TC`` (one cup:
+    at the tool frame), whatever ``cup_physics.kind`` the simulation plays:
+    the margin is the planner's statement about that cup's modes
+    (:func:`rt_drake.retiming.retime_for_ring`). Else None.
+
+    Raises:
+        ScenarioError: ``ring`` with ``robust`` and an object with an
+            uncertainty set (the bound rings one object, not a set).
+    """
+    if not scenario.planning.ring_margin:
+        return None
+    uncertain = [
+        obj.name
+        for obj in scenario.objects
+        if obj.uncertainty is not None and not obj.uncertainty.is_zero()
+    ]
+    if robust and uncertain:
+        raise ScenarioError(
+            f"{scenario.key('planning.grasp_margin')}: '{RING}' bounds the ring "
+            f"of one object, not of the uncertainty set of {', '.join(uncertain)}; "
+            "give a number (python tools/bellows_margin.py SCENARIO --robust)"
+        )
+    cup = load_bellows_cup(scenario.cup_physics.cup)
+    X_TCs = tuple(
+        RigidTransform(RotationMatrix(mount.R_TC), mount.p_TC)
+        for mount in scenario.tool_parameters().cups
+    )
+    return BellowsTool(cup, X_TCs)
+
+
+__all__ = [
+    "grasp_for",
+    "grasp_limits",
+    "held_object",
+    "move_cup",
+    "move_polytope",
+    "ring_tool",
+]

@@ -36,6 +36,12 @@ line is not clean or the scenario limits the torques
 
 Each motion is retimed on the grid it takes
 (:class:`~._motion_retimer.MotionRetimer`, whose docstring says which).
+
+With ``planning.grasp_margin: ring`` a MOVE's margin is its own: the
+(shaped) path is retimed at the margins
+:func:`~rt_drake.retiming.retime_for_ring` tries until the bellows' ring of
+that MOVE's planned wrench stays in the grasp set (the shaping searches
+under the unshrunk set); its retimes count as retiming.
 """
 
 from __future__ import annotations
@@ -62,6 +68,7 @@ from rt_drake.retiming import (
     JointLimits,
     RetimeResult,
     TimeScaled,
+    retime_for_ring,
     warm_up,
 )
 from rt_drake.shaping import (
@@ -80,6 +87,7 @@ from rt_drake.simulation.move_grasp import (
     grasp_limits,
     move_cup,
     move_polytope,
+    ring_tool,
 )
 
 #: The guarantee of a MOVE retimed without the grasp constraint.
@@ -143,8 +151,10 @@ class OnlineMotions:
         # Ruckig bounds velocity, acceleration and jerk, not torques.
         self._split_first = split_first_pick and self._limits.torque is None
         self._polytope = None
+        self._ring = None
         if grasp_constraint:
             self._polytope = move_polytope(scenario)
+            self._ring = ring_tool(scenario, robust)
         self._robust = robust
         # One cup with a friction or suction range: its worst-case rows, once.
         self._worst_cup = None
@@ -348,6 +358,7 @@ class OnlineMotions:
         grasp, acceleration_limited = None, None
         if carrying and self._polytope is not None:
             grasp = self.grasp_for(obj, planned.X_OC)
+        margin, ring = 0.0, ""
         if grasp is not None and self._optimizer is not None:
             # the optimiser's search counts as planning, its final retime as retiming
             optimized = self._optimizer.optimize(self._planner, planned, grasp)
@@ -356,22 +367,32 @@ class OnlineMotions:
             result = acceleration_limited = optimized.retimed
             planned_s += optimized.wall_s - optimized.retime_wall_s
             retime_s = optimized.retime_wall_s
-            if self.jerk_limited:  # the kept path, jerk-limited
+            margin = self._scenario.planning.fixed_margin
+            if self.jerk_limited or self._ring is not None:  # the kept path again
                 planned_s += retime_s
                 start = time.perf_counter()
-                result = self.retime_on_profile(path, grasp, optimized.retimed)
+                profile = optimized.retimed
+                result, grasp, margin, ring = self._retime_move(
+                    path, grasp, lambda g: self.retime_on_profile(path, g, profile)
+                )
                 retime_s = time.perf_counter() - start
         else:
             start = time.perf_counter()
-            result = self.retime_path(planned.path, grasp)
+            if grasp is None:
+                result = self.retime_path(planned.path, None)
+            else:
+                path = planned.path
+                result, grasp, margin, ring = self._retime_move(
+                    path, grasp, lambda g: self.retime_path(path, g)
+                )
             retime_s = time.perf_counter() - start
         price = float("nan")  # cheap only beside the optimiser's own retime
-        if grasp is not None and acceleration_limited is not None:
+        if grasp is not None and acceleration_limited is not None and not ring:
             price = self.grasp_price(planned.path, grasp, acceleration_limited)
         trajectory: Trajectory = result.trajectory
         guarantee = ""
         if carrying:
-            guarantee = NO_GUARANTEE if grasp is None else grasp.guarantee()
+            guarantee = NO_GUARANTEE if grasp is None else grasp.guarantee() + ring
         if carrying and self._speed != 1.0:
             trajectory = TimeScaled(trajectory, self._speed)
             guarantee = f"none: played {self._speed:g}x faster than retimed"
@@ -383,7 +404,33 @@ class OnlineMotions:
             grasp=grasp,
             guarantee=guarantee,
             grasp_price_s=price,
+            grasp_margin=margin,
         )
+
+    def _retime_move(
+        self,
+        path: GeometricPath,
+        grasp: GraspConstraint,
+        retime_with: Callable[[GraspConstraint], RetimeResult],
+    ) -> tuple[RetimeResult, GraspConstraint, float, str]:
+        """``(result, grasp shrunk, m, words)``: a MOVE retimed with its margin.
+
+        The scenario's ``planning.grasp_margin`` (``grasp`` has it already);
+        with ``ring``, the least the bellows' ring needs
+        (:func:`~rt_drake.retiming.retime_for_ring`; ``grasp`` unshrunk) and
+        words for the guarantee.
+        """
+        if self._ring is None:
+            return retime_with(grasp), grasp, self._scenario.planning.fixed_margin, ""
+        found = retime_for_ring(
+            retime_with, path, grasp, self._ring, self._plant, self._context, self._cup
+        )
+        words = (
+            f"; bellows ring held at margin {found.margin:.3f} (ring rows "
+            f"{found.load.ring:.3f}, D {found.load.factor:.2f}, "
+            f"{found.retimes} retimes)"
+        )
+        return found.result, found.grasp, found.margin, words
 
 
 __all__ = ["NO_GUARANTEE", "OnlineMotions", "time_at"]

@@ -216,3 +216,37 @@ def test_jerk_limits_are_the_scenarios_unless_dropped(csv, tmp_path, capsys):
         data = np.load(path)
         step = np.abs(np.diff(data["qdd"], axis=0)) / np.diff(data["t"])[:, None]
         assert bool(np.all(step <= jerk * (1 + 1e-3))) is holds
+
+
+def test_ring_margin_is_found_for_the_waypoints(tmp_path, capsys):
+    """``planning.grasp_margin: ring``: the margin the bellows' ring needs.
+
+    The swing retimed with it is slower than with no margin, and the
+    reported margin is the one the retimer's set was shrunk by.
+    """
+    from rt_drake.model.resources import scenarios_dir
+
+    text = (scenarios_dir() / "random_transport_bellows.yaml").read_text()
+    assert "grasp_margin: 0.18" in text
+    waypoints = tmp_path / "waypoints.csv"
+    np.savetxt(waypoints, WAYPOINTS, delimiter=",")
+    durations = {}
+    for margin in ("0", "ring"):
+        scenario = tmp_path / f"margin_{margin}.yaml"
+        scenario.write_text(
+            text.replace("grasp_margin: 0.18", f"grasp_margin: {margin}")
+        )
+        out = tmp_path / f"{margin}.npz"
+        parser = argparse.ArgumentParser()
+        command.register(parser.add_subparsers(dest="command"))
+        args = parser.parse_args(
+            ["retime", str(scenario), "--waypoints", str(waypoints), "--no-jerk-limits"]
+            + ["--object", "notebook", "--out", str(out)]
+        )
+        assert args.run(args) == 0
+        printed = capsys.readouterr().out
+        durations[margin] = float(np.load(out)["t"][-1])
+    assert "for the bellows' ring" in printed
+    found = float(printed.split("grasp margin ")[1].split()[0])
+    assert 0.0 < found < 0.9
+    assert durations["ring"] > durations["0"]

@@ -15,14 +15,14 @@ import pytest
 from pydrake.math import RigidTransform, RollPitchYaw
 from scipy.integrate import solve_ivp
 
-from rt_drake.errors import InputError
-from rt_drake.model.cup_physics import load_bellows_cup
-from rt_drake.simulation import (
+from rt_drake.dynamics.bellows_modes import (
     bellows_wrench,
     modal_damping_ratios,
     tool_damping,
     tool_stiffness,
 )
+from rt_drake.errors import InputError
+from rt_drake.model.cup_physics import load_bellows_cup
 
 PERIOD_S = 0.3
 OMEGA = 2.0 * np.pi / PERIOD_S

@@ -26,11 +26,11 @@ from pydrake.multibody.tree import (
 )
 from scipy.linalg import eigh
 
+from rt_drake.dynamics.bellows_modes import held_inertia, mode_periods, tool_stiffness
 from rt_drake.model.cup_physics import BellowsCup, load_bellows_cup
 from rt_drake.model.held import held_object_of
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.model.scenario import load_scenario
-from rt_drake.simulation import held_inertia, mode_periods, tool_stiffness
 from rt_drake.types.held_object import HeldObject
 
 #: rad and m, the central difference's step.

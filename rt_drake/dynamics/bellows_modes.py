@@ -44,6 +44,8 @@ zeta^2))`` of its size; a ramp of x periods (undamped) at ``1 + |sin(pi x)
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 from pydrake.math import RigidTransform
 from scipy.linalg import eigh
@@ -196,7 +198,45 @@ def bellows_wrench(
     return (q * omega**2) @ V.T @ M
 
 
+@dataclasses.dataclass(frozen=True, eq=False)
+class BellowsTool:
+    """A tool of identical bellows cups: ``cup`` at each pose ``X_TCs[i]`` in T.
+
+    What the ring of an object held by it needs (module docstring): the
+    stiffness ``K`` and damping ``C`` (6, 6, in T about T's origin) and the
+    held body's inertia ``M`` (:func:`held_inertia`).
+
+    Attributes:
+        cup: The catalogue cup (:func:`rt_drake.model.cup_physics.load_bellows_cup`).
+        X_TCs: Each cup's pose in the tool frame T (at least one).
+        stiffness: ``K``, :func:`tool_stiffness`.
+        damping: ``C``, :func:`tool_damping`.
+    """
+
+    cup: BellowsCup
+    X_TCs: tuple[RigidTransform, ...]
+    stiffness: np.ndarray = dataclasses.field(init=False, repr=False)
+    damping: np.ndarray = dataclasses.field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        poses = list(self.X_TCs)
+        object.__setattr__(self, "stiffness", tool_stiffness(self.cup, poses))
+        object.__setattr__(self, "damping", tool_damping(self.cup, poses))
+
+    def inertia(self, held: HeldObject) -> np.ndarray:
+        """``M`` of ``held`` (its inertia in T) and the lips, :func:`held_inertia`."""
+        return held_inertia(held, self.cup, list(self.X_TCs))
+
+    def carried(self, t: np.ndarray, w: np.ndarray, held: HeldObject) -> np.ndarray:
+        """``K d(t)`` (N, 6, in T) under the load ``w`` on ``held``.
+
+        :func:`bellows_wrench` with this tool's ``K``, ``C`` and ``held``'s ``M``.
+        """
+        return bellows_wrench(t, w, self.stiffness, self.damping, self.inertia(held))
+
+
 __all__ = [
+    "BellowsTool",
     "bellows_wrench",
     "held_inertia",
     "modal_damping_ratios",
