@@ -126,7 +126,7 @@ def test_a_shaped_move_through_its_short_ends_does_not_beat_its_floor(cycle, sce
     vertical ends; that path, retimed by toppra without the grasp, takes
     at least that floor, while the full lines' floor is above it.
     """
-    _, plans, limits, planner = cycle
+    floors, plans, limits, planner = cycle
     obj = scenario.objects[-1]
     _, move = plans[-1]
     plant = make_arm_plant(scenario)
@@ -139,6 +139,6 @@ def test_a_shaped_move_through_its_short_ends_does_not_beat_its_floor(cycle, sce
     )
     assert shaped.improved
     floor = cycle_floors(scenario, seed=0, shaped=True)[-1]
-    full = cycle_floors(scenario, seed=0, shaped=False)[-1]
+    full = floors[-1]  # the fixture's: the full lines (shaped=False)
     assert toppra_duration(shaped.path, limits) >= floor.move_s * (1 - GRID_SLACK)
     assert full.move_s > floor.move_s
