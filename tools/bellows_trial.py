@@ -46,10 +46,11 @@ def main() -> None:
     parser.add_argument("--scale", nargs="*", default=[])
     parser.add_argument("--cup-physics", default="bellows")
     parser.add_argument("--no-jerk-limits", action="store_true")
-    parser.add_argument(
+    only = parser.add_mutually_exclusive_group()
+    only.add_argument(
         "--constrained-only", action="store_true", help="skip the joint-limits MOVE"
     )
-    parser.add_argument(
+    only.add_argument(
         "--free-only",
         action="store_true",
         help="play only the joint-limits MOVE (without the grasp constraint)",
