@@ -49,7 +49,6 @@ import dataclasses
 import numpy as np
 from pydrake.math import RigidTransform
 from scipy.linalg import eigh
-from scipy.signal import lsim
 
 from rt_drake.errors import InputError
 from rt_drake.model.cup_physics import BellowsCup
@@ -187,6 +186,10 @@ def bellows_wrench(
     steps = np.diff(t)
     if steps.min() <= 0.0 or np.ptp(steps) > 1e-9 * steps.mean():
         raise InputError("bellows_wrench: t must be equally spaced and increasing")
+    # Imported here: scipy.signal (with scipy.stats) is about a quarter of
+    # the import time of every process that loads the retimer.
+    from scipy.signal import lsim
+
     omega, zeta, V = modal_damping_ratios(K, C, M)
     loads = w @ V  # (N, modes): v_k^T w
     q = np.empty_like(loads)

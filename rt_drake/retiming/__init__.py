@@ -91,7 +91,7 @@ from rt_drake.retiming._stop import (
 )
 from rt_drake.retiming._stop_table import StopTable, stop_table
 from rt_drake.retiming._time_scaled import TimeScaled
-from rt_drake.retiming._timed_path import TimedPath
+from rt_drake.retiming._timed_path import PathTrajectory, TimedPath
 from rt_drake.retiming._trajectory_file import (
     SavedTrajectory,
     load_trajectory,
@@ -125,6 +125,7 @@ __all__ = [
     "ObjectSetGrasp",
     "PathLike",
     "PathNotControllableError",
+    "PathTrajectory",
     "RetimeError",
     "RetimeInputError",
     "RetimeResult",

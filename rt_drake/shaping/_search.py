@@ -21,7 +21,6 @@ import dataclasses
 from collections.abc import Callable
 
 import numpy as np
-from cmaes import CMA
 
 
 @dataclasses.dataclass(frozen=True)
@@ -72,6 +71,10 @@ def cma_search(
     )
     values, feasible = objective(start)
     mean = start[int(np.argmin(values))]
+    # Imported here: cmaes loads scipy.stats, about a fifth of the import
+    # time of every process that loads the simulation.
+    from cmaes import CMA
+
     optimizer = CMA(mean=mean, sigma=sigma, seed=seed, population_size=population)
     best = [Candidate(start[i], float(values[i])) for i in np.flatnonzero(feasible)]
     best = sorted(best, key=lambda c: c.duration)[:keep]

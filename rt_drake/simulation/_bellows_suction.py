@@ -237,8 +237,13 @@ class BellowsSuction(SuctionCup):
                 sealed[found[0]] = 1.0
         output.SetFromVector(sealed)
 
-    def _levels(self, context: Context) -> np.ndarray:
-        """Each lip's vacuum level (fixed: the valve and a face drawn or held)."""
+    def _levels(
+        self, context: Context, seals: list[tuple[int, Seal] | None] | None = None
+    ) -> np.ndarray:
+        """Each lip's vacuum level (fixed: the valve and a face drawn or held).
+
+        ``seals`` is not needed: the levels follow the lips' seal states.
+        """
         if self._level_index is not None:
             return context.get_discrete_state(self._level_index).CopyToVector()
         valve = self._valve_on(context)

@@ -54,6 +54,7 @@ from pydrake.math import RigidTransform
 from pydrake.multibody.math import SpatialVelocity
 from pydrake.multibody.tree import BodyIndex
 from pydrake.systems.framework import BasicVector, Context, LeafSystem, State
+from pydrake.trajectories import Trajectory
 
 from rt_drake.model.scenario import ObjectConfig
 from rt_drake.model.vacuum import (
@@ -63,6 +64,7 @@ from rt_drake.model.vacuum import (
     time_to_part_present,
     wait_over,
 )
+from rt_drake.retiming import PathTrajectory
 from rt_drake.simulation._command import sampled_command
 from rt_drake.simulation.motion import Motion, MotionSource, PendingMotion
 from rt_drake.simulation.records import (
@@ -97,6 +99,14 @@ class SequencerState:
     X_CO_attached: RigidTransform | None = None
     X_LO_attached: tuple[RigidTransform, ...] | None = None
     records: tuple[ObjectRecord, ...] = ()
+
+    def __deepcopy__(self, memo: dict) -> SequencerState:
+        """The state itself: updates replace it, never mutate it.
+
+        Drake copies the abstract state at every update (125 Hz); a deep copy
+        of the motions' trajectories took about a tenth of a rollout's CPU.
+        """
+        return self
 
 
 class Sequencer(LeafSystem):
@@ -172,6 +182,9 @@ class Sequencer(LeafSystem):
         self._command_period = command_period
         self._held_at_start = bool(held_at_start)
         self._n = len(q_home)
+        self._last_reference: (
+            tuple[Trajectory, float, tuple[np.ndarray, ...]] | None
+        ) = None
         initial = SequencerState(Phase.APPROACH, 0, 0.0, np.array(q_home))
         self._state_index = self.DeclareAbstractState(AbstractValue.Make(initial))
         self._poses_port = self.DeclareAbstractInputPort(
@@ -203,17 +216,39 @@ class Sequencer(LeafSystem):
         return self.sequencer_state(context).phase is Phase.DONE
 
     def _reference(self, context: Context, order: int) -> np.ndarray:
+        """The commanded q (order 0), v (1) or a (2) now; rad, rad/s, rad/s^2."""
         state = self.sequencer_state(context)
         if state.motion is None:
             return state.q_hold if order == 0 else np.zeros(self._n)
         traj = state.motion.trajectory
         t = context.get_time() - state.t_motion_start
+        last = self._last_reference
+        if last is None or last[0] is not traj or last[1] != t:
+            last = (traj, t, self._references(traj, t))
+            self._last_reference = last
+        return last[2][order]
+
+    def _references(
+        self, traj: Trajectory, t: float
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(q, v, a) of ``traj`` at motion time ``t`` (s), held at its ends.
+
+        The three outputs ask at the same instant: one evaluation serves
+        them (a pure function of the trajectory and t, so kept on the
+        system, whatever the context).
+        """
         if self._command_period is not None:
-            return sampled_command(traj, t, self._command_period)[order]
-        if order > 0 and not 0.0 <= t <= traj.end_time():
-            return np.zeros(self._n)
-        t = min(max(t, 0.0), traj.end_time())
-        return (traj.value(t) if order == 0 else traj.EvalDerivative(t, order)).ravel()
+            return sampled_command(traj, t, self._command_period)
+        end = traj.end_time()
+        inside = 0.0 <= t <= end
+        t = min(max(t, 0.0), end)
+        if isinstance(traj, PathTrajectory):  # q, q', q'' in one pass
+            q, v, a = (x.ravel() for x in traj.sample(t, order=2))
+        else:
+            q, v, a = (traj.EvalDerivative(t, k).ravel() for k in (0, 1, 2))
+        if not inside:
+            v, a = np.zeros(self._n), np.zeros(self._n)
+        return q, v, a
 
     def _CalcDesiredState(self, context: Context, output: BasicVector) -> None:
         output.SetFromVector(

@@ -90,19 +90,18 @@ def find_seal(
     X_OC = X_WO.inverse() @ X_WC
     p_OC = X_OC.translation()
     z_C_O = X_OC.rotation().matrix()[:, 2]
-    for axis in range(3):
-        for sign in (1.0, -1.0):
-            n_O = np.zeros(3)
-            n_O[axis] = sign
-            if -z_C_O @ n_O < _SEAL_COS:
-                continue
-            others = [i for i in range(3) if i != axis]
-            if np.any(np.abs(p_OC[others]) > half_extents[others]):
-                return None
-            p_OQ = p_OC.copy()
-            p_OQ[axis] = sign * half_extents[axis]
-            return Seal(gap=float(sign * p_OC[axis] - half_extents[axis]), p_OQ_O=p_OQ)
-    return None
+    # n_O = sign e_axis; -z_C . n_O >= cos 20 deg > cos 45 deg holds for one
+    # face at most: the one along z_C's largest component, facing the cup.
+    axis = int(np.argmax(np.abs(z_C_O)))
+    sign = -1.0 if z_C_O[axis] > 0.0 else 1.0
+    if -sign * z_C_O[axis] < _SEAL_COS:
+        return None
+    a, b = (axis + 1) % 3, (axis + 2) % 3
+    if abs(p_OC[a]) > half_extents[a] or abs(p_OC[b]) > half_extents[b]:
+        return None
+    p_OQ = p_OC.copy()
+    p_OQ[axis] = sign * half_extents[axis]
+    return Seal(gap=float(sign * p_OC[axis] - half_extents[axis]), p_OQ_O=p_OQ)
 
 
 class SuctionCup(LeafSystem):
@@ -212,14 +211,19 @@ class SuctionCup(LeafSystem):
             seals.append(best)
         return seals
 
-    def _levels(self, context: Context) -> np.ndarray:
-        """Each cup's vacuum level lambda_i in [0, 1] (fixed: valve and seal)."""
+    def _levels(
+        self, context: Context, seals: list[tuple[int, Seal] | None] | None = None
+    ) -> np.ndarray:
+        """Each cup's vacuum level lambda_i in [0, 1] (fixed: valve and seal).
+
+        ``seals``: this context's :meth:`_seals`, if already found.
+        """
         if self._level_index is None:
             valve = self._valve_on(context)
             return np.array(
                 [
                     next_level(self._vacuum, 0.0, valve and seal is not None, 0.0)
-                    for seal in self._seals(context)
+                    for seal in (self._seals(context) if seals is None else seals)
                 ]
             )
         return context.get_discrete_state(self._level_index).CopyToVector()
@@ -227,10 +231,9 @@ class SuctionCup(LeafSystem):
     def _held(self, context: Context) -> list[tuple[int, int, Seal, float]]:
         """Cup, target index, seal and force (N) of every cup that pulls."""
         held = []
-        levels = self._levels(context)
-        for k, (cup, seal) in enumerate(
-            zip(self._cups, self._seals(context), strict=True)
-        ):
+        seals = self._seals(context)
+        levels = self._levels(context, seals)
+        for k, (cup, seal) in enumerate(zip(self._cups, seals, strict=True)):
             force = levels[k] * cup.suction_force
             if force > 0.0 and seal is not None:
                 held.append((k, seal[0], seal[1], force))
