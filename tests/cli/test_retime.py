@@ -262,7 +262,7 @@ def test_jerk_torque_limits_and_an_uncertainty_set_together(tmp_path, capsys):
 
     text = (scenarios_dir() / "random_transport_uncertain.yaml").read_text()
     jerk = [394.67, 336.89, 414.18, 419.33, 474.46, 670.21]
-    robot = f"  jerk_limits: {jerk}\n  torque_limits: [150, 50, 27, 30, 30, 20]\n"
+    robot = f"  jerk_limits: {jerk}\n  torque_limits: [150, 37.5, 24.8, 30, 30, 20]\n"
     assert "robot:\n" in text
     waypoints = tmp_path / "lift.csv"
     np.savetxt(waypoints, [HOME, HOME + [0.2, -0.3, -0.3, 0, 0.55, 0.1]], delimiter=",")
@@ -277,7 +277,7 @@ def test_jerk_torque_limits_and_an_uncertainty_set_together(tmp_path, capsys):
         command.register(parser.add_subparsers(dest="command"))
         args = parser.parse_args(
             ["retime", str(scenario), "--waypoints", str(waypoints)]
-            + ["--object", "notebook", "--out", str(out)]
+            + ["--object", "notebook", "--gridpoints", "30", "--out", str(out)]
         )
         assert args.run(args) == 0
         assert "every object of the set" in capsys.readouterr().out
