@@ -68,9 +68,14 @@ def timed_solve(*args, **kwargs):  # noqa: ANN002, ANN003, ANN201
         IN_LPS.append(1e3 * (time.thread_time() - start))
 
 
-def planned_moves(n: int, seed: int) -> list[tuple[object, object]]:
-    """Table I's MOVEs: (path, grasp) of each transport that plans."""
-    scenario = load_scenario(scenarios_dir() / "random_transport_paper.yaml")
+def planned_moves(
+    n: int, seed: int, name: str = "random_transport_paper"
+) -> list[tuple[object, object]]:
+    """Table I's MOVEs: (path, grasp) of each transport that plans.
+
+    ``name``: the shipped scenario whose transports are sampled.
+    """
+    scenario = load_scenario(scenarios_dir() / f"{name}.yaml")
     moves = []
     for index, (X_start, X_goal) in enumerate(sample_transports(scenario, n, seed)):
         one = transport_scenario(scenario, "notebook", X_start, X_goal)

@@ -26,7 +26,10 @@ grasp rows exact at its points (:mod:`._jerk_rows`):
 
 Rows screened into the LPs: grasp rows where TOPP-RA's profile used at
 least :data:`SCREEN` of them (ratio ``F_r w / g_r``), acceleration and
-torque rows at :data:`JOINT_SCREEN` of their limit on TOPP-RA's profile,
+torque rows at :data:`JOINT_SCREEN` of their limit on TOPP-RA's profile
+(with a set of objects: each joint's and sign's worst object, as triples of
+:mod:`._jerk_set`, and at a point over a limit those at
+:data:`JOINT_SCREEN` for the profile's worst object there),
 jerk rows at :data:`JOINT_SCREEN` on an LP's profile (kept once in), every
 row at a dense point where step 3 finds a limit exceeded, and at a jerk
 point where it does, the velocity row and the acceleration rows at
@@ -79,6 +82,7 @@ from rt_drake.retiming._retime_errors import (
     PathNotControllableError,
 )
 from rt_drake.retiming._samples import PathSamples
+from rt_drake.retiming._set_tables import torque_columns
 from rt_drake.retiming.limits import JointLimits
 
 #: Grasp rows with at least this ratio on TOPP-RA's profile enter the LPs.
@@ -196,19 +200,25 @@ def jerk_limited(
     if grasp is not None:
         # Only the active points' rows enter the LPs: screened there alone.
         rows = dense.grasp_screen(x_ref, u_ref, SCREEN, np.flatnonzero(active))[0]
-    pairs = None
+    pairs = torques = None
     if objects is not None:
         assert dense.samples.wrench_set is not None
         pairs = SetPairs(dense.samples.wrench_set, objects.normals, objects.layout)
         worst = pairs.worst(x_ref, u_ref)
         assert worst.ranked is not None
         pairs.add(worst, (worst.ranked[0] >= SCREEN) & active[:, None])
+        torques = _torque_pairs(dense, objects)
+    if torques is not None:
+        worst = torques.worst(x_ref, u_ref)
+        assert worst.ranked is not None
+        torques.add(worst, (worst.ranked[0] >= JOINT_SCREEN) & active[:, None])
     chosen = Selection(
         active=active,
         rows=rows,
         keep=dense.joint_ratios(x_ref, u_ref, limits).at_least(JOINT_SCREEN),
         jerk_active=np.isin(points.k, FIRST_JERK),
         pairs=pairs,
+        torque_pairs=torques,
     )
     x_bar = np.maximum(np.interp(s, s_topp, x_topp), 0.0)
     x_dense = np.interp(dense.s, s, x_bar)
@@ -258,7 +268,12 @@ def jerk_limited(
         if pairs is not None:  # the set's worst object at every dense point
             set_worst = pairs.worst(x_z, u_z)
             grasp_max = set_worst.ratio
-        ratios = dense.ratios(z, limits, grasp_max)
+        torque_worst = None
+        if torques is not None:  # every joint's worst object at every dense point
+            torque_worst = torques.worst(x_z, u_z)
+        ratios = dense.ratios(
+            z, limits, grasp_max, None if torque_worst is None else torque_worst.ratio
+        )
         excess = largest_excess(ratios)
         jerk_excess = _point_excess(problem, z, jerk_ratio)
         over, jerk_over = excess > tolerance, jerk_excess > tolerance
@@ -279,6 +294,12 @@ def jerk_limited(
         if pairs is not None and set_worst is not None:
             assert set_worst.ranked is not None
             pairs.add(set_worst, set_worst.ranked[0] - 1.0 > tolerance)
+        if torques is not None and torque_worst is not None:
+            # Where a limit was exceeded: the joints near theirs, each its
+            # worst object (as one object's every torque row there).
+            assert torque_worst.ranked is not None
+            near = torque_worst.ranked[0] >= JOINT_SCREEN
+            torques.add(torque_worst, near & over[:, None])
         chosen.fixed = None
         best = None  # the rows changed: the old optimum may break them
     _refuse(problem, excess, jerk_excess)
@@ -295,6 +316,21 @@ def jerk_limited(
         rounds=rounds,
         grasp_rows=_grasp_rows(chosen),
     )
+
+
+def _torque_pairs(dense: DensePoints, objects: SetGrasp) -> SetPairs | None:
+    """The torque triples of a set of objects (None without torque limits).
+
+    The set's torque columns at the dense points with the arm's torque on
+    every box's centre (:func:`._set_tables.torque_columns`); every row
+    (joint and sign) ranked at each point.
+    """
+    smp = dense.samples
+    if objects.torque is None:
+        return None
+    assert smp.torque is not None and smp.torque_set is not None
+    table = torque_columns(smp.torque, smp.torque_set, objects.layout)
+    return SetPairs(table, objects.torque, objects.layout, objects.torque.shape[1])
 
 
 def _point_excess(problem: Problem, z: np.ndarray, jerk: np.ndarray) -> np.ndarray:

@@ -142,14 +142,29 @@ class DensePoints:
         )
 
     def joint_ratios(self, x: np.ndarray, u: np.ndarray, limits: JointLimits) -> Keep:
-        """Acceleration and torque ratios per joint at (x, u), (P, n) each."""
+        """Acceleration and torque ratios per joint at (x, u), (P, n) each.
+
+        No torque ratios with a set of objects (its torques are pairs,
+        :mod:`._jerk_set`).
+        """
         smp = self.samples
         acc = np.abs(smp.dq * u[:, None] + smp.ddq * x[:, None]) / limits.acceleration
         torque = None
-        if smp.torque is not None and limits.torque is not None:
+        if self.one_torque and limits.torque is not None:
+            assert smp.torque is not None
             a, b, c = smp.torque
             torque = np.abs(a * u[:, None] + b * x[:, None] + c) / limits.torque
         return Keep(acc, torque, np.zeros(len(x), dtype=bool))
+
+    @property
+    def one_torque(self) -> bool:
+        """Torque coefficients of the whole robot: the arm and (one) object.
+
+        False with a set of objects: ``samples.torque`` is then the arm's
+        alone, the object's share in ``samples.torque_set``.
+        """
+        smp = self.samples
+        return smp.torque is not None and smp.torque_set is None
 
     def grasp_screen(
         self,
@@ -185,12 +200,18 @@ class DensePoints:
         return over, largest
 
     def ratios(
-        self, z: np.ndarray, limits: JointLimits, grasp: np.ndarray | None = None
+        self,
+        z: np.ndarray,
+        limits: JointLimits,
+        grasp: np.ndarray | None = None,
+        torque: np.ndarray | None = None,
     ) -> dict[Margin, np.ndarray]:
         """Each limit's largest ratio ``value / limit`` at every point, (P,).
 
         ``grasp``: (P,) the grasp's largest ratio at z, if already known (a
         set of objects: its worst object's); else the grasp rows' (if any).
+        ``torque``: (P,) with a set of objects, its worst object's largest
+        torque ratio at z; else the one object's torques (if limited).
         """
         x, u = self.maps.X @ z, self.maps.U @ z
         smp = self.samples
@@ -205,10 +226,13 @@ class DensePoints:
                 axis=1,
             ),
         }
-        if smp.torque is not None and limits.torque is not None:
+        if self.one_torque and limits.torque is not None:
+            assert smp.torque is not None
             a, b, c = smp.torque
             tau = a * u[:, None] + b * x[:, None] + c
             out[Margin.TORQUE] = np.max(np.abs(tau) / limits.torque, axis=1)
+        if torque is not None:
+            out[Margin.TORQUE] = torque
         if grasp is None and self.grasp is not None:
             grasp = self.grasp_screen(x, u, np.inf)[1]
         if grasp is not None:

@@ -89,6 +89,8 @@ class Selection:
     jerk_keep: np.ndarray | None = None
     jerk_acceleration: np.ndarray | None = None
     pairs: SetPairs | None = None
+    #: With a set of objects and torque limits: its torque triples.
+    torque_pairs: SetPairs | None = None
     #: The LP rows other than the jerk's (:func:`_fixed_rows`), while the
     #: selection is unchanged; None: to be made.
     fixed: tuple[Block, Block] | None = None
@@ -186,8 +188,8 @@ def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Block], list[
     acceleration = np.where(keep.acceleration[once], limits.acceleration, np.inf)
     for sign, offset in ((1.0, 0), (-1.0, 1)):
         add(Kind.ACCELERATION + offset, sign * dq, sign * ddq, acceleration)
-        if smp.torque is not None and limits.torque is not None:
-            assert keep.torque is not None
+        if dense.one_torque and limits.torque is not None:
+            assert smp.torque is not None and keep.torque is not None
             a, b, c = (v[once] for v in smp.torque)
             bound = np.where(keep.torque[once], limits.torque - sign * c, np.inf)
             add(Kind.TORQUE + offset, sign * a, sign * b, bound)
@@ -195,6 +197,9 @@ def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Block], list[
         blocks.append(block([_grasp_rows_at(dense, once, chosen.rows[once])]))
     if chosen.pairs is not None and len(chosen.pairs):
         blocks.append(block([chosen.pairs.rows(dense.band, once, Kind.GRASP)]))
+    torque_pairs = chosen.torque_pairs
+    if torque_pairs is not None and len(torque_pairs):  # a set's (one key kind)
+        blocks.append(block([torque_pairs.rows(dense.band, once, Kind.TORQUE)]))
     after: list[Block] = []
     added = np.flatnonzero(chosen.jerk_active)
     near = chosen.jerk_acceleration

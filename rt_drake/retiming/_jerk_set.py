@@ -14,6 +14,14 @@ theta_vp a_p`` (and beta, gamma likewise from b, c): exact at its point for
 that vertex. Triples are added where the worst vertex of a row is near or
 over the limit (:class:`SetPairs`), and once in, stay in; the LPs' profile
 is then checked against the whole set at every dense point.
+
+With torque limits the joint torques depend on the object too: ``tau = arm
++ sum_p theta_p (a_p u + b_p x + c_p)`` (the arm's own torque on every box's
+centre column, :func:`._set_tables.torque_columns`), so the rows
+``+-tau_j / tau_max_j <= 1`` are a second set of rows of the same form
+(``normals`` (n, 2n), one per joint and sign): their worst vertex per
+(point, joint, sign) comes from the same closed form, and they enter the
+LPs as (point, row, vertex) triples of another :class:`SetPairs`.
 """
 
 from __future__ import annotations
@@ -36,28 +44,39 @@ class SetGrasp(NamedTuple):
     Attributes:
         normals: (6, R) the rows ``n_r = F_r / g_r`` (``n_r w <= 1``).
         layout: The set's boxes among its parameter columns.
+        torque: With torque limits, (n, 2n) the torque rows' normals
+            ``+-e_j / tau_max_j`` (1/(N m), :func:`._set_tables.torque_normals`);
+            else None.
     """
 
     normals: np.ndarray
     layout: Layout
+    torque: np.ndarray | None = None
 
 
 class SetPairs:
     """The (point, row, vertex) triples of a set of objects in the LPs.
 
     Args:
-        table: The set's wrench columns at the P dense points, a, b, c each
-            (P, C, 6).
-        normals: (6, R) the grasp rows ``n_r`` (``n_r w <= 1``).
+        table: The set's columns at the P dense points, a, b, c each (P, C,
+            D): the wrench's (D = 6) or the joint torques' (D = n).
+        normals: (D, R) the rows ``n_r`` (``n_r w <= 1``).
         layout: The set's boxes among the C columns.
+        ranks: Rows ranked per point by :meth:`worst` (all R: every row's
+            worst vertex).
     """
 
     def __init__(
-        self, table: PathCoefficients, normals: np.ndarray, layout: Layout
+        self,
+        table: PathCoefficients,
+        normals: np.ndarray,
+        layout: Layout,
+        ranks: int = RANKS,
     ) -> None:
         self.table = table
         self.normals = normals
         self.layout = layout
+        self.ranks = ranks
         self._ids: dict[tuple[int, int], int] = {}
         self._triples: set[tuple[int, int, int]] = set()
         self.point = np.zeros(0, dtype=np.int64)
@@ -68,7 +87,7 @@ class SetPairs:
         """The worst (row, vertex) pairs at every dense point, at (x, u) there."""
         index = np.arange(len(x))
         return worst_rows(
-            self.table, index, u, x, self.normals, self.layout, RANKS
+            self.table, index, u, x, self.normals, self.layout, self.ranks
         )  # fmt: skip
 
     def add(self, worst: Worst, chosen: np.ndarray) -> None:

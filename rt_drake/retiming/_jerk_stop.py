@@ -56,8 +56,8 @@ from rt_drake.retiming._retime_errors import (
     PathNotControllableError,
 )
 from rt_drake.retiming._samples import PathSamples, sample_path
-from rt_drake.retiming._set_slack import set_slack
-from rt_drake.retiming._set_tables import parameter_columns
+from rt_drake.retiming._set_slack import set_slack, set_torque_slack
+from rt_drake.retiming._set_tables import parameter_columns, torque_normals
 from rt_drake.retiming._solve import BETWEEN_TOLERANCE, retime
 from rt_drake.retiming._sub_path import stop_grid, sub_path
 from rt_drake.retiming.grid import MIN_STEP
@@ -99,8 +99,8 @@ class JerkStopProblem:
     Attributes:
         plant, spline, limits, grasp, context, cup: As for the retime
             (``limits.jerk`` set; grasp of one object, of a set of objects
-            (without torque limits: every object's rows, :mod:`._jerk_set`,
-            the start widened by :mod:`._set_slack`), or None).
+            (every object's grasp and torque rows, :mod:`._jerk_set`, the
+            start widened by :mod:`._set_slack`), or None).
         t: s, when the stop begins.
         s: ``s_t``; sd: ``s'_t`` (1/s, > 0); sdd: ``s''_t`` (1/s^2).
         own: The motion's grid points (those after ``s_t`` are kept in each
@@ -148,7 +148,14 @@ class JerkStopProblem:
         objects = None
         if layout is not None and F is not None and g is not None:
             g = set_slack(start, sd * sd, sdd, F, g, layout)
-            objects = SetGrasp(normalised_rows(F, g), layout)
+            normals = None
+            if limits.torque is not None:  # every object's torques
+                wider_torque = set_torque_slack(
+                    start, sd * sd, sdd, limits.torque, layout
+                )
+                limits = dataclasses.replace(limits, torque=wider_torque)
+                normals = torque_normals(wider_torque)[1]
+            objects = SetGrasp(normalised_rows(F, g), layout, normals)
 
         def sample(s: np.ndarray) -> PathSamples:
             return sample_path(
@@ -216,7 +223,8 @@ def start_slack(
     joint = np.abs(start.dq[0] * u + start.ddq[0] * x)
     acceleration = np.maximum(limits.acceleration, widen * joint)
     torque = limits.torque
-    if torque is not None and start.torque is not None:
+    # A set of objects' torques (start.torque the arm's alone): set_torque_slack.
+    if torque is not None and start.torque is not None and start.torque_set is None:
         a, b, c = (v[0] for v in start.torque)
         torque = np.maximum(torque, widen * np.abs(a * u + b * x + c))
     if F is not None and g is not None and start.wrench is not None:

@@ -67,6 +67,8 @@ from rt_drake.retiming._set_tables import (
     inside_places,
     pair_stage_rows,
     parameter_columns,
+    torque_columns,
+    torque_normals,
     with_subpoints,
 )
 from rt_drake.retiming.limits import JointLimits, ObjectSetGrasp
@@ -109,9 +111,8 @@ class SetRows:
         self._torque_normals: np.ndarray | None = None
         self._torque_directions: np.ndarray | None = None
         if limits.torque is not None:
-            n = len(limits.torque)
-            self._torque_directions = np.vstack([np.eye(n), -np.eye(n)])
-            self._torque_normals = self._torque_directions.T / np.tile(limits.torque, 2)
+            directions, normals = torque_normals(limits.torque)
+            self._torque_directions, self._torque_normals = directions, normals
 
     def add(self, samples: PathSamples) -> None:
         """The worst object of the set held, and its torques, at rest."""
@@ -295,6 +296,11 @@ class SetRows:
         return set_vertex(self._vertex_weights(vertex) @ self.columns)
 
     @property
+    def torque_normals(self) -> np.ndarray | None:
+        """(n, 2n) the torque rows' normals ``+-e_j / tau_max_j`` (None: no limits)."""
+        return self._torque_normals
+
+    @property
     def row_count(self) -> int:
         """(row, vertex) pairs the LPs used."""
         return len(self._grasp) + len(self._torque)
@@ -344,13 +350,7 @@ class SetRows:
     ) -> PathCoefficients:
         """The torque columns with the arm's torque on every box's centre."""
         assert arm is not None and own is not None
-        centres = self.layout.columns[:, 3]
-        out = []
-        for part, mine in zip(arm, own, strict=True):
-            table = np.array(mine, dtype=float)
-            table[:, centres, :] += part[:, None, :]
-            out.append(table)
-        return PathCoefficients(*out)
+        return torque_columns(arm, own, self.layout)
 
 
 __all__ = ["SCREEN", "SetRows"]

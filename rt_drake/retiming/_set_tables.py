@@ -47,6 +47,38 @@ def parameter_columns(objects: ObjectSet) -> tuple[np.ndarray, Layout]:
     return np.array(columns), Layout(np.array(layout, dtype=np.int64), masses)
 
 
+def torque_normals(torque: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The torque limits as rows of a set: directions (2n, n) and normals (n, 2n).
+
+    Row ``r < n`` is ``+tau_r``, row ``n + j`` is ``-tau_j``: the rows
+    ``d_r . tau <= tau_max_j``, or ``n_r . tau <= 1`` with the normals
+    ``n_r = d_r / tau_max_j`` (``tau_max``: (n,) N m, > 0).
+    """
+    n = len(torque)
+    directions = np.vstack([np.eye(n), -np.eye(n)])
+    return directions, directions.T / np.tile(torque, 2)
+
+
+def torque_columns(
+    arm: PathCoefficients, own: PathCoefficients, layout: Layout
+) -> PathCoefficients:
+    """The set's torque columns with the arm's torque on every box's centre.
+
+    ``tau(pi) = arm + sum_p theta_p own_p`` (joint torques, N m, each
+    coefficient of ``u``, ``x`` and 1): a vertex's weights sum its box's
+    centre column once, so adding the arm's torque (each (G, n)) to every
+    centre column (``own`` each (G, P, n)) gives the whole torque as the
+    vertex's combination of columns.
+    """
+    centres = layout.columns[:, 3]
+    out = []
+    for part, mine in zip(arm, own, strict=True):
+        table = np.array(mine, dtype=float)
+        table[:, centres, :] += part[:, None, :]
+        out.append(table)
+    return PathCoefficients(*out)
+
+
 class Tables(NamedTuple):
     """The set's columns' coefficients on one grid, each (G + K N, P, D).
 
@@ -155,5 +187,7 @@ __all__ = [
     "inside_places",
     "pair_stage_rows",
     "parameter_columns",
+    "torque_columns",
+    "torque_normals",
     "with_subpoints",
 ]

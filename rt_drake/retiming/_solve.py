@@ -159,8 +159,7 @@ def retime(
         RetimeInputError: malformed path, limits or grid, a path that
             leaves the joint position limits, ``sd_start``, ``sd_end``
             not finite and >= 0, ``start_time`` not finite, an unknown
-            ``engine``, or jerk and torque limits with the grasp of a set of
-            objects.
+            ``engine``.
         GraspUnstableAtRestError: gravity alone breaks the grasp somewhere.
         TorqueLimitAtRestError: holding the arm still exceeds a torque limit.
         PathNotControllableError: no admissible speed reaches the end (with
@@ -176,13 +175,6 @@ def retime(
     if n != plant.num_positions() or n != limits.num_joints:
         raise RetimeInputError(
             f"path has {n} joints but {plant.num_positions()=} and {limits.num_joints=}"
-        )
-    robust_jerk = limits.jerk is not None and grasp is not None and grasp.is_robust
-    if robust_jerk and limits.torque is not None:
-        raise RetimeInputError(
-            "jerk limits with the grasp of a set of objects and torque limits are "
-            "not supported: retime without torque limits or without jerk limits "
-            "(limits.jerk None, --no-jerk-limits)"
         )
     if limits.jerk is not None:
         check_smooth(spline)
@@ -274,7 +266,7 @@ def retime(
             spline, sample, s, profile.x, limits,
             grasp.F if single and grasp is not None else None,
             grasp.g if single and grasp is not None else None,
-            SetGrasp(family.normals, family.layout)
+            SetGrasp(family.normals, family.layout, family.torque_normals)
             if isinstance(family, SetRows) else None,
             sd_start, sd_end, start_time, BETWEEN_TOLERANCE,
         )  # fmt: skip

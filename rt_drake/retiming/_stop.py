@@ -115,8 +115,8 @@ def protective_stop(
         result: The retimed trajectory.
         t: When the stop begins, s, in ``[start_time, end_time]`` of
             ``result.trajectory``.
-        grasp: Its grasp (one held object, or a set of objects: with jerk
-            limits, not with torque limits too); None: no object.
+        grasp: Its grasp (one held object, or a set of objects); None: no
+            object.
         context: Scratch context of ``plant``.
         cup: The cup frame C (default: the plant's ``suction_cup``).
 
@@ -126,8 +126,7 @@ def protective_stop(
 
     Raises:
         RetimeInputError: ``t`` not a finite number inside the trajectory,
-            a malformed argument, or a grasp of a set of objects with
-            jerk and torque limits.
+            or a malformed argument.
         StopNotFoundError: the state at t cannot be brought to rest within
             the path (not for a trajectory this retimer made).
     """
@@ -374,14 +373,6 @@ def _check_objects(
             grasp, "grasp", "GraspConstraint", GRASP_ATTRIBUTES, where="stop",
             error=RetimeInputError,
         )  # fmt: skip
-        jerk = isinstance(limits, JointLimits) and limits.jerk is not None
-        torque = isinstance(limits, JointLimits) and limits.torque is not None
-        if getattr(grasp, "is_robust", False) and jerk and torque:
-            raise RetimeInputError(
-                "stop: jerk limits with the grasp of a set of objects and torque "
-                "limits are not supported (as for retime): stop without torque "
-                "limits or without jerk limits (limits.jerk None)"
-            )
     if context is not None:
         check(context, "context", Context)
     if cup is not None:

@@ -250,3 +250,39 @@ def test_ring_margin_is_found_for_the_waypoints(tmp_path, capsys):
     found = float(printed.split("grasp margin ")[1].split()[0])
     assert 0.0 < found < 0.9
     assert durations["ring"] > durations["0"]
+
+
+def test_jerk_torque_limits_and_an_uncertainty_set_together(tmp_path, capsys):
+    """``random_transport_uncertain`` with jerk limits and ``limit_torques``:
+    retimed (no longer refused), the 1 kHz accelerations changing by at
+    most jerk x 1 ms per step; torque limits tight on joints 2 and 3 (a
+    little above their gravity load) lengthen the motion, so they were
+    applied."""
+    from rt_drake.model.resources import scenarios_dir
+
+    text = (scenarios_dir() / "random_transport_uncertain.yaml").read_text()
+    jerk = [394.67, 336.89, 414.18, 419.33, 474.46, 670.21]
+    robot = f"  jerk_limits: {jerk}\n  torque_limits: [150, 37.5, 24.8, 30, 30, 20]\n"
+    assert "robot:\n" in text
+    waypoints = tmp_path / "lift.csv"
+    np.savetxt(waypoints, [HOME, HOME + [0.2, -0.3, -0.3, 0, 0.55, 0.1]], delimiter=",")
+    durations = {}
+    for torques in ("true", "false"):
+        scenario = tmp_path / f"torques_{torques}.yaml"
+        scenario.write_text(
+            text.replace("robot:\n", f"robot:\n{robot}  limit_torques: {torques}\n", 1)
+        )
+        out = tmp_path / f"{torques}.npz"
+        parser = argparse.ArgumentParser()
+        command.register(parser.add_subparsers(dest="command"))
+        args = parser.parse_args(
+            ["retime", str(scenario), "--waypoints", str(waypoints)]
+            + ["--object", "notebook", "--gridpoints", "30", "--out", str(out)]
+        )
+        assert args.run(args) == 0
+        assert "every object of the set" in capsys.readouterr().out
+        data = np.load(out)
+        step = np.abs(np.diff(data["qdd"], axis=0)) / np.diff(data["t"])[:, None]
+        assert np.all(step <= np.array(jerk) * (1 + 1e-3))
+        durations[torques] = float(data["t"][-1])
+    assert durations["true"] > 1.01 * durations["false"]

@@ -22,7 +22,6 @@ from rt_drake.retiming import (
     GraspConstraint,
     JerkTimedPath,
     JointLimits,
-    RetimeInputError,
     check_trajectory,
     retime,
 )
@@ -96,13 +95,3 @@ def test_a_jerk_limited_robust_plan_holds_every_object_and_the_jerk(
     )
     assert nominal.duration < result.duration
     assert _worst_excess(plant, nominal.trajectory, objects, scenario.cup) > 0.05
-
-
-def test_with_torque_limits_a_set_and_jerk_limits_are_refused(plant, scenario, setup):
-    limits, robust, _ = setup
-    torque = JointLimits.from_plant(plant, scenario.robot, torque=True).torque
-    assert torque is not None
-    with_torque = dataclasses.replace(limits, torque=torque)
-    path = np.array([np.zeros(6), np.full(6, 0.1)]) + scenario.robot.home
-    with pytest.raises(RetimeInputError, match="torque limits are not supported"):
-        retime(plant, path, with_torque, robust)

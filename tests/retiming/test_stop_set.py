@@ -19,7 +19,6 @@ from rt_drake.retiming import (
     GraspConstraint,
     JointLimits,
     Margin,
-    RetimeInputError,
     check_trajectory,
     protective_stop,
     retime,
@@ -89,16 +88,3 @@ def test_a_jerk_limited_stop_under_a_set_holds_every_object(plant, scenario, obj
     heavy = GraspConstraint.for_cup(objects[1], scenario.cup)
     thrown = check_trajectory(plant, own.stop, limits, heavy)
     assert thrown.margins[Margin.GRASP].value < -1e-3
-
-
-def test_a_set_with_jerk_and_torque_limits_is_refused_in_one_line(
-    plant, scenario, objects
-):
-    limits = JointLimits.from_plant(plant, scenario.robot)
-    grasp = GraspConstraint.for_objects(objects, scenario.cup)
-    move = retime(plant, BACK, limits, grasp, gridpoints=20)
-    jerky = dataclasses.replace(
-        limits, jerk=20.0 * limits.acceleration, torque=np.full(6, 100.0)
-    )
-    with pytest.raises(RetimeInputError, match="jerk limits with the grasp of a set"):
-        protective_stop(plant, BACK, jerky, move, 0.5 * move.duration, grasp)
