@@ -107,9 +107,7 @@ class WarmLP:
                 order = np.arange(len(b_ub))
                 z, status = self._load(c, A_ub, order, b_ub, keys, A_eq, b_eq, bounds)
                 continue
-            broken = np.flatnonzero(
-                ~working & (_product(A_ub, z) > b_ub + FEASIBLE * slack)
-            )
+            broken = self._cuts(working, _product(A_ub, z), b_ub, slack, keys)
             if not broken.size:
                 break
             working[broken] = True
@@ -139,6 +137,23 @@ class WarmLP:
         self._keys = keys[order]
         self._start = z
         return z, status
+
+    def _cuts(
+        self,
+        working: np.ndarray,
+        value: np.ndarray,
+        b_ub: np.ndarray,
+        slack: np.ndarray,
+        keys: np.ndarray,
+    ) -> np.ndarray:
+        """The rows that join after a sub-LP: those its optimum breaks.
+
+        ``value``: (R_ub,) ``A_ub z`` at its optimum; a row out of the
+        sub-LP (``~working``) breaks when ``value > b_ub + FEASIBLE *
+        slack`` (``slack = max(1, |b_ub|)``). ``keys`` name the rows (a
+        subclass may add others with them: ``benchmarks/bench_jerk_replay.py``).
+        """
+        return np.flatnonzero(~working & (value > b_ub + FEASIBLE * slack))
 
     def _load(
         self,

@@ -134,3 +134,31 @@ def test_member_is_numpys_isin():
     of = np.concatenate([rng.choice(keys, 40), rng.integers(0, 1 << 60, size=20)])
     np.testing.assert_array_equal(_member(keys, of), np.isin(keys, of))
     assert not _member(keys, of[:0]).any()
+
+
+class _CutsAhead(WarmLP):
+    """WarmLP whose cuts bring, with each broken row, the rows near their bound."""
+
+    ahead = 0  # rows added before they broke
+
+    def _cuts(self, working, value, b_ub, slack, keys):
+        broken = super()._cuts(working, value, b_ub, slack, keys)
+        if broken.size:
+            more = np.flatnonzero(~working & (value > b_ub - 0.5 * slack))
+            self.ahead += len(more) - len(broken)
+            broken = more
+        return broken
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_cuts_other_than_the_broken_rows_reach_the_same_optimum(seed):
+    # The cut hook (benchmarks/bench_jerk_replay.py's variants): more rows
+    # per cut change the path of the sub-LPs, not the LP's optimum.
+    c, A, b, E, e, bounds = _problem(seed)
+    lp = _CutsAhead()
+    for step in range(2):
+        cost = c + 0.3 * step * np.roll(c, step)
+        z = _solve(lp, cost, A, b, E, e, bounds)
+        assert np.all(A @ z <= b + 1e-7)
+        assert cost @ z == pytest.approx(_reference(cost, A, b, E, e, bounds), abs=1e-7)
+    assert lp.ahead > 0  # the LPs took the subclass's cuts
