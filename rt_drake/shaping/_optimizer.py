@@ -27,6 +27,8 @@ anyway (``spline_plan`` in the timings when :func:`optimize_move` plans it).
 
 from __future__ import annotations
 
+import copy
+import dataclasses
 import time
 from collections.abc import Callable
 
@@ -38,6 +40,7 @@ from rt_drake import arguments
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.planning.dense_check import check_path
 from rt_drake.planning.result import PlannedPath
+from rt_drake.planning.scene import PlanningScene
 from rt_drake.retiming import GraspConstraint, JointLimits, RetimeError, RetimeResult
 from rt_drake.shaping._clearance import ClearanceModel
 from rt_drake.shaping._family import (
@@ -114,7 +117,15 @@ class MoveOptimizer:
         self.context = context or plant.CreateDefaultContext()
         self.chain = CupChain(plant, self.cup)
 
-    def retime(self, path: GeometricPath, grasp: GraspConstraint) -> RetimeResult:
+    def with_options(self, options: MoveOptimizerOptions) -> MoveOptimizer:
+        """The same arm's optimiser with other options (kinematics shared)."""
+        other = copy.copy(self)
+        other.options = options
+        return other
+
+    def retime(
+        self, path: GeometricPath, grasp: GraspConstraint | None
+    ) -> RetimeResult:
         """``path`` retimed as the optimiser does (:func:`.retime_adaptive`)."""
         return retime_adaptive(
             self.plant, path, self.limits, grasp, self.options.final_gridpoints,
@@ -141,13 +152,32 @@ class MoveOptimizer:
             RetimeError: the spline path cannot be retimed.
         """
         options = self.options
-        wall, cpu = time.perf_counter(), time.process_time()
-        watch = _Stopwatch(timings)
-        chain = self.chain
+        watch = StageClock(timings)
         with watch("setup"):
             scene = planner.prepare(
                 Phase.MOVE, spline.object, spline.q_start, spline.X_OC
             )
+        return self.shape(
+            ShapeTask(
+                scene, spline, grasp, lambda via: self._family(spline, via),
+                lambda family, path: _certify(self.chain, family, scene, path, options),
+                options.tilt_bound, None, options.starts,
+            ),
+            watch,
+        )  # fmt: skip
+
+    def shape(self, task: ShapeTask, watch: StageClock) -> OptimizedMove:
+        """The search and the finish (stages 1-4) of ``task``, its scene prepared.
+
+        :meth:`optimize` shapes a MOVE so; :func:`._pick_shaping.shape_pick`
+        a pick. ``watch`` holds the stages' times since it was made (the
+        scene's preparation included).
+        """
+        options = self.options
+        wall, cpu = watch.wall, watch.cpu
+        chain, spline, grasp = self.chain, task.spline, task.grasp
+        scene = task.scene
+        with watch("setup"):
             clearance = ClearanceModel(scene, chain)
         with watch("baseline"):
             baseline = self.retime(spline.path, grasp)
@@ -160,9 +190,9 @@ class MoveOptimizer:
 
             def objective_for(via: int) -> Objective:
                 return Objective(
-                    self._family(spline, via), surrogate, clearance, scene.lower,
-                    scene.upper, options.tilt_bound, options.clearance_margin,
-                    spline.path,
+                    task.family(via), surrogate, clearance, scene.lower,
+                    scene.upper, task.tilt_bound, options.clearance_margin,
+                    spline.path, task.span,
                 )  # fmt: skip
 
             try:
@@ -170,49 +200,88 @@ class MoveOptimizer:
             except FamilyError as error:
                 objective, family_error = None, str(error)
         baseline_wall = watch.timings["baseline"]
+        baseline_played = None
+        if task.played is not None:
+            with watch("baseline"):
+                baseline_played = task.played(spline.path, baseline)
+        baseline_wall = watch.timings["baseline"]
 
-        def result(path, retimed, improved, evaluations, rejected, retime_wall):
+        def result(path, retimed, improved, evaluations, rejected, retime_wall, played):
             tilt = float(np.degrees(chain.tilt(path.value(_s())).max()))
             return OptimizedMove(
                 path, retimed, spline, baseline, improved, tilt, evaluations,
                 time.perf_counter() - wall, time.process_time() - cpu, retime_wall,
-                dict(watch.timings), tuple(rejected),
+                dict(watch.timings), tuple(rejected), played, baseline_played,
             )  # fmt: skip
 
         if objective is None:
             return result(
-                spline.path, baseline, False, 0, [family_error], baseline_wall
-            )
+                spline.path, baseline, False, 0, [family_error], baseline_wall,
+                baseline_played,
+            )  # fmt: skip
         with watch("search"):
-            candidates, evaluations = self._search(objective, objective_for, spline)
-        rejected: list[str] = []
+            candidates, evaluations = self._search(
+                objective, objective_for, spline, task.starts
+            )
         # The spline path on the search's grid: what a candidate must beat
         # there to be worth the finish (the grids' errors differ by percents).
         to_beat = surrogate.durations(spline.path.waypoints[None])[0]
-        found = None
         with watch("finish"):
-            for family, candidate in candidates[: options.finish_tries]:
-                if candidate.duration >= to_beat:
-                    break
-                path = GeometricPath.from_waypoints(family.waypoints(candidate.x)[0])
-                reason = _certify(chain, family, scene, path, options)
-                if reason is None:
-                    before_wall = time.perf_counter()
-                    try:
-                        retimed = self.retime(path, grasp)
-                    except RetimeError as error:
-                        reason = f"retime: {error}"
-                    else:
-                        if retimed.duration < baseline.duration:
-                            found = (path, retimed, time.perf_counter() - before_wall)
-                            break
-                        reason = f"retimed {retimed.duration:.3f} s, not shorter"
-                rejected.append(reason)
-        if found is not None:
-            return result(found[0], found[1], True, evaluations, rejected, found[2])
+            found = self._finish(task, candidates, to_beat, baseline, baseline_played)
+        if found.path is not None:
+            return result(
+                found.path, found.retimed, True, evaluations, found.rejected,
+                found.wall_s, found.played,
+            )  # fmt: skip
         return result(
-            spline.path, baseline, False, evaluations, rejected, baseline_wall
-        )
+            spline.path, baseline, False, evaluations, found.rejected, baseline_wall,
+            baseline_played,
+        )  # fmt: skip
+
+    def _finish(
+        self,
+        task: ShapeTask,
+        candidates: list[tuple[PathFamily, Candidate]],
+        to_beat: float,
+        baseline: RetimeResult,
+        baseline_played: RetimeResult | None,
+    ) -> _Found:
+        """Stage 4: the first candidate that passes and beats the baseline.
+
+        With ``task.played``, every one of the ``finish_tries`` candidates
+        that passes is retimed as played, and the fastest that beats the
+        baseline's played retime is kept.
+        """
+        found = _Found()
+        best = baseline if baseline_played is None else baseline_played
+        for family, candidate in candidates[: self.options.finish_tries]:
+            if candidate.duration >= to_beat:
+                break
+            path = GeometricPath.from_waypoints(family.waypoints(candidate.x)[0])
+            reason = task.certify(family, path)
+            if reason is None:
+                before_wall = time.perf_counter()
+                try:
+                    retimed = self.retime(path, task.grasp)
+                    played = (
+                        retimed if task.played is None else task.played(path, retimed)
+                    )
+                except RetimeError as error:
+                    reason = f"retime: {error}"
+                else:
+                    wall_s = time.perf_counter() - before_wall
+                    if played.duration < best.duration:
+                        best = played
+                        found = _Found(
+                            path, retimed, played if task.played else None, wall_s,
+                            found.rejected,
+                        )  # fmt: skip
+                        if task.played is None:
+                            break
+                        continue
+                    reason = f"retimed {played.duration:.3f} s, not shorter"
+            found.rejected.append(reason)
+        return found
 
     def search_grid(self, baseline: RetimeResult) -> int | np.ndarray:
         """The search's grid: its points at equal steps of the spline's time.
@@ -259,10 +328,11 @@ class MoveOptimizer:
         objective: Objective,
         objective_for: Callable[[int], Objective],
         spline: PlannedPath,
+        starts: int,
     ) -> tuple[list[tuple[PathFamily, Candidate]], int]:
-        """CMA-ES from x = 0 and the warm starts; rescue paths if nothing is found."""
+        """CMA-ES from x = 0 and ``starts`` warm starts; rescue paths if none found."""
         options = self.options
-        x0 = start_parameters(objective.family, spline.path, options.starts)
+        x0 = start_parameters(objective.family, spline.path, starts)
         found = cma_search(
             objective, objective.family.dim, options.max_evaluations, options.sigma,
             options.seed, options.population, keep=KEEP, x0=x0,
@@ -331,7 +401,7 @@ def optimize_move(
     return optimizer.optimize(planner, spline, grasp, timings)
 
 
-class _Stopwatch:
+class StageClock:
     """``with watch("stage"):`` adds the block's wall time to timings[stage].
 
     And this process's CPU time to ``timings["cpu_" + stage]``.
@@ -344,18 +414,62 @@ class _Stopwatch:
             self.timings.setdefault(f"cpu_{key}", 0.0)
         self._stage = ""
         self._start = self._cpu = 0.0
+        #: wall and CPU clocks (s) when it was made
+        self.wall, self.cpu = time.perf_counter(), time.process_time()
 
-    def __call__(self, stage: str) -> _Stopwatch:
+    def __call__(self, stage: str) -> StageClock:
         self._stage = stage
         return self
 
-    def __enter__(self) -> _Stopwatch:
+    def __enter__(self) -> StageClock:
         self._start, self._cpu = time.perf_counter(), time.process_time()
         return self
 
     def __exit__(self, *exc) -> None:
         self.timings[self._stage] += time.perf_counter() - self._start
         self.timings[f"cpu_{self._stage}"] += time.process_time() - self._cpu
+
+
+@dataclasses.dataclass(frozen=True)
+class ShapeTask:
+    """What :meth:`MoveOptimizer.shape` shapes, and how a candidate is kept.
+
+    Attributes:
+        scene: The planning scene as the motion sees it.
+        spline: The planner's path (the baseline, same ends).
+        grasp: The held object's grasp constraint, None for a pick.
+        family: The path family through ``via`` free via points.
+        certify: None if a candidate path passes the final checks, else why not.
+        tilt_bound: rad, the search's tilt bound (pi: none).
+        span: The part of ``spline`` (s) whose clearance sets the search's
+            clearance threshold (None: :class:`.Objective`'s default).
+        starts: Warm starts from the library.
+        played: The retime the motion is played with, from the path and
+            its acceleration-limited retime (e.g. under jerk limits), or
+            None: that retime itself. With it, the finish retimes each
+            candidate so and keeps the fastest that beats the baseline's.
+    """
+
+    scene: PlanningScene
+    spline: PlannedPath
+    grasp: GraspConstraint | None
+    family: Callable[[int], PathFamily]
+    certify: Callable[[PathFamily, GeometricPath], str | None]
+    tilt_bound: float
+    span: tuple[float, float] | None
+    starts: int
+    played: Callable[[GeometricPath, RetimeResult], RetimeResult] | None = None
+
+
+@dataclasses.dataclass
+class _Found:
+    """The finish's kept candidate (``path`` None: none), and why others were not."""
+
+    path: GeometricPath | None = None
+    retimed: RetimeResult | None = None
+    played: RetimeResult | None = None
+    wall_s: float = 0.0
+    rejected: list[str] = dataclasses.field(default_factory=list)
 
 
 def _s() -> np.ndarray:
@@ -379,4 +493,4 @@ def _certify(chain, family, scene, path: GeometricPath, options) -> str | None:
     return None
 
 
-__all__ = ["KEEP", "MoveOptimizer", "optimize_move"]
+__all__ = ["KEEP", "MoveOptimizer", "ShapeTask", "StageClock", "optimize_move"]
