@@ -27,8 +27,9 @@ with a ``first_order`` vacuum the suction range then reaches down to
 
 The pick (:meth:`OnlineMotions.pick`) is one motion through the approach
 pose (:mod:`rt_drake.planning._pick`), retimed rest to rest; APPROACH ends
-when it passes the approach pose. With the optimisation on, its transit
-between the retreat and descent lines is shaped by the same optimiser
+when it passes the approach pose. With the optimisation on and the
+scenario's ``planning.shape_picks``, its transit between the retreat and
+descent lines is shaped by the same optimiser
 (:func:`~rt_drake.shaping.shape_pick`, joint limits only); where the
 shaping fails, the blended pick is played and a warning says so, once.
 The cycle's first pick (no retreat: the cup rests on nothing) is staged
@@ -115,8 +116,9 @@ class OnlineMotions:
         robust: hold every object of an object's uncertainty set (and every
             cup of the cup's range) when the scenario gives one; False: the
             nominal object and cup only.
-        optimize: shape each MOVE (it needs the grasp constraint) and each
-            blended pick's transit for speed (None: the scenario's
+        optimize: shape each MOVE (it needs the grasp constraint), and,
+            with the scenario's ``planning.shape_picks``, each blended
+            pick's transit for speed (None: the scenario's
             ``planning.optimize_move``).
         jerk_limits: retime every motion under the scenario's
             ``robot.jerk_limits`` too (when it gives them).
@@ -323,7 +325,9 @@ class OnlineMotions:
                 return then_reach(approach, self._planner, self._retime_reach, obj.name)
             tried_s = time.perf_counter() - start
         self._place_objects_for(obj)
-        shape = None if self._optimizer is None else self._shape_pick
+        shape = None
+        if self._optimizer is not None and self._scenario.planning.shape_picks:
+            shape = self._shape_pick
         return blended_pick(
             self._planner, self._retime_pick, q_start, obj.name, retreat, tried_s, shape
         )

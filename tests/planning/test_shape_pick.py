@@ -4,7 +4,8 @@ The paper's stacking cell's picks (the session's scenario: acceleration
 limits, no jerk limits), planned as the cycle plans them (the first from
 home, the others after a place), each played twice by
 :meth:`rt_drake.simulation.OnlineMotions.pick`: with the optimisation on
-(the transit shaped) and off (the blended pick). References independent of
+(``planning.shape_picks``: the transit shaped) and off (the blended
+pick). References independent of
 the shaping:
 
 - Drake's signed distance (:meth:`PlanningScene.collisions`, the scene's
@@ -23,6 +24,8 @@ the shaping:
 """
 
 from __future__ import annotations
+
+import dataclasses
 
 import numpy as np
 import pytest
@@ -45,8 +48,9 @@ BOUND = 0.99
 
 @pytest.fixture(scope="module")
 def cell(scenario):
-    """The paper's stacking cell (the session's scenario)."""
-    return scenario
+    """The paper's stacking cell (the session's scenario), picks shaped."""
+    planning = dataclasses.replace(scenario.planning, shape_picks=True)
+    return dataclasses.replace(scenario, planning=planning)
 
 
 @pytest.fixture(scope="module")
