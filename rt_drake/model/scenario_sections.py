@@ -174,8 +174,9 @@ class PlanningConfig:
             constraint keep the robot's own jerk limits. In (0, 2] s.
         shape_picks: With ``optimize_move``, also shape each blended pick's
             transit between its retreat and descent lines
-            (:func:`rt_drake.shaping.shape_pick`; default off: on the
-            shipped cells it gains 0-2 % of a pick for 0.2-1 s of CPU,
+            (:func:`rt_drake.shaping.shape_pick`; default off: it gains
+            0-1.8 % of a pick on the paper's cell and none under the
+            shipped cell's jerk limits, for 0.1-0.7 s of CPU per pick,
             which the vacuum-sensor cell's short waits put on the
             critical path, BENCHMARKS.md).
     """
