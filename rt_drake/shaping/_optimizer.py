@@ -28,7 +28,6 @@ anyway (``spline_plan`` in the timings when :func:`optimize_move` plans it).
 from __future__ import annotations
 
 import copy
-import dataclasses
 import time
 from collections.abc import Callable
 
@@ -40,7 +39,6 @@ from rt_drake import arguments
 from rt_drake.dynamics.cup_frame import CupFrame
 from rt_drake.planning.dense_check import check_path
 from rt_drake.planning.result import PlannedPath
-from rt_drake.planning.scene import PlanningScene
 from rt_drake.retiming import GraspConstraint, JointLimits, RetimeError, RetimeResult
 from rt_drake.shaping._clearance import ClearanceModel
 from rt_drake.shaping._family import (
@@ -65,6 +63,7 @@ from rt_drake.shaping._search import (
     Candidate,
     cma_search,
 )
+from rt_drake.shaping._shape_task import Found, ShapeTask, StageClock
 from rt_drake.shaping._starts import start_parameters
 from rt_drake.shaping._surrogate import CoarseRetimer, EndGrid
 from rt_drake.shaping.cup_chain import CupChain
@@ -199,7 +198,6 @@ class MoveOptimizer:
                 objective: Objective | None = objective_for(options.via_points)
             except FamilyError as error:
                 objective, family_error = None, str(error)
-        baseline_wall = watch.timings["baseline"]
         baseline_played = None
         if task.played is not None:
             with watch("baseline"):
@@ -245,14 +243,14 @@ class MoveOptimizer:
         to_beat: float,
         baseline: RetimeResult,
         baseline_played: RetimeResult | None,
-    ) -> _Found:
+    ) -> Found:
         """Stage 4: the first candidate that passes and beats the baseline.
 
         With ``task.played``, every one of the ``finish_tries`` candidates
         that passes is retimed as played, and the fastest that beats the
         baseline's played retime is kept.
         """
-        found = _Found()
+        found = Found()
         best = baseline if baseline_played is None else baseline_played
         for family, candidate in candidates[: self.options.finish_tries]:
             if candidate.duration >= to_beat:
@@ -272,7 +270,7 @@ class MoveOptimizer:
                     wall_s = time.perf_counter() - before_wall
                     if played.duration < best.duration:
                         best = played
-                        found = _Found(
+                        found = Found(
                             path, retimed, played if task.played else None, wall_s,
                             found.rejected,
                         )  # fmt: skip
@@ -401,77 +399,6 @@ def optimize_move(
     return optimizer.optimize(planner, spline, grasp, timings)
 
 
-class StageClock:
-    """``with watch("stage"):`` adds the block's wall time to timings[stage].
-
-    And this process's CPU time to ``timings["cpu_" + stage]``.
-    """
-
-    def __init__(self, timings: dict[str, float] | None) -> None:
-        self.timings = dict(timings or {})
-        for key in ("setup", "baseline", "search", "finish"):
-            self.timings.setdefault(key, 0.0)
-            self.timings.setdefault(f"cpu_{key}", 0.0)
-        self._stage = ""
-        self._start = self._cpu = 0.0
-        #: wall and CPU clocks (s) when it was made
-        self.wall, self.cpu = time.perf_counter(), time.process_time()
-
-    def __call__(self, stage: str) -> StageClock:
-        self._stage = stage
-        return self
-
-    def __enter__(self) -> StageClock:
-        self._start, self._cpu = time.perf_counter(), time.process_time()
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self.timings[self._stage] += time.perf_counter() - self._start
-        self.timings[f"cpu_{self._stage}"] += time.process_time() - self._cpu
-
-
-@dataclasses.dataclass(frozen=True)
-class ShapeTask:
-    """What :meth:`MoveOptimizer.shape` shapes, and how a candidate is kept.
-
-    Attributes:
-        scene: The planning scene as the motion sees it.
-        spline: The planner's path (the baseline, same ends).
-        grasp: The held object's grasp constraint, None for a pick.
-        family: The path family through ``via`` free via points.
-        certify: None if a candidate path passes the final checks, else why not.
-        tilt_bound: rad, the search's tilt bound (pi: none).
-        span: The part of ``spline`` (s) whose clearance sets the search's
-            clearance threshold (None: :class:`.Objective`'s default).
-        starts: Warm starts from the library.
-        played: The retime the motion is played with, from the path and
-            its acceleration-limited retime (e.g. under jerk limits), or
-            None: that retime itself. With it, the finish retimes each
-            candidate so and keeps the fastest that beats the baseline's.
-    """
-
-    scene: PlanningScene
-    spline: PlannedPath
-    grasp: GraspConstraint | None
-    family: Callable[[int], PathFamily]
-    certify: Callable[[PathFamily, GeometricPath], str | None]
-    tilt_bound: float
-    span: tuple[float, float] | None
-    starts: int
-    played: Callable[[GeometricPath, RetimeResult], RetimeResult] | None = None
-
-
-@dataclasses.dataclass
-class _Found:
-    """The finish's kept candidate (``path`` None: none), and why others were not."""
-
-    path: GeometricPath | None = None
-    retimed: RetimeResult | None = None
-    played: RetimeResult | None = None
-    wall_s: float = 0.0
-    rejected: list[str] = dataclasses.field(default_factory=list)
-
-
 def _s() -> np.ndarray:
     return np.linspace(0.0, 1.0, TILT_SAMPLES)
 
@@ -493,4 +420,4 @@ def _certify(chain, family, scene, path: GeometricPath, options) -> str | None:
     return None
 
 
-__all__ = ["KEEP", "MoveOptimizer", "ShapeTask", "StageClock", "optimize_move"]
+__all__ = ["KEEP", "MoveOptimizer", "optimize_move"]

@@ -49,8 +49,9 @@ from rt_drake.planning.dense_check import check_path
 from rt_drake.planning.scene import PlanningScene
 from rt_drake.retiming import RetimeResult
 from rt_drake.shaping._family import PathFamily, corners
-from rt_drake.shaping._optimizer import MoveOptimizer, ShapeTask, StageClock
+from rt_drake.shaping._optimizer import MoveOptimizer
 from rt_drake.shaping._options import MovePlanner, OptimizedMove
+from rt_drake.shaping._shape_task import ShapeTask, StageClock
 from rt_drake.types.path import GeometricPath
 from rt_drake.types.phase import Phase
 
