@@ -54,15 +54,23 @@ def cell(scenario):
 
 
 @pytest.fixture(scope="module")
-def picks(cell):
+def sources(cell):
+    """The motion sources: (blended, shaped)."""
+    return (
+        OnlineMotions(cell, seed=0, jerk_limits=True, optimize=False),
+        OnlineMotions(cell, seed=0, jerk_limits=True),
+    )
+
+
+@pytest.fixture(scope="module")
+def picks(cell, sources):
     """(blended, shaped, object index) per object, each from the same start."""
-    shaped = OnlineMotions(cell, seed=0, jerk_limits=True)
-    blended = OnlineMotions(cell, seed=0, jerk_limits=True, optimize=False)
+    blended, shaped = sources
     q, out = shaped.q_home, []
     for index, obj in enumerate(cell.objects):
         pair = [
             source.pick(q, obj, retreat=index > 0) if index else _blended(source, obj)
-            for source in (blended, shaped)
+            for source in sources
         ]
         out.append((*pair, index))
         q = blended.planner.plan_move(
@@ -159,3 +167,26 @@ def test_the_shaped_pick_is_never_slower_and_faster_where_it_can_be(picks):
     ratios = [shaped.duration / blended.duration for blended, shaped, _ in picks]
     assert max(ratios) <= 1.0
     assert np.median(ratios[1:]) <= BOUND
+
+
+def test_a_failed_shaping_plays_the_blended_pick_and_says_so_once(
+    picks, sources, cell, monkeypatch
+):
+    from rt_drake.errors import RtDrakeError
+    from rt_drake.simulation import online_motions
+
+    def broken(*args, **kwargs):
+        raise RtDrakeError("shaping broken on purpose")
+
+    monkeypatch.setattr(online_motions, "shape_pick", broken)
+    blended, shaped = sources
+    obj = cell.objects[1]
+    q = picks[1][0].planned.q_start
+    with pytest.warns(RuntimeWarning, match="shaping broken on purpose") as said:
+        first = shaped.pick(q, obj, retreat=True)
+        shaped.pick(q, obj, retreat=True)
+    assert len(said) == 1
+    np.testing.assert_array_equal(
+        first.planned.path.waypoints, picks[1][0].planned.path.waypoints
+    )
+    assert first.duration == picks[1][0].duration
