@@ -172,6 +172,13 @@ class PlanningConfig:
             Applied with or without ``robot.jerk_limits`` (it is part of the
             grasp's margin, not a robot limit); motions without the grasp
             constraint keep the robot's own jerk limits. In (0, 2] s.
+        shape_picks: With ``optimize_move``, also shape each blended pick's
+            transit between its retreat and descent lines
+            (:func:`rt_drake.shaping.shape_pick`; default off: it gains
+            0-1.8 % of a pick on the paper's cell and none under the
+            shipped cell's jerk limits, for 0.1-0.7 s of CPU per pick,
+            which the vacuum-sensor cell's short waits put on the
+            critical path, BENCHMARKS.md).
     """
 
     optimize_move: bool = True
@@ -182,6 +189,7 @@ class PlanningConfig:
     approach_clearance: float = 0.02
     grasp_margin: float | str = 0.0
     grasp_ramp_s: float | None = None
+    shape_picks: bool = False
 
     @property
     def ring_margin(self) -> bool:

@@ -14,7 +14,7 @@
 """
 
 from rt_drake.planning._cycle_planner import CyclePlanner
-from rt_drake.planning._pick import PlannedPick
+from rt_drake.planning._pick import LineDeviation, PlannedPick, line_deviation
 from rt_drake.planning._planning_errors import (
     GoalInCollisionError,
     NoPathError,
@@ -31,6 +31,7 @@ __all__ = [
     "CyclePlanner",
     "GeometricPath",
     "GoalInCollisionError",
+    "LineDeviation",
     "NoPathError",
     "PlanTiming",
     "PlannedPath",
@@ -39,5 +40,6 @@ __all__ = [
     "PlanningScene",
     "StartInCollisionError",
     "UnreachablePoseError",
+    "line_deviation",
     "sample_transports",
 ]

@@ -20,6 +20,9 @@ planner's spline path and never returns a slower one. Modules:
   coefficients and clamped splines (numba);
 - :mod:`._clearance`: the search's cheap clearance estimate;
 - :mod:`._finish`: the final retime on an adaptive grid, the vertical check;
+- :mod:`._shape_task`: what one run of the stages shapes, their clock;
+- :mod:`._pick_shaping`: :func:`shape_pick`, the pick's transit between
+  its retreat and descent lines shaped by the same search (no grasp);
 - :mod:`._compile_kernels`: compiles the numba kernels before anything is timed.
 """
 
@@ -41,6 +44,7 @@ from rt_drake.shaping._options import (
     MovePlanner,
     OptimizedMove,
 )
+from rt_drake.shaping._pick_shaping import ShapedPick, shape_pick
 
 __all__ = [
     "ADAPTIVE_WEIGHT",
@@ -50,9 +54,11 @@ __all__ = [
     "MoveOptimizerOptions",
     "MovePlanner",
     "OptimizedMove",
+    "ShapedPick",
     "adaptive_grid",
     "optimize_move",
     "retime_adaptive",
+    "shape_pick",
     "vertical_drift",
     "warm_up",
 ]

@@ -15,6 +15,11 @@ through the waypoints::
   and the point above the place), ``x_k`` (n,) the search's parameters and
   ``D = diag(scale)`` (rad per unit). ``x = 0`` is the planner's path with
   short vertical ends.
+- A pick's path (:meth:`PathFamily.between_lines`) keeps the planner's own
+  lines instead: ``q_grasp, up_1 .. up_m`` are the retreat's IK points
+  from the placed object (none without a retreat), ``down_m .. down_1,
+  q_place`` the descent's from the approach pose to the grasp, and only the
+  transit between them is searched.
 - With ``vertical=True`` each via point is projected onto the configurations
   whose cup axis points down (Gauss-Newton on the horizontal part of ``z_C -
   d``, d the unit gravity direction), for ``max_tilt_deg = 0``.
@@ -33,14 +38,20 @@ class FamilyError(RtDrakeError):
     """A vertical end segment could not be solved (the search keeps the spline)."""
 
 
-def corners(path: GeometricPath, count: int, samples: int = 200) -> np.ndarray:
+def corners(
+    path: GeometricPath,
+    count: int,
+    samples: int = 200,
+    span: tuple[float, float] = (0.0, 1.0),
+) -> np.ndarray:
     """The ``count`` configurations (count, n) where ``path`` turns most.
 
-    Douglas-Peucker in joint space: from the chord q(0) -> q(1), repeatedly
-    add the sample farthest (2-norm, rad) from the polyline so far; returned
-    in path order. A straight path gets evenly spaced samples.
+    Douglas-Peucker in joint space over ``s in span``: from the chord
+    q(s_0) -> q(s_1), repeatedly add the sample farthest (2-norm, rad) from
+    the polyline so far; returned in path order. A straight path gets evenly
+    spaced samples.
     """
-    s = np.linspace(0.0, 1.0, samples)
+    s = np.linspace(*span, samples)
     q = path.value(s)
     chosen = [0, samples - 1]
     for _ in range(count):
@@ -101,6 +112,46 @@ class PathFamily:
         reference = np.asarray(reference, float)
         self.reference = self.project_vertical(reference) if vertical else reference
         self.dim = self.reference.size
+
+    @classmethod
+    def between_lines(
+        cls,
+        chain: CupChain,
+        head: np.ndarray,
+        tail: np.ndarray,
+        reference: np.ndarray,
+        scale: np.ndarray,
+    ) -> PathFamily:
+        """The paths from the line ``head`` to the line ``tail`` (a pick's).
+
+        Args:
+            chain: Batched kinematics of the arm.
+            head: (1 + m, n) the path's first configuration and the IK points
+                of the line it leaves along (the retreat; only the first
+                without one).
+            tail: (m' + 1, n) the IK points of the line it ends along (the
+                descent, from its top to the grasp).
+            reference: (K, n) configurations the via points start from.
+            scale: (n,) rad per unit of x for each joint.
+        """
+        family = cls.__new__(cls)
+        family.chain = chain
+        family.q_grasp = np.asarray(head[0], float)
+        family.q_place = np.asarray(tail[-1], float)
+        family.scale = np.asarray(scale, float)
+        family.vertical = False
+        family.up = np.asarray(head[1:], float)
+        family.down = np.asarray(tail[:-1], float)
+        family.reference = np.asarray(reference, float)
+        family.dim = family.reference.size
+        return family
+
+    @property
+    def tops(self) -> np.ndarray:
+        """(2, n): where the path leaves its first line and joins its last."""
+        first = self.up[-1] if len(self.up) else self.q_grasp
+        last = self.down[0] if len(self.down) else self.q_place
+        return np.array([first, last])
 
     def _vertical_lines(self, height: float, count: int) -> np.ndarray:
         """(2, count, n): the points up from the grasp and up from the place.
@@ -165,8 +216,7 @@ class PathFamily:
 
     def segment_ends(self, knots: np.ndarray) -> tuple[float, float]:
         """The parameters s at the tops of the vertical end segments (from knots)."""
-        m = len(self.up)
-        return float(knots[m]), float(knots[-1 - m])
+        return float(knots[len(self.up)]), float(knots[-1 - len(self.down)])
 
 
 __all__ = ["FamilyError", "PathFamily", "corners"]

@@ -58,6 +58,8 @@ class Objective:
         tilt_bound: Largest cup tilt (rad).
         margin: Clearance (m) to keep (see the module docstring).
         spline: The planner's path, for the clearance threshold.
+        span: The part of ``spline`` (s) whose clearance sets the threshold
+            (None: between its first and last waypoint intervals).
     """
 
     def __init__(
@@ -70,6 +72,7 @@ class Objective:
         tilt_bound: float,
         margin: float,
         spline: GeometricPath,
+        span: tuple[float, float] | None = None,
     ) -> None:
         self.family = family
         self.surrogate = surrogate
@@ -80,9 +83,9 @@ class Objective:
         # Clearances are capped at the cutoff: far above the threshold plus
         # half a body's motion between samples, so that the cap never binds.
         self.cutoff = margin + CUTOFF_EXTRA
-        tops = np.array([family.up[-1], family.down[0]])
-        knots = spline.knots
-        inner = self.s[(self.s > knots[1]) & (self.s < knots[-2])]
+        tops = family.tops
+        s_0, s_1 = (spline.knots[1], spline.knots[-2]) if span is None else span
+        inner = self.s[(self.s > s_0) & (self.s < s_1)]
         along = family.chain.cup_pose(spline.value(inner))
         reference = np.concatenate(
             [
@@ -109,9 +112,9 @@ class Objective:
         beyond = np.maximum(q - self.upper, self.lower - q).max(axis=(1, 2))
         penalty += np.where(beyond > 0.0, 1.0 + 10.0 * beyond, 0.0)
         rejected = ~np.isfinite(durations)
-        ends = len(self.family.up)
+        first, last = len(self.family.up), len(self.family.down)
         knots = chord_knots_batch(W)
-        inner = (self.s > knots[:, ends, None]) & (self.s < knots[:, -1 - ends, None])
+        inner = (self.s > knots[:, first, None]) & (self.s < knots[:, -1 - last, None])
         inner = inner[:, :-1] & inner[:, 1:]  # segments between inner samples
         d = self.clearance.swept(R_WC, p_WC, self.cutoff, floor=self.threshold)
         deficit = self.threshold - np.where(inner, d, np.inf).min(axis=1)

@@ -27,6 +27,7 @@ anyway (``spline_plan`` in the timings when :func:`optimize_move` plans it).
 
 from __future__ import annotations
 
+import copy
 import time
 from collections.abc import Callable
 
@@ -62,6 +63,7 @@ from rt_drake.shaping._search import (
     Candidate,
     cma_search,
 )
+from rt_drake.shaping._shape_task import Found, ShapeTask, StageClock
 from rt_drake.shaping._starts import start_parameters
 from rt_drake.shaping._surrogate import CoarseRetimer, EndGrid
 from rt_drake.shaping.cup_chain import CupChain
@@ -114,7 +116,15 @@ class MoveOptimizer:
         self.context = context or plant.CreateDefaultContext()
         self.chain = CupChain(plant, self.cup)
 
-    def retime(self, path: GeometricPath, grasp: GraspConstraint) -> RetimeResult:
+    def with_options(self, options: MoveOptimizerOptions) -> MoveOptimizer:
+        """The same arm's optimiser with other options (kinematics shared)."""
+        other = copy.copy(self)
+        other.options = options
+        return other
+
+    def retime(
+        self, path: GeometricPath, grasp: GraspConstraint | None
+    ) -> RetimeResult:
         """``path`` retimed as the optimiser does (:func:`.retime_adaptive`)."""
         return retime_adaptive(
             self.plant, path, self.limits, grasp, self.options.final_gridpoints,
@@ -141,13 +151,32 @@ class MoveOptimizer:
             RetimeError: the spline path cannot be retimed.
         """
         options = self.options
-        wall, cpu = time.perf_counter(), time.process_time()
-        watch = _Stopwatch(timings)
-        chain = self.chain
+        watch = StageClock(timings)
         with watch("setup"):
             scene = planner.prepare(
                 Phase.MOVE, spline.object, spline.q_start, spline.X_OC
             )
+        return self.shape(
+            ShapeTask(
+                scene, spline, grasp, lambda via: self._family(spline, via),
+                lambda family, path: _certify(self.chain, family, scene, path, options),
+                options.tilt_bound, None, options.starts,
+            ),
+            watch,
+        )  # fmt: skip
+
+    def shape(self, task: ShapeTask, watch: StageClock) -> OptimizedMove:
+        """The search and the finish (stages 1-4) of ``task``, its scene prepared.
+
+        :meth:`optimize` shapes a MOVE so; :func:`._pick_shaping.shape_pick`
+        a pick. ``watch`` holds the stages' times since it was made (the
+        scene's preparation included).
+        """
+        options = self.options
+        wall, cpu = watch.wall, watch.cpu
+        chain, spline, grasp = self.chain, task.spline, task.grasp
+        scene = task.scene
+        with watch("setup"):
             clearance = ClearanceModel(scene, chain)
         with watch("baseline"):
             baseline = self.retime(spline.path, grasp)
@@ -160,59 +189,97 @@ class MoveOptimizer:
 
             def objective_for(via: int) -> Objective:
                 return Objective(
-                    self._family(spline, via), surrogate, clearance, scene.lower,
-                    scene.upper, options.tilt_bound, options.clearance_margin,
-                    spline.path,
+                    task.family(via), surrogate, clearance, scene.lower,
+                    scene.upper, task.tilt_bound, options.clearance_margin,
+                    spline.path, task.span,
                 )  # fmt: skip
 
             try:
                 objective: Objective | None = objective_for(options.via_points)
             except FamilyError as error:
                 objective, family_error = None, str(error)
+        baseline_played = None
+        if task.played is not None:
+            with watch("baseline"):
+                baseline_played = task.played(spline.path, baseline)
         baseline_wall = watch.timings["baseline"]
 
-        def result(path, retimed, improved, evaluations, rejected, retime_wall):
+        def result(path, retimed, improved, evaluations, rejected, retime_wall, played):
             tilt = float(np.degrees(chain.tilt(path.value(_s())).max()))
             return OptimizedMove(
                 path, retimed, spline, baseline, improved, tilt, evaluations,
                 time.perf_counter() - wall, time.process_time() - cpu, retime_wall,
-                dict(watch.timings), tuple(rejected),
+                dict(watch.timings), tuple(rejected), played, baseline_played,
             )  # fmt: skip
 
         if objective is None:
             return result(
-                spline.path, baseline, False, 0, [family_error], baseline_wall
-            )
+                spline.path, baseline, False, 0, [family_error], baseline_wall,
+                baseline_played,
+            )  # fmt: skip
         with watch("search"):
-            candidates, evaluations = self._search(objective, objective_for, spline)
-        rejected: list[str] = []
+            candidates, evaluations = self._search(
+                objective, objective_for, spline, task.starts
+            )
         # The spline path on the search's grid: what a candidate must beat
         # there to be worth the finish (the grids' errors differ by percents).
         to_beat = surrogate.durations(spline.path.waypoints[None])[0]
-        found = None
         with watch("finish"):
-            for family, candidate in candidates[: options.finish_tries]:
-                if candidate.duration >= to_beat:
-                    break
-                path = GeometricPath.from_waypoints(family.waypoints(candidate.x)[0])
-                reason = _certify(chain, family, scene, path, options)
-                if reason is None:
-                    before_wall = time.perf_counter()
-                    try:
-                        retimed = self.retime(path, grasp)
-                    except RetimeError as error:
-                        reason = f"retime: {error}"
-                    else:
-                        if retimed.duration < baseline.duration:
-                            found = (path, retimed, time.perf_counter() - before_wall)
-                            break
-                        reason = f"retimed {retimed.duration:.3f} s, not shorter"
-                rejected.append(reason)
-        if found is not None:
-            return result(found[0], found[1], True, evaluations, rejected, found[2])
+            found = self._finish(task, candidates, to_beat, baseline, baseline_played)
+        if found.path is not None:
+            return result(
+                found.path, found.retimed, True, evaluations, found.rejected,
+                found.wall_s, found.played,
+            )  # fmt: skip
         return result(
-            spline.path, baseline, False, evaluations, rejected, baseline_wall
-        )
+            spline.path, baseline, False, evaluations, found.rejected, baseline_wall,
+            baseline_played,
+        )  # fmt: skip
+
+    def _finish(
+        self,
+        task: ShapeTask,
+        candidates: list[tuple[PathFamily, Candidate]],
+        to_beat: float,
+        baseline: RetimeResult,
+        baseline_played: RetimeResult | None,
+    ) -> Found:
+        """Stage 4: the first candidate that passes and beats the baseline.
+
+        With ``task.played``, every one of the ``finish_tries`` candidates
+        that passes is retimed as played, and the fastest that beats the
+        baseline's played retime is kept.
+        """
+        found = Found()
+        best = baseline if baseline_played is None else baseline_played
+        for family, candidate in candidates[: self.options.finish_tries]:
+            if candidate.duration >= to_beat:
+                break
+            path = GeometricPath.from_waypoints(family.waypoints(candidate.x)[0])
+            reason = task.certify(family, path)
+            if reason is None:
+                before_wall = time.perf_counter()
+                try:
+                    retimed = self.retime(path, task.grasp)
+                    played = (
+                        retimed if task.played is None else task.played(path, retimed)
+                    )
+                except RetimeError as error:
+                    reason = f"retime: {error}"
+                else:
+                    wall_s = time.perf_counter() - before_wall
+                    if played.duration < best.duration:
+                        best = played
+                        found = Found(
+                            path, retimed, played if task.played else None, wall_s,
+                            found.rejected,
+                        )  # fmt: skip
+                        if task.played is None:
+                            break
+                        continue
+                    reason = f"retimed {played.duration:.3f} s, not shorter"
+            found.rejected.append(reason)
+        return found
 
     def search_grid(self, baseline: RetimeResult) -> int | np.ndarray:
         """The search's grid: its points at equal steps of the spline's time.
@@ -259,10 +326,11 @@ class MoveOptimizer:
         objective: Objective,
         objective_for: Callable[[int], Objective],
         spline: PlannedPath,
+        starts: int,
     ) -> tuple[list[tuple[PathFamily, Candidate]], int]:
-        """CMA-ES from x = 0 and the warm starts; rescue paths if nothing is found."""
+        """CMA-ES from x = 0 and ``starts`` warm starts; rescue paths if none found."""
         options = self.options
-        x0 = start_parameters(objective.family, spline.path, options.starts)
+        x0 = start_parameters(objective.family, spline.path, starts)
         found = cma_search(
             objective, objective.family.dim, options.max_evaluations, options.sigma,
             options.seed, options.population, keep=KEEP, x0=x0,
@@ -329,33 +397,6 @@ def optimize_move(
         timings["spline_plan"] = time.perf_counter() - before
     optimizer = MoveOptimizer(plant, limits, options, cup, context)
     return optimizer.optimize(planner, spline, grasp, timings)
-
-
-class _Stopwatch:
-    """``with watch("stage"):`` adds the block's wall time to timings[stage].
-
-    And this process's CPU time to ``timings["cpu_" + stage]``.
-    """
-
-    def __init__(self, timings: dict[str, float] | None) -> None:
-        self.timings = dict(timings or {})
-        for key in ("setup", "baseline", "search", "finish"):
-            self.timings.setdefault(key, 0.0)
-            self.timings.setdefault(f"cpu_{key}", 0.0)
-        self._stage = ""
-        self._start = self._cpu = 0.0
-
-    def __call__(self, stage: str) -> _Stopwatch:
-        self._stage = stage
-        return self
-
-    def __enter__(self) -> _Stopwatch:
-        self._start, self._cpu = time.perf_counter(), time.process_time()
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self.timings[self._stage] += time.perf_counter() - self._start
-        self.timings[f"cpu_{self._stage}"] += time.process_time() - self._cpu
 
 
 def _s() -> np.ndarray:

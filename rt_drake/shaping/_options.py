@@ -189,6 +189,9 @@ class OptimizedMove:
         timings: Wall time (s) per stage (:mod:`._optimizer`), and this
             process's CPU time (s) per stage (``cpu_`` + stage).
         rejected: Why better candidates were turned down in the finish.
+        played: The retime ``path`` is played with, if the shaping was
+            given one (the pick's: under the jerk limits); None: ``retimed``.
+        spline_played: The spline path's retime likewise.
     """
 
     path: GeometricPath
@@ -203,6 +206,8 @@ class OptimizedMove:
     retime_wall_s: float
     timings: dict[str, float]
     rejected: tuple[str, ...] = ()
+    played: RetimeResult | None = None
+    spline_played: RetimeResult | None = None
 
     @property
     def duration(self) -> float:

@@ -99,7 +99,8 @@ class CoarseRetimer:
     Args:
         chain: Batched kinematics of the arm's cup.
         limits: Joint velocity and acceleration limits (torques ignored).
-        grasp: Held object and grasp polytope.
+        grasp: Held object and grasp polytope; None: nothing held (the
+            pick), the joint limits only.
         gridpoints: Grid size M (>= 2), uniform, or the M points.
         initial_rows: Indices of grasp rows to start from.
         ends: Each candidate's points over its vertical ends (None: none).
@@ -109,7 +110,7 @@ class CoarseRetimer:
         self,
         chain: CupChain,
         limits: JointLimits,
-        grasp: GraspConstraint,
+        grasp: GraspConstraint | None,
         gridpoints: int | np.ndarray,
         initial_rows: np.ndarray | None = None,
         ends: EndGrid | None = None,
@@ -129,14 +130,17 @@ class CoarseRetimer:
         self._box = np.vstack([np.eye(n), -np.eye(n)])
         self._acceleration = np.tile(limits.acceleration, 2)
         self._velocity = kernel_array(limits.velocity)
-        self._normals = R.normalised_rows(grasp.F, grasp.g)
-        self._F, self._g = kernel_array(grasp.F), kernel_array(grasp.g)
-        self.rows = np.zeros(len(grasp.g), dtype=np.bool_)
+        F, g = (np.zeros((0, 6)), np.ones(0)) if grasp is None else (grasp.F, grasp.g)
+        self._normals = R.normalised_rows(F, g)
+        self._F, self._g = kernel_array(F), kernel_array(g)
+        self.rows = np.zeros(len(g), dtype=np.bool_)
         if initial_rows is not None:
             self.rows[np.asarray(initial_rows, dtype=int)] = True
 
     def select_rows(self, waypoints: np.ndarray) -> None:
         """Add the rows ray shooting picks on the paths through waypoints (P, K, n)."""
+        if self.grasp is None:
+            return
         q, dq, ddq = evaluate_splines(waypoints, self.s)
         a, b, c = self.chain.wrench_coefficients(self.grasp.held, q, dq, ddq)
         for p in range(len(q)):
@@ -196,7 +200,10 @@ class CoarseRetimer:
         """:meth:`evaluate`'s results and the profiles x (P, M') (zeros: rejected)."""
         grids = self.grids(waypoints)
         q, dq, ddq = evaluate_splines(waypoints, grids)
-        a, b, c = self.chain.wrench_coefficients(self.grasp.held, q, dq, ddq)
+        if self.grasp is None:  # no wrench: rows of zero length
+            a = b = c = np.zeros((*q.shape[:2], 6))
+        else:
+            a, b, c = self.chain.wrench_coefficients(self.grasp.held, q, dq, ddq)
         out = np.empty(len(q))
         exact = np.zeros(len(q), dtype=np.bool_)
         used = np.zeros((len(q), len(self.rows)), dtype=np.bool_)
@@ -236,7 +243,7 @@ def _batch_durations(  # noqa: D417
         step = ds[p] if ds.shape[0] > 1 else ds[0]
         local = mask.copy()
         # at rest: every row's slack positive at every grid point
-        if np.dot(np.ascontiguousarray(c[p]), n).max() >= 1.0:
+        if rows_total > 0 and np.dot(np.ascontiguousarray(c[p]), n).max() >= 1.0:
             out[p] = np.inf
             exact[p] = True
             continue
@@ -279,6 +286,10 @@ def _batch_durations(  # noqa: D417
             xs[p] = x
             if total >= bound:
                 break  # a lower bound, already no better than the bound
+            if rows_total == 0:  # nothing held: exact as it is
+                exact[p] = True
+                used[p] = local
+                break
             enforced = np.empty((2 * (M - 1), 6))
             for i in range(M - 1):
                 x_next = x[i] + 2.0 * step[i] * u[i]

@@ -85,25 +85,32 @@ class MotionRetimer:
             cup=self.cup,
         )
 
-    def retime_free(self, path: GeometricPath, on_profile: bool = True) -> RetimeResult:
+    def retime_free(
+        self,
+        path: GeometricPath,
+        on_profile: bool = True,
+        profile: RetimeResult | None = None,
+    ) -> RetimeResult:
         """Retime ``path`` without a held object (the pick).
 
         Under the acceleration limits on an adaptive grid
-        (:func:`~rt_drake.shaping.retime_adaptive`); with jerk limits on
-        ``gridpoints`` points placed by that profile
+        (:func:`~rt_drake.shaping.retime_adaptive`; ``profile`` if given: that
+        retime of ``path`` already done, e.g. the pick shaping's); with jerk
+        limits on ``gridpoints`` points placed by that profile
         (:meth:`retime_on_profile`), or, without ``on_profile``, on the
         uniform grid (:meth:`retime_path`). Module docstring.
         """
         if self.limits.jerk is not None and not on_profile:
             return self.retime_path(path, None)
-        profile = retime_adaptive(
-            self.plant,
-            path,
-            self.limits.without_jerk(),
-            None,
-            context=self.context,
-            cup=self.cup,
-        )
+        if profile is None:
+            profile = retime_adaptive(
+                self.plant,
+                path,
+                self.limits.without_jerk(),
+                None,
+                context=self.context,
+                cup=self.cup,
+            )
         if self.limits.jerk is None:
             return profile
         return self.retime_on_profile(path, None, profile)

@@ -4,10 +4,12 @@ The sequencer commands the arm and the suction valve. Per object it plays
 two motions from its :class:`~.motion.MotionSource`: the pick (APPROACH then
 REACH, one motion without a stop at the approach pose) and the MOVE.
 
-Planning ahead (``pipelined``, the default): the MOVE is requested when the
-pick starts moving (its grasp configuration is known), so it is planned
-during the pick and the ATTACH wait; the next object's pick is requested
-when the MOVE starts, so it is planned during the MOVE and the DETACH wait.
+Planning ahead (``pipelined``, the default): the next object's pick is
+requested when the MOVE starts, so it is planned during the MOVE and the
+DETACH wait, and that object's MOVE right after it (its grasp
+configuration is the pick's end), as soon as the planner is free: during
+the same MOVE and DETACH, then the pick and the ATTACH wait. The first
+object's MOVE is requested when its pick starts moving.
 The first object's pick has nothing before it to hide behind: it is
 requested at t = 0 and the arm waits for its planning and retiming (only
 the planner's construction, which loads the cell and the objects at their
@@ -84,8 +86,9 @@ class SequencerState:
     """The sequencer's abstract state (replaced, never mutated, by updates).
 
     ``motion`` is played with its t = 0 at simulated ``t_motion_start``;
-    ``pending`` is the next motion, planned ahead; ``pick`` the current
-    object's pick (its MOVE lifts along it).
+    ``pending`` is the next motion, planned ahead, and ``pending_move`` the
+    MOVE after it when ``pending`` is a pick planned ahead; ``pick`` the
+    current object's pick (its MOVE lifts along it).
     """
 
     phase: Phase
@@ -95,6 +98,7 @@ class SequencerState:
     motion: Motion | None = None
     t_motion_start: float = 0.0
     pending: PendingMotion | None = None
+    pending_move: PendingMotion | None = None
     pick: Motion | None = None
     X_CO_attached: RigidTransform | None = None
     X_LO_attached: tuple[RigidTransform, ...] | None = None
@@ -402,13 +406,24 @@ class Sequencer(LeafSystem):
                 ),
             )
         if self._pipelined:  # plan the next motion while this one runs
-            nxt = Phase.MOVE if phase is Phase.APPROACH else Phase.APPROACH
-            if nxt is Phase.MOVE or index + 1 < len(self._objects):
-                # once the planner is free: a staged motion's later parts
-                # are still being planned when it starts
-                free = max(now + wait, pending.ready_at)
-                request = self._request(state, nxt, motion.q_end, free)
-                state = dataclasses.replace(state, pending=request)
+            # once the planner is free: a staged motion's later parts are
+            # still being planned when it starts
+            free = max(now + wait, pending.ready_at)
+            if phase is Phase.APPROACH:  # its MOVE, unless planned with it
+                request = state.pending_move or self._request(
+                    state, Phase.MOVE, motion.q_end, free
+                )
+                state = dataclasses.replace(state, pending=request, pending_move=None)
+            elif index + 1 < len(self._objects):  # the next pick, then its MOVE
+                request = self._request(state, Phase.APPROACH, motion.q_end, free)
+                after = self._motions.move(
+                    request.motion.q_end, self._objects[index + 1], request.motion
+                )
+                state = dataclasses.replace(
+                    state,
+                    pending=request,
+                    pending_move=PendingMotion(after, request.ready_at),
+                )
         return state
 
     def _request(

@@ -17,8 +17,10 @@ planning and retiming took ``w`` wall seconds is ready at simulated time
 ``t_n`` starts its motion at ``max(t_n, t_r + w)``: it waits
 ``max(0, w - (t_n - t_r))``, the part of the planning that did not fit in
 the ``t_n - t_r`` seconds available before it (the plan on the critical
-path). One wall second counts as one simulated second; at most one motion is
-pending at a time, so plans never queue.
+path). One wall second counts as one simulated second. The planner plans
+one motion at a time: a motion requested while it is busy (the MOVE the
+sequencer asks for right after the pick planned ahead) is requested when
+it is free, at the previous one's ``ready_at``.
 
 A staged motion (:attr:`Motion.staged`: the cycle's first pick, its
 straight APPROACH and then its REACH) is planned part by part, in order,

@@ -27,8 +27,13 @@ with a ``first_order`` vacuum the suction range then reaches down to
 
 The pick (:meth:`OnlineMotions.pick`) is one motion through the approach
 pose (:mod:`rt_drake.planning._pick`), retimed rest to rest; APPROACH ends
-when it passes the approach pose. The cycle's first pick (no retreat: the
-cup rests on nothing) is staged instead (:mod:`._first_pick`): a straight
+when it passes the approach pose. With the optimisation on and the
+scenario's ``planning.shape_picks``, its transit between the retreat and
+descent lines is shaped by the same optimiser
+(:func:`~rt_drake.shaping.shape_pick`, joint limits only); where the
+shaping fails, the blended pick is played and a warning says so, once.
+The cycle's first pick (no retreat: the cup rests on nothing) is staged
+instead (:mod:`._first_pick`): a straight
 APPROACH timed by Ruckig, on which the arm starts, then the REACH, planned
 and retimed while the APPROACH runs; the blended pick where the straight
 line is not clean or the scenario limits the torques
@@ -48,6 +53,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
+import warnings
 from collections.abc import Callable
 
 import numpy as np
@@ -57,12 +63,13 @@ from pydrake.trajectories import Trajectory
 from rt_drake import arguments
 from rt_drake.contact import worst_cup_polytope
 from rt_drake.dynamics.cup_frame import CupFrame
+from rt_drake.errors import RtDrakeError
 from rt_drake.model.plant import make_arm_plant
 from rt_drake.model.scenario import (
     ObjectConfig,
     Scenario,
 )
-from rt_drake.planning import CyclePlanner, GeometricPath, PlannedPath
+from rt_drake.planning import CyclePlanner, GeometricPath, PlannedPath, PlannedPick
 from rt_drake.retiming import (
     GraspConstraint,
     JointLimits,
@@ -74,6 +81,8 @@ from rt_drake.retiming import (
 from rt_drake.shaping import (
     MoveOptimizer,
     MoveOptimizerOptions,
+    ShapedPick,
+    shape_pick,
 )
 from rt_drake.shaping import warm_up as warm_up_optimizer
 from rt_drake.simulation._blended_pick import blended_pick
@@ -107,8 +116,10 @@ class OnlineMotions:
         robust: hold every object of an object's uncertainty set (and every
             cup of the cup's range) when the scenario gives one; False: the
             nominal object and cup only.
-        optimize: shape each MOVE for speed (None: the scenario's
-            ``planning.optimize_move``); needs the grasp constraint.
+        optimize: shape each MOVE (it needs the grasp constraint), and,
+            with the scenario's ``planning.shape_picks``, each blended
+            pick's transit for speed (None: the scenario's
+            ``planning.optimize_move``).
         jerk_limits: retime every motion under the scenario's
             ``robot.jerk_limits`` too (when it gives them).
         split_first_pick: stage a pick without retreat (the cycle's first)
@@ -169,7 +180,8 @@ class OnlineMotions:
         if optimize is None:
             optimize = scenario.planning.optimize_move
         self._optimizer = None
-        if optimize and grasp_constraint:
+        self._shaping_failed = False
+        if optimize:
             options = MoveOptimizerOptions.from_config(scenario.planning)
             # The search compares paths under the acceleration limits; the
             # path it keeps is then retimed once under the jerk limits too
@@ -212,12 +224,18 @@ class OnlineMotions:
         """
         return self._retimer.retime_path(path, grasp)
 
-    def retime_free(self, path: GeometricPath, on_profile: bool = True) -> RetimeResult:
+    def retime_free(
+        self,
+        path: GeometricPath,
+        on_profile: bool = True,
+        profile: RetimeResult | None = None,
+    ) -> RetimeResult:
         """Retime ``path`` without a held object (the pick).
 
-        :meth:`._motion_retimer.MotionRetimer.retime_free`.
+        :meth:`._motion_retimer.MotionRetimer.retime_free` (``profile``:
+        ``path``'s acceleration-limited adaptive retime, if already done).
         """
-        return self._retimer.retime_free(path, on_profile)
+        return self._retimer.retime_free(path, on_profile, profile)
 
     def retime_on_profile(
         self, path: GeometricPath, grasp: GraspConstraint | None, profile: RetimeResult
@@ -307,9 +325,40 @@ class OnlineMotions:
                 return then_reach(approach, self._planner, self._retime_reach, obj.name)
             tried_s = time.perf_counter() - start
         self._place_objects_for(obj)
+        shape = None
+        if self._optimizer is not None and self._scenario.planning.shape_picks:
+            shape = self._shape_pick
         return blended_pick(
-            self._planner, self.retime_free, q_start, obj.name, retreat, tried_s
+            self._planner, self._retime_pick, q_start, obj.name, retreat, tried_s, shape
         )
+
+    def _shape_pick(self, pick: PlannedPick) -> ShapedPick | None:
+        """The shaped pick (:func:`~rt_drake.shaping.shape_pick`), None if it failed.
+
+        A failure is said once (a ``RuntimeWarning``), not hidden: the
+        blended pick is then played.
+        """
+        assert self._optimizer is not None  # pick() passes it only then
+        try:
+            return shape_pick(
+                self._optimizer, self._planner, pick, played=self._retime_pick
+            )
+        except RtDrakeError as error:
+            if not self._shaping_failed:
+                self._shaping_failed = True
+                warnings.warn(
+                    f"pick shaping failed for {pick.path.object} ({error}); the "
+                    "blended pick is played there (said once per run)",
+                    RuntimeWarning,
+                    stacklevel=2,
+                )
+            return None
+
+    def _retime_pick(
+        self, path: GeometricPath, profile: RetimeResult | None
+    ) -> RetimeResult:
+        """A pick's retime (:meth:`retime_free`, from ``profile`` if given)."""
+        return self.retime_free(path, profile=profile)
 
     def _retime_reach(self, path: GeometricPath) -> RetimeResult:
         """The staged REACH's retime: on the uniform grid under jerk limits."""

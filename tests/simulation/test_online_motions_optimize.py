@@ -54,7 +54,8 @@ def test_optimised_move_is_never_slower_than_the_spline_move(scenario_paths):
 
 @pytest.mark.slow
 def test_no_optimize_plays_the_planners_spline_move_bit_for_bit(scenario_paths):
-    """optimize=False: the planner's MOVE, retimed as before (100 points)."""
+    """optimize=False: the planner's MOVE, retimed as before (100 points),
+    and the planner's blended picks, not shaped."""
     scenario = load_scenario(scenario_paths["stack_four_objects"])
     assert scenario.planning.optimize_move  # the shipped cycle shapes by default
     obj = scenario.objects[0]
@@ -71,6 +72,22 @@ def test_no_optimize_plays_the_planners_spline_move_bit_for_bit(scenario_paths):
     limits = JointLimits.from_plant(plant, scenario.robot)
     retimed = retime(plant, reference.path, limits, move.grasp, gridpoints=100)
     assert move.duration == retimed.duration
+    # The picks are the planner's blended picks, unshaped: the first from
+    # home and the next after the place, retimed as any pick.
+    assert pick.planned is not None
+    np.testing.assert_array_equal(
+        pick.planned.path.waypoints, planned_pick.path.path.waypoints
+    )
+    assert pick.duration == spline.retime_free(planned_pick.path.path).duration
+    after = scenario.objects[1]
+    second = spline.pick(move.q_end, after, retreat=True)
+    planner.set_object_pose(obj.name, obj.goal.GetDeterministicValue())
+    planned_second = planner.plan_pick(move.q_end, after.name, retreat=True)
+    assert second.planned is not None
+    np.testing.assert_array_equal(
+        second.planned.path.waypoints, planned_second.path.path.waypoints
+    )
+    assert second.duration == spline.retime_free(planned_second.path.path).duration
 
 
 @pytest.mark.slow

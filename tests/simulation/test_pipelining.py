@@ -29,22 +29,42 @@ from rt_drake.types.phase import Phase
 pytestmark = pytest.mark.slow
 
 
-class Recording:
-    """A motion source that remembers every motion it handed out, in order."""
+#: s of wall time the second object's pick and MOVE are said to take (their
+#: real times replaced): planning its MOVE when the pick starts moving could
+#: not hide it; planning it right after the pick, during the first MOVE and
+#: DETACH, does.
+SLOW_PICK_S, SLOW_MOVE_S = 1.0, 3.0
 
-    def __init__(self, motions):
+
+def _slowed(motion: Motion, plan_s: float) -> Motion:
+    """``motion`` said to have taken ``plan_s`` s to plan (its parts alike)."""
+    parts = tuple(
+        dataclasses.replace(p, times=PlanTimes(plan_s=plan_s / len(motion.parts)))
+        for p in motion.parts
+    )
+    return dataclasses.replace(motion, times=PlanTimes(plan_s=plan_s), parts=parts)
+
+
+class Recording:
+    """A motion source that remembers every motion it handed out, in order.
+
+    The second object's motions are handed out :func:`_slowed`.
+    """
+
+    def __init__(self, motions, first):
         self._motions = motions
+        self._first = first
         self.log = []
 
     def pick(self, q_start, obj, retreat):
         motion = self._motions.pick(q_start, obj, retreat)
         self.log.append(("pick", obj.name, motion))
-        return motion
+        return motion if obj.name == self._first else _slowed(motion, SLOW_PICK_S)
 
     def move(self, q_start, obj, pick):
         motion = self._motions.move(q_start, obj, pick)
         self.log.append(("move", obj.name, motion))
-        return motion
+        return motion if obj.name == self._first else _slowed(motion, SLOW_MOVE_S)
 
 
 @pytest.fixture(scope="module")
@@ -54,7 +74,7 @@ def two_objects(scenario):
 
 @pytest.fixture(scope="module")
 def pipelined_run(two_objects):
-    source = Recording(OnlineMotions(two_objects, seed=3))
+    source = Recording(OnlineMotions(two_objects, seed=3), two_objects.objects[0].name)
     coarse = StationOptions(time_step=4e-3)  # a divisor of the 8 ms ticks
     result = run_cycle(two_objects, source, options=coarse, max_sim_time=30.0)
     return source.log, result
@@ -99,6 +119,39 @@ def test_records_add_up_on_the_simulated_clock(pipelined_run):
     # The Table II rows are kept: every phase's plan time was recorded.
     for record in result.records:
         assert set(record.plan_times) == {Phase.APPROACH, Phase.REACH, Phase.MOVE}
+
+
+def test_the_next_objects_move_is_planned_right_after_its_pick(pipelined_run):
+    """The second pick is requested when the first MOVE starts (t0), its MOVE
+    as soon as the planner is free: ready at t0 + 1 s + 3 s, so the second
+    MOVE waits only for what is left when it is needed; requested when the
+    pick starts moving, it would wait about 3 s - pick - ATTACH (~1.1 s)."""
+    _, result = pipelined_run
+    first, second = result.records
+    A, R, M = Phase.APPROACH, Phase.REACH, Phase.MOVE
+    t0 = (
+        first.plan_wait_s[A]
+        + first.exec_s[A]
+        + first.exec_s[R]
+        + first.exec_s[Phase.ATTACH]
+        + first.plan_wait_s[M]
+    )
+    needed = (
+        t0
+        + first.exec_s[M]
+        + first.exec_s[Phase.DETACH]
+        + second.plan_wait_s[A]
+        + second.exec_s[A]
+        + second.exec_s[R]
+        + second.exec_s[Phase.ATTACH]
+    )
+    ready = t0 + SLOW_PICK_S + SLOW_MOVE_S
+    # 8 ms ticks: each phase switch is late by up to one tick
+    assert second.plan_wait_s[M] == pytest.approx(max(0.0, ready - needed), abs=0.05)
+    late = SLOW_MOVE_S - (
+        second.exec_s[A] + second.exec_s[R] + second.exec_s[Phase.ATTACH]
+    )
+    assert second.plan_wait_s[M] < late - 0.5
 
 
 def test_a_phase_waits_only_for_what_did_not_fit():
