@@ -6,6 +6,7 @@ campaign file writers.
 
 from __future__ import annotations
 
+import io
 import os
 import signal
 import sqlite3
@@ -14,6 +15,7 @@ import warnings
 from pathlib import Path
 from typing import Any
 
+from rt_drake.experiments.campaign import load_campaign, run_campaign
 from rt_drake.experiments.campaign._row_types import (
     Outcome,
     RowResult,
@@ -211,3 +213,37 @@ variants: [constrained]
 """
     )
     return path
+
+
+#: The columns of a crash test's rows.
+CRASH_COLUMNS = (
+    "object, cup, seed, trial, variant, status, attempts, error, finished_at"
+)
+
+
+def crash_campaign(directory: Path, cup: str) -> Any:
+    """One object, one cup called ``cup``, two trials, one variant: 2 rows."""
+    return load_campaign(write_notebook_campaign(directory / f"{cup}.yaml", cup))
+
+
+def deaths(directory: Path, cup: str) -> int:
+    """How many times a row of ``cup`` killed its worker (its marker files)."""
+    return len(list(directory.glob(f"notebook-{cup}-died-*")))
+
+
+def check_resume(campaign: Any, db: Path, executor: Any) -> list[tuple]:
+    """A rerun computes nothing; one row per combination, none missing.
+
+    Returns the rows (:data:`CRASH_COLUMNS`), by trial.
+    """
+    before = rollout_rows(db, CRASH_COLUMNS)
+    again = run_campaign(campaign, db, executor, stream=io.StringIO())
+    assert (again.resumed, again.computed) == (2, 0)
+    after = rollout_rows(db, CRASH_COLUMNS)
+    assert after == before
+    keys = [row[:5] for row in after]
+    expected = [
+        (k.object, k.cup, k.seed, k.trial, k.variant.value) for k in campaign.row_keys()
+    ]
+    assert sorted(keys) == sorted(set(keys)) == sorted(expected)
+    return after

@@ -428,6 +428,7 @@ NOT_CALLED = {
     "Scenario",  # built by load_scenario, which checks every key
     "TimedPath",  # built by retime
     "JerkTimedPath",  # built by retime with jerk limits
+    "PathTrajectory",  # the base of the two above (isinstance checks)
     "TrajectoryCheck",
     "default_cache_dir",
     "models_dir",

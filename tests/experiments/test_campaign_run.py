@@ -10,12 +10,17 @@ the first row (the infeasible one) is committed.
   first row is committed, then rerun with the same command to completion.
 - The Ray run uses a Ray instance the test starts on this machine
   (``ray.init(num_cpus=2)``), so CI needs no external service.
+- Killed Ray workers, on that instance (the tasks of ``campaign_helpers``,
+  as in ``test_campaign_crash.py``; no physics): the killed row is started
+  exactly twice, then recorded; a row that dies once is started again and
+  stored with ``attempts`` 2.
 
 Each run takes about half a minute on 2 busy cores.
 """
 
 from __future__ import annotations
 
+import io
 import json
 import os
 import signal
@@ -27,18 +32,31 @@ from pathlib import Path
 
 import pytest
 from campaign_helpers import (
+    BESIDE_S,
+    CRASH_COLUMNS,
     CRASH_DIR,
+    check_resume,
     crash_always,
+    crash_campaign,
     crash_once,
+    deaths,
     init_local_ray,
+    killed_beside,
     no_init,
+    rollout_rows,
     write_campaign,
     write_tool_campaign,
 )
 
 import rt_drake
 from rt_drake.cli import main
-from rt_drake.experiments.campaign import RowKey, Status, Variant, load_campaign
+from rt_drake.experiments.campaign import (
+    RowKey,
+    Status,
+    Variant,
+    load_campaign,
+    run_campaign,
+)
 from rt_drake.experiments.campaign._local_executor import LocalExecutor
 
 pytestmark = pytest.mark.slow
@@ -100,19 +118,30 @@ def killed_and_resumed(campaign_file, tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def ray_run(campaign_file, tmp_path_factory):
-    """The Ray run, on a Ray instance started here (tests/ on the workers' path)."""
+def ray_instance(tmp_path_factory):
+    """A Ray instance started here, shut down after the module's tests.
+
+    Its workers see tests/ and the crash tests' marker directory (yielded).
+    """
     ray = pytest.importorskip("ray")
-    init_local_ray(ray)
+    directory = tmp_path_factory.mktemp("ray_crash")
+    # A Ray task is not killed with its neighbour's worker: no need to wait.
+    init_local_ray(ray, {CRASH_DIR: str(directory), BESIDE_S: "0"})
     try:
-        db = tmp_path_factory.mktemp("ray") / "campaign.db"
-        argv = ["experiment", "campaign", str(campaign_file), "--out", str(db)]
-        start = time.perf_counter()
-        assert main([*argv, "--executor", "ray"]) == 0
-        print(f"ray campaign run: {time.perf_counter() - start:.0f} s")
-        yield ray, db
+        yield directory
     finally:
         ray.shutdown()
+
+
+@pytest.fixture(scope="module")
+def ray_run(campaign_file, ray_instance, tmp_path_factory):
+    """The Ray run, on the module's Ray instance (tests/ on the workers' path)."""
+    db = tmp_path_factory.mktemp("ray") / "campaign.db"
+    argv = ["experiment", "campaign", str(campaign_file), "--out", str(db)]
+    start = time.perf_counter()
+    assert main([*argv, "--executor", "ray"]) == 0
+    print(f"ray campaign run: {time.perf_counter() - start:.0f} s")
+    return db
 
 
 def test_kill_and_resume_loses_no_row_and_duplicates_none(
@@ -150,7 +179,7 @@ def test_rows_hold_the_results_and_infeasible_combinations_are_data(
 
 def test_local_and_ray_executors_give_the_same_rows(killed_and_resumed, ray_run):
     local_db, _ = killed_and_resumed
-    _, ray_db = ray_run
+    ray_db = ray_run
     local, remote = _rows(local_db), _rows(ray_db)
     assert len(local) == len(remote) == ROWS
     assert local == remote
@@ -198,7 +227,7 @@ def test_local_worker_crash_is_retried_once_then_recorded(
     assert outcome.result.status is Status.OK and outcome.attempts == 2
 
 
-def test_ray_worker_crash_is_retried_once_then_recorded(campaign_file, ray_run):
+def test_ray_worker_crash_is_retried_once_then_recorded(campaign_file, ray_instance):
     from rt_drake.experiments.campaign._ray_executor import RayExecutor
 
     campaign = load_campaign(campaign_file)
@@ -209,6 +238,33 @@ def test_ray_worker_crash_is_retried_once_then_recorded(campaign_file, ray_run):
     assert outcomes[0].result.status is Status.CRASHED
     assert "WorkerCrashedError" in outcomes[0].result.error
     assert outcomes[1].result.status is Status.OK
+
+
+def test_ray_killed_worker_is_retried_once_then_recorded(ray_instance):
+    from rt_drake.experiments.campaign._ray_executor import RayExecutor
+
+    campaign = crash_campaign(ray_instance, "ray")
+    db = ray_instance / "ray.db"
+    executor = RayExecutor(task=killed_beside)
+    run = run_campaign(campaign, db, executor, stream=io.StringIO())
+    assert (run.total, run.computed, run.failed) == (2, 2, 1)
+    killed, beside = check_resume(campaign, db, executor)
+    assert deaths(ray_instance, "ray") == 2  # started again exactly once
+    assert killed[5] == Status.CRASHED.value and killed[6] == 2
+    assert "WorkerCrashedError" in killed[7]
+    assert (beside[5], beside[6], beside[7]) == (Status.OK.value, 1, None)
+
+
+def test_ray_row_whose_worker_dies_once_is_stored_with_two_attempts(ray_instance):
+    from rt_drake.experiments.campaign._ray_executor import RayExecutor
+
+    campaign = crash_campaign(ray_instance, "once")
+    db = ray_instance / "once.db"
+    run = run_campaign(campaign, db, RayExecutor(task=crash_once), stream=io.StringIO())
+    assert (run.computed, run.failed) == (2, 0)
+    for row in rollout_rows(db, CRASH_COLUMNS):
+        assert (row[5], row[6]) == (Status.OK.value, 2)
+        assert (ray_instance / f"notebook-once-{row[3]}").exists()
 
 
 def test_a_tool_of_two_weak_cups_holds_what_one_cannot(tmp_path):
