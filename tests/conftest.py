@@ -59,6 +59,24 @@ def plant(scenario: Scenario) -> MultibodyPlant:
     return make_arm_plant(scenario)
 
 
+def pytest_configure(config: pytest.Config) -> None:
+    """Compile the numba kernels once, before pytest-xdist starts its workers.
+
+    numba caches machine code beside each module at its first compile. In a
+    fresh clone (as in CI) every process started before that cache exists
+    compiles every kernel again (about 10 s of CPU each): both workers, and
+    the campaign drivers, pool and Ray workers the slow modules start
+    first. Compiled here, in the controller (or the only process, with
+    ``-n 0``), each of them loads the cache instead. An xdist worker skips
+    this (``workerinput``).
+    """
+    if hasattr(config, "workerinput"):
+        return
+    from rt_drake.shaping import warm_up  # the retimer's kernels too
+
+    warm_up()
+
+
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     """The modules with a slow test first, in collection order; then the rest.
 
