@@ -249,7 +249,8 @@ class Sequencer(LeafSystem):
         if isinstance(traj, PathTrajectory):  # q, q', q'' in one pass
             q, v, a = (x.ravel() for x in traj.sample(t, order=2))
         else:
-            q, v, a = (traj.EvalDerivative(t, k).ravel() for k in (0, 1, 2))
+            q = traj.value(t).ravel()
+            v, a = (traj.EvalDerivative(t, k).ravel() for k in (1, 2))
         if not inside:
             v, a = np.zeros(self._n), np.zeros(self._n)
         return q, v, a
