@@ -15,7 +15,7 @@ import warnings
 from pathlib import Path
 from typing import Any
 
-from rt_drake.experiments.campaign import load_campaign, run_campaign
+from rt_drake.experiments.campaign import Campaign, load_campaign, run_campaign
 from rt_drake.experiments.campaign._row_types import (
     Outcome,
     RowResult,
@@ -221,7 +221,7 @@ CRASH_COLUMNS = (
 )
 
 
-def crash_campaign(directory: Path, cup: str) -> Any:
+def crash_campaign(directory: Path, cup: str) -> Campaign:
     """One object, one cup called ``cup``, two trials, one variant: 2 rows."""
     return load_campaign(write_notebook_campaign(directory / f"{cup}.yaml", cup))
 
@@ -231,7 +231,7 @@ def deaths(directory: Path, cup: str) -> int:
     return len(list(directory.glob(f"notebook-{cup}-died-*")))
 
 
-def check_resume(campaign: Any, db: Path, executor: Any) -> list[tuple]:
+def check_resume(campaign: Campaign, db: Path, executor: Any) -> list[tuple]:
     """A rerun computes nothing; one row per combination, none missing.
 
     Returns the rows (:data:`CRASH_COLUMNS`), by trial.
