@@ -3,12 +3,16 @@
 As the retimer's ``rt_drake.retiming.warm_up``: the first call of a numba
 kernel compiles it (seconds); :func:`warm_up` makes that call on tiny inputs
 of the types the optimiser uses, so that the first timed MOVE costs what the
-others cost.
+others cost. It also imports the search's ``cmaes`` (which loads
+``scipy.stats``: about 1.5 s, once per process), imported lazily by
+:func:`~._search.cma_search` so that processes which never shape a path do
+not pay for it, and which would otherwise land in the first timed MOVE's plan.
 """
 
 from __future__ import annotations
 
 import functools
+import importlib
 
 import numpy as np
 
@@ -25,6 +29,7 @@ from rt_drake.shaping._surrogate import _batch_durations
 def warm_up() -> None:
     """Compile every kernel of the optimiser (and the retimer's) once per process."""
     warm_up_retimer()
+    importlib.import_module("cmaes")
     n, points = 2, 3
     q = np.zeros((points, n))
     steps = np.tile(np.eye(4), (n, 1, 1))
