@@ -49,9 +49,9 @@ contact > types > errors.
 
 from __future__ import annotations
 
-import importlib
 from typing import TYPE_CHECKING
 
+from rt_drake._lazy import lazy_attributes
 from rt_drake._version import __version__
 
 if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
@@ -251,14 +251,4 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str) -> object:
-    """Import the module defining ``name`` on first access (PEP 562)."""
-    if name not in _LAZY:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(_LAZY[name]), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(__all__)
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY, __all__)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import importlib
 import inspect
+import pickle
 import pkgutil
 import subprocess
 import sys
@@ -24,16 +25,21 @@ def test_the_version_is_written_once():
     assert rt_drake.__version__ == version("rt-drake")
 
 
-def test_importing_the_package_or_the_contact_layer_loads_no_drake():
+def test_importing_the_package_the_contact_layer_or_a_campaign_task_loads_no_drake():
+    """Nor does unpickling a campaign row's Task, as a worker does first."""
+    from rt_drake.experiments.campaign import RowKey, Task, Variant
+
+    task = Task("c.yaml", "hash", RowKey("box", "cup", 0, 1, Variant.CONSTRAINED))
     code = (
-        "import sys, rt_drake, rt_drake.contact\n"
+        "import pickle, sys, rt_drake, rt_drake.contact\n"
         "from rt_drake.contact import cached_wrench_polytope\n"
-        "print(any(m.startswith('pydrake') for m in sys.modules))"
+        f"task = pickle.loads(bytes.fromhex({pickle.dumps(task).hex()!r}))\n"
+        "print(task.key.object, any(m.startswith('pydrake') for m in sys.modules))"
     )
     out = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, check=True
     )
-    assert out.stdout.strip() == "False"
+    assert out.stdout.strip() == "box False"
 
 
 def test_every_exception_rt_drake_defines_derives_from_the_base():

@@ -32,9 +32,9 @@ scenario can name ``CupParameters`` and ``ToolParameters`` cheaply; the
 rest (scipy) loads on first use of its names.
 """
 
-import importlib
 from typing import TYPE_CHECKING
 
+from rt_drake._lazy import lazy_attributes
 from rt_drake.contact._cup import (
     CupParameters,
     grasp_matrices,
@@ -158,12 +158,6 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str) -> object:
-    """Import the submodule defining ``name`` on first access (PEP 562)."""
-    if name not in _LAZY:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    return getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
-
-
-def __dir__() -> list[str]:
-    return sorted(__all__)
+__getattr__, __dir__ = lazy_attributes(
+    __name__, {name: f"{__name__}.{module}" for name, module in _LAZY.items()}, __all__
+)

@@ -21,10 +21,12 @@ import io
 
 import pytest
 from campaign_helpers import (
-    CRASH_DIR,
     check_resume,
     crash_campaign,
     deaths,
+)
+from crash_tasks import (
+    CRASH_DIR,
     killed_beside,
     no_init,
 )

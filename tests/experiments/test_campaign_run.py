@@ -32,20 +32,22 @@ from pathlib import Path
 
 import pytest
 from campaign_helpers import (
-    BESIDE_S,
     CRASH_COLUMNS,
-    CRASH_DIR,
     check_resume,
-    crash_always,
     crash_campaign,
-    crash_once,
     deaths,
     init_local_ray,
-    killed_beside,
-    no_init,
     rollout_rows,
     write_campaign,
     write_tool_campaign,
+)
+from crash_tasks import (
+    BESIDE_S,
+    CRASH_DIR,
+    crash_always,
+    crash_once,
+    killed_beside,
+    no_init,
 )
 
 import rt_drake

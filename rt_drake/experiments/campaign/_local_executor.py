@@ -30,9 +30,9 @@ from rt_drake.experiments.campaign._row_types import (
     RowKey,
     RowResult,
     Status,
+    Task,
 )
 from rt_drake.experiments.campaign._worker import (
-    Task,
     code_version,
     init_worker,
     run_task,

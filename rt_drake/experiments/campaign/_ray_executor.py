@@ -40,11 +40,9 @@ from rt_drake.experiments.campaign._local_executor import (
 from rt_drake.experiments.campaign._row_types import (
     Outcome,
     RowKey,
-)
-from rt_drake.experiments.campaign._worker import (
     Task,
-    run_task,
 )
+from rt_drake.experiments.campaign._worker import run_task
 
 #: The Ray version rt-drake is tested with (the ``ray`` extra pins it).
 RAY_VERSION = "2.52.0"

@@ -6,6 +6,8 @@ Plain data (no Drake), pickled between the driver and its workers:
   has a function in :mod:`._variants`).
 - :class:`RowKey`: the combination of one row: object, cup, seed, trial,
   variant (the primary key of the results table).
+- :class:`Task`: a row to compute, as the driver sends it to a worker
+  (light: a worker unpickles it before it loads the simulation).
 - :class:`RowResult`: what a variant computed for it; :class:`Status` says
   whether it ran (``ok``), was infeasible (``infeasible``: a typed
   :class:`~rt_drake.errors.RtDrakeError`, e.g. the object slips off the cup
@@ -87,6 +89,19 @@ class RowKey:
             f"{self.object}/{self.cup}/seed {self.seed}/trial {self.trial}/"
             f"{self.variant.value}"
         )
+
+
+@dataclasses.dataclass(frozen=True)
+class Task:
+    """One row to compute: the campaign file, its content hash and the row.
+
+    Defined here, beside :class:`RowKey`, so that unpickling it imports
+    no Drake (:mod:`._worker` computes it).
+    """
+
+    campaign_path: str
+    content_hash: str
+    key: RowKey
 
 
 @dataclasses.dataclass(frozen=True)

@@ -42,7 +42,7 @@ from rt_drake.experiments.campaign._definition import (
 )
 from rt_drake.experiments.campaign._row_types import (
     Outcome,
-    RowKey,
+    Task,
     Variant,
 )
 from rt_drake.experiments.campaign._variants import run_variant
@@ -58,15 +58,6 @@ class WorkerContext:
     campaign: Campaign
     code_version: str
     worker: str
-
-
-@dataclasses.dataclass(frozen=True)
-class Task:
-    """One row to compute: the campaign file, its content hash and the row."""
-
-    campaign_path: str
-    content_hash: str
-    key: RowKey
 
 
 #: Per-worker cache of the shared inputs, keyed on the campaign content hash.
@@ -168,7 +159,6 @@ def run_task(task: Task) -> Outcome:
 
 
 __all__ = [
-    "Task",
     "WorkerContext",
     "build_context",
     "code_version",
