@@ -34,6 +34,7 @@ def test_the_root_holds_only_the_public_face_and_the_foundation():
     root = sorted(p.name for p in PACKAGE.glob("*.py"))
     assert root == [
         "__init__.py",
+        "_lazy.py",
         "_version.py",
         "arguments.py",
         "atomic_file.py",

@@ -73,3 +73,22 @@ def test_cli_reports_a_bug_as_an_internal_error_with_its_traceback(monkeypatch, 
         cli.main(["show", "stack_four_objects"])
     err = capsys.readouterr().err
     assert err.startswith("rt-drake show: internal error")
+
+
+def test_a_lazy_name_is_not_shadowed_by_a_submodule_of_the_same_name():
+    """Importing every submodule leaves each public name its object.
+
+    The import system sets ``package.x`` to the submodule ``package.x`` when
+    it loads it, over a lazy name ``x`` (``rt_drake.experiments.cycle_report``
+    was both); so no lazily loaded package may have a public name that is
+    also a submodule's.
+    """
+    for package in (rt_drake, rt_drake.contact, "rt_drake.experiments"):
+        module = (
+            importlib.import_module(package) if isinstance(package, str) else package
+        )
+        for info in pkgutil.walk_packages(module.__path__, f"{module.__name__}."):
+            importlib.import_module(info.name)
+        for name in module.__all__:
+            value = getattr(module, name)
+            assert not inspect.ismodule(value), f"{module.__name__}.{name}"

@@ -9,7 +9,7 @@
   :mod:`.robust_report` writes its report.
 - :mod:`._stop_experiment`: protective stops of Table I's MOVEs in physics,
   grasp-aware and joint-brake.
-- :mod:`.cycle_report`: Table II, the cycle's timing breakdown
+- :mod:`._cycle_report`: Table II, the cycle's timing breakdown
   (:class:`CycleReport`); :mod:`.cycle_floor`: the floor it is measured
   against (:func:`cycle_floors`).
 """
@@ -21,6 +21,15 @@ from typing import TYPE_CHECKING
 from rt_drake._lazy import lazy_attributes
 
 if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
+    from rt_drake.experiments._cycle_report import (
+        REPORT_FILES,
+        CycleReport,
+        RunSettings,
+        cycle_report,
+        summary_line,
+        table_markdown,
+        write_report,
+    )
     from rt_drake.experiments._robust_transport import (
         robust_trial,
         run_robust_transport_experiment,
@@ -54,15 +63,6 @@ if TYPE_CHECKING:  # the lazy names below, for type checkers and IDEs
     from rt_drake.experiments.cycle_floor import (
         ObjectFloor,
         cycle_floors,
-    )
-    from rt_drake.experiments.cycle_report import (
-        REPORT_FILES,
-        CycleReport,
-        RunSettings,
-        cycle_report,
-        summary_line,
-        table_markdown,
-        write_report,
     )
     from rt_drake.experiments.robust_report import (
         ROBUST_FILES,
@@ -129,13 +129,13 @@ _WHERE: dict[str, str] = {
     "write_transport_report": "rt_drake.experiments._transport_report",
     "ObjectFloor": "rt_drake.experiments.cycle_floor",
     "cycle_floors": "rt_drake.experiments.cycle_floor",
-    "REPORT_FILES": "rt_drake.experiments.cycle_report",
-    "CycleReport": "rt_drake.experiments.cycle_report",
-    "RunSettings": "rt_drake.experiments.cycle_report",
-    "cycle_report": "rt_drake.experiments.cycle_report",
-    "summary_line": "rt_drake.experiments.cycle_report",
-    "table_markdown": "rt_drake.experiments.cycle_report",
-    "write_report": "rt_drake.experiments.cycle_report",
+    "REPORT_FILES": "rt_drake.experiments._cycle_report",
+    "CycleReport": "rt_drake.experiments._cycle_report",
+    "RunSettings": "rt_drake.experiments._cycle_report",
+    "cycle_report": "rt_drake.experiments._cycle_report",
+    "summary_line": "rt_drake.experiments._cycle_report",
+    "table_markdown": "rt_drake.experiments._cycle_report",
+    "write_report": "rt_drake.experiments._cycle_report",
     "ROBUST_FILES": "rt_drake.experiments.robust_report",
     "robust_table": "rt_drake.experiments.robust_report",
     "write_robust_report": "rt_drake.experiments.robust_report",
