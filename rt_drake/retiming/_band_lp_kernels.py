@@ -147,7 +147,7 @@ def band_solve(  # noqa: D417, PLR0913
     else:
         centre = guess[columns]
         for parity in range(2):  # x's and u's: every other column
-            largest = 1e-9
+            largest = 1.0
             for j in range(parity, n, 2):
                 largest = max(largest, abs(centre[j]))
             radius[parity::2] = radius_scale * largest
@@ -168,7 +168,7 @@ def band_solve(  # noqa: D417, PLR0913
         iterations += steps
         if status == simplex.SINGULAR and attempt == 0 and cold == 0:
             have = False  # no basis: once more from the bounds
-        elif status == simplex.ARTIFICIAL or status == simplex.INFEASIBLE:
+        elif status == simplex.ARTIFICIAL:
             radius *= widen  # the box may be what binds: wider, warm
             start = active
         else:

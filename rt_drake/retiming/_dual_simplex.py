@@ -15,7 +15,8 @@ iteration the row (or bound) the vertex breaks most (distance ``(a z - b) /
 |a|``) enters W, and the inequality whose multiplier reaches zero first
 along ``lam - t w`` (``A_W^T w = a``) leaves (Harris's two-pass ratio test,
 the largest ``w`` among the near-ties). A vertex breaking nothing is
-optimal; a broken row with no ``w > 0`` proves the LP infeasible.
+optimal; a broken row with no ``w > 0`` proves the LP infeasible (Farkas),
+unless an artificial bound takes part in the proof.
 
 Sorted by their first column, the n active normals of a nonsingular W form
 a band matrix with ``width - 1`` diagonals on each side (rows ``0..r`` lie
@@ -247,6 +248,12 @@ def dual_simplex(  # noqa: C901, D417, PLR0912, PLR0915
             if etas:
                 fresh = False
                 continue
+            # Farkas: a_p = sum w_r a_r with w_r <= 0 on the inequalities;
+            # a proof only if no artificial bound takes part.
+            for r in range(n):
+                k = W[r]
+                if k >= m + q and artificial[k - m - q] and w[r] < -pivot:
+                    return ARTIFICIAL, z, W, iterations
             return INFEASIBLE, z, W, iterations
         # The direction that frees the leaving constraint: d = A^{-1} e_leave.
         d = np.zeros(n)
