@@ -40,7 +40,9 @@ RADIUS = 1.0
 WIDEN = 100.0
 #: Iterations per LP, at most, times the number of columns.
 ITERATIONS = 20
-_SETTINGS = np.array([WIDTH, FEASIBLE, DUAL, BOX, RADIUS, WIDEN, ITERATIONS], dtype=float)
+_SETTINGS = np.array(
+    [WIDTH, FEASIBLE, DUAL, BOX, RADIUS, WIDEN, ITERATIONS], dtype=float
+)
 
 _NONE = np.zeros(0)
 _NONE_INT = np.zeros(0, dtype=np.int64)

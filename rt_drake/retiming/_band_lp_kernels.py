@@ -1,9 +1,10 @@
 """Compiled (numba) steps of :class:`._band_lp.BandLP` around its dual simplex.
 
-:func:`scaled_rows` (a CSR matrix's rows at unit length, in the solver's
-column order), :func:`crash` (the first active set of an LP near a
-guess) and :func:`matched` (the last active set's rows found by key in the
-next LP). Arrays are C-contiguous; indices int64 (scipy's int32 accepted).
+:func:`band_solve` (one LP: its start, the solver, the check of its
+answer), :func:`crash` (the first active set of an LP near a guess),
+:func:`matched` (the last active set's rows found by key in the
+next LP) and :func:`holds`. Arrays are C-contiguous; indices int64
+(scipy's int32 accepted).
 """
 
 from __future__ import annotations
@@ -15,42 +16,16 @@ from rt_drake.retiming import _dual_simplex as simplex
 
 
 @njit(cache=True)
-def scaled_rows(indptr, indices, data, b, position):  # noqa: D417
-    """Rows of A (CSR) and b divided by each row's length, columns renumbered.
-
-    ``position``: (n,) the solver's index of each column. Returns the
-    starts and columns (int64), values, b and the lengths (1 for a zero row).
-    """
-    m = len(indptr) - 1
-    starts = np.empty(m + 1, dtype=np.int64)
-    columns = np.empty(len(indices), dtype=np.int64)
-    values = np.empty(len(indices))
-    rhs = np.empty(m)
-    length = np.empty(m)
-    starts[0] = 0
-    for r in range(m):
-        total = 0.0
-        for t in range(indptr[r], indptr[r + 1]):
-            total += data[t] * data[t]
-        norm = np.sqrt(total) if total > 0.0 else 1.0
-        for t in range(indptr[r], indptr[r + 1]):
-            columns[t] = position[indices[t]]
-            values[t] = data[t] / norm
-        starts[r + 1] = indptr[r + 1]
-        rhs[r] = b[r] / norm
-        length[r] = norm
-    return starts, columns, values, rhs, length
-
-
-@njit(cache=True)
-def crash(guess, indptr, indices, data, b, q, lo, hi):  # noqa: D417
+def crash(guess, indptr, indices, data, b, position, q, lo, hi):  # noqa: D417
     """A first active set near ``guess`` (ids of :mod:`._dual_simplex`).
 
     The equality rows, the fixed variables' bounds and, for each first
-    column, the inequality row (scaled: unit length) with the least slack
-    ``b - a guess`` there, the tightest of them first, as many as the
-    variables left free (then upper bounds if too few). The caller falls
-    back to bounds alone if this set is singular.
+    column (in the solver's order, ``position``), the inequality row (A z
+    <= b in CSR form, the caller's columns) with the least slack ``(b - a
+    guess) / |a|`` there, the tightest of them first, as many as the
+    variables left free (then upper bounds if too few). ``guess``, ``lo``,
+    ``hi``: in the solver's order. The caller falls back to bounds alone if
+    this set is singular.
     """
     m, n = len(b), len(guess)
     best = np.full(n, -1, dtype=np.int64)
@@ -58,10 +33,13 @@ def crash(guess, indptr, indices, data, b, q, lo, hi):  # noqa: D417
     for r in range(m):
         if indptr[r] == indptr[r + 1]:
             continue
-        slack, first = b[r], n
+        slack, first, total = b[r], n, 0.0
         for t in range(indptr[r], indptr[r + 1]):
-            slack -= data[t] * guess[indices[t]]
-            first = min(first, indices[t])
+            column = position[indices[t]]
+            slack -= data[t] * guess[column]
+            first = min(first, column)
+            total += data[t] * data[t]
+        slack /= np.sqrt(total) if total > 0.0 else 1.0
         if slack < least[first]:
             least[first], best[first] = slack, r
     fixed = np.flatnonzero(lo == hi)
@@ -121,20 +99,17 @@ def band_solve(  # noqa: D417, PLR0913
     n, m, q = len(c), len(ub[3]), len(eq[3])
     position = np.empty(n, dtype=np.int64)
     position[columns] = np.arange(n)
-    indptr, indices, data, b, size = scaled_rows(ub[0], ub[1], ub[2], ub[3], position)
-    eptr, eind, edata, e, esize = scaled_rows(eq[0], eq[1], eq[2], eq[3], position)
     lower, upper = bounds[columns, 0].copy(), bounds[columns, 1].copy()
     artificial = np.concatenate((~np.isfinite(upper), ~np.isfinite(lower)))
     scale = 1e-300
     for j in range(n):
         scale = max(scale, abs(c[j]))
     cost = c[columns] / scale
-    lengths = np.concatenate((size, esize))
     start = np.zeros(0, dtype=np.int64)
     have = False
     if previous[3][0] == 1 and np.all(previous[1] < q) and np.all(previous[2] < 2 * n):
         rows = matched(previous[0], keys)
-        have = np.all(rows >= 0)  # else: a crash near the guess
+        have = bool(np.all(rows >= 0))  # else: a crash near the guess
         start = np.concatenate((rows, m + previous[1], m + q + previous[2]))
     centre, radius = np.zeros(n), np.ones(n)
     if have or len(guess) != n:  # the box: BOX times the largest finite bound
@@ -151,7 +126,7 @@ def band_solve(  # noqa: D417, PLR0913
             for j in range(parity, n, 2):
                 largest = max(largest, abs(centre[j]))
             radius[parity::2] = radius_scale * largest
-        start = crash(centre, indptr, indices, data, b, q, lower, upper)
+        start = crash(centre, ub[0], ub[1], ub[2], ub[3], position, q, lower, upper)
         have = True
     cold = 0
     status, z, active, iterations = simplex.SINGULAR, np.zeros(n), start, 0
@@ -162,8 +137,8 @@ def band_solve(  # noqa: D417, PLR0913
         lo = np.where(np.isfinite(lower), lower, centre - radius)
         hi = np.where(np.isfinite(upper), upper, centre + radius)
         status, z, active, steps = simplex.dual_simplex(
-            indptr, indices, data, b, eptr, eind, edata, e, lo, hi, artificial,
-            cost, width, start, int(settings[6]) * n, feasible, dual, lengths,
+            ub[0], ub[1], ub[2], ub[3], eq[0], eq[1], eq[2], eq[3], position, lo, hi,
+            artificial, cost, width, start, int(settings[6]) * n, feasible, dual,
         )  # fmt: skip
         iterations += steps
         if status == simplex.SINGULAR and attempt == 0 and cold == 0:
@@ -185,7 +160,13 @@ def band_solve(  # noqa: D417, PLR0913
     row_keys = np.sort(keys[rows])
     eq_rows = active[(active >= m) & (active < m + q)] - m
     bound_ids = active[active >= m + q] - (m + q)
-    return status, out, (row_keys, eq_rows, bound_ids, np.ones(1, dtype=np.int64)), iterations, cold
+    return (
+        status,
+        out,
+        (row_keys, eq_rows, bound_ids, np.ones(1, dtype=np.int64)),
+        iterations,
+        cold,
+    )
 
 
 #: :func:`band_solve`'s status for an optimum that breaks a row (never seen).
@@ -225,4 +206,4 @@ def _rows_held(z, indptr, indices, data, b, equal, tolerance):
     return True
 
 
-__all__ = ["band_solve", "crash", "holds", "matched", "scaled_rows"]
+__all__ = ["band_solve", "crash", "holds", "matched"]

@@ -4,16 +4,16 @@ LAPACK's ``dgbtf2`` / ``dgbtrs`` (unblocked), for the square matrices of
 :mod:`._dual_simplex`: A (n, n) with ``A[i, j] = 0`` unless ``-kl <= j - i
 <= ku``, stored by columns in ``ab`` of shape ``(n, 2 kl + ku + 1)`` with
 ``A[i, j]`` at ``ab[j, kl + ku + i - j]`` (each column's band contiguous,
-its first kl entries the fill of the row exchanges). :func:`factor` overwrites ``ab`` with ``P A = L U``
-(unit lower L with kl multipliers per column, upper U of bandwidth kl +
-ku) and the pivots; :func:`solve` and :func:`solve_transposed` then solve
-``A x = b`` and ``A^T y = c`` in O(n (2 kl + ku)). Arrays are C-contiguous
+its first kl entries the fill of the row exchanges). :func:`factor`
+overwrites ``ab`` with ``P A = L U`` (unit lower L with kl multipliers per
+column, upper U of bandwidth kl + ku, its diagonal stored as its
+reciprocals) and the pivots; :func:`solve` and :func:`solve_transposed`
+then solve ``A x = b`` and ``A^T y = c`` in O(n (2 kl + ku)). Arrays are C-contiguous
 float64, pivots int64.
 """
 
 from __future__ import annotations
 
-import numpy as np
 from numba import njit
 
 
@@ -49,6 +49,7 @@ def factor(ab, kl, ku, pivots, tiny):  # noqa: D417
                 a, b = kv + j - c, kv + j + jp - c
                 ab[c, a], ab[c, b] = ab[c, b], ab[c, a]
         inverse = 1.0 / ab[j, kv]
+        ab[j, kv] = inverse  # the solves multiply by it
         for t in range(1, km + 1):
             ab[j, kv + t] *= inverse
         for c in range(j + 1, ju + 1):
@@ -73,9 +74,10 @@ def solve(ab, kl, ku, pivots, b):  # noqa: D417
         for t in range(1, km + 1):
             x[j + t] -= ab[j, kv + t] * x[j]
     for j in range(n - 1, -1, -1):  # U
-        x[j] /= ab[j, kv]
+        xj = x[j] * ab[j, kv]
+        x[j] = xj
         for i in range(max(0, j - kv), j):
-            x[i] -= ab[j, kv + i - j] * x[j]
+            x[i] -= ab[j, kv + i - j] * xj
     return x
 
 
@@ -89,7 +91,7 @@ def solve_transposed(ab, kl, ku, pivots, c):  # noqa: D417
         total = y[j]
         for i in range(max(0, j - kv), j):
             total -= ab[j, kv + i - j] * y[i]
-        y[j] = total / ab[j, kv]
+        y[j] = total * ab[j, kv]
     for j in range(n - 2, -1, -1):  # L^T, then the exchanges backwards
         km = min(kl, n - 1 - j)
         total = y[j]

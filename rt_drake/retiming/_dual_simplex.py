@@ -1,4 +1,4 @@
-"""A compiled (numba) dual simplex for LPs whose rows each span a few neighbouring columns.
+"""A compiled (numba) dual simplex for LPs whose rows span a few neighbouring columns.
 
 The LP, in the column order the caller chose (every row's nonzero columns
 within ``width`` consecutive ones: the jerk LPs' rows each touch ``x_i, u_i,
@@ -40,79 +40,92 @@ from numba import njit
 from rt_drake.retiming._band_lu import factor, solve, solve_transposed
 
 #: Iterations between factorisations (the updates in between: Sherman-Morrison).
-REFACTOR = 24
+REFACTOR = 8
 #: Statuses of :func:`dual_simplex`.
 OPTIMAL, INFEASIBLE, ITERATION_CAP, SINGULAR, ARTIFICIAL, TOO_WIDE = 0, 1, 2, 3, 4, 5
 
 
 @njit(cache=True)
-def _table(indptr, indices, data, eptr, eind, edata, n, width):
-    """Every constraint's normal as (column, value) pairs, by id, and its first column.
+def _table(indptr, indices, data, b, eptr, eind, edata, e, position, width):
+    """Every constraint's normal, by id, scaled to unit length in the solver's columns.
 
-    Returns ``cols``, ``vals`` (K, width), ``count`` (K,) and ``first``
-    (K,), K = m + q + 2n; ``first[0] = -1`` if a row spans more than
-    ``width`` columns.
+    Returns ``cols``, ``vals`` (K, width) and ``count`` (K,): its (column,
+    value) pairs; ``first`` (K,): its first column (``first[0] = -1`` if a
+    row spans more than ``width`` columns); ``rhs`` (K,): its scaled bound
+    (the bounds' left 0, for the caller); ``length`` (m + q,): the rows'
+    lengths before scaling (1 for a zero row). K = m + q + 2n.
     """
-    m, q = len(indptr) - 1, len(eptr) - 1
+    m, q, n = len(b), len(e), len(position)
     K = m + q + 2 * n
-    cols = np.zeros((K, width), dtype=np.int64)
-    vals = np.zeros((K, width))
-    count = np.zeros(K, dtype=np.int64)
-    first = np.zeros(K, dtype=np.int64)
+    cols = np.empty((K, width), dtype=np.int64)
+    vals = np.empty((K, width))
+    count = np.empty(K, dtype=np.int64)
+    first = np.empty(K, dtype=np.int64)
+    rhs = np.zeros(K)
+    length = np.ones(m + q)
     for k in range(m + q):
         if k < m:
-            p, ind, dat, start, stop = indptr, indices, data, indptr[k], indptr[k + 1]
+            ind, dat, start, stop = indices, data, indptr[k], indptr[k + 1]
         else:
-            p, ind, dat = eptr, eind, edata
-            start, stop = eptr[k - m], eptr[k - m + 1]
-        low, high = n, -1
+            ind, dat, start, stop = eind, edata, eptr[k - m], eptr[k - m + 1]
+        low, high, total = n, -1, 0.0
         for t in range(start, stop):
-            low, high = min(low, ind[t]), max(high, ind[t])
+            column = position[ind[t]]
+            low, high = min(low, column), max(high, column)
+            total += dat[t] * dat[t]
         if stop - start > width or high - low >= width:
             first[0] = -1
-            return cols, vals, count, first
+            return cols, vals, count, first, rhs, length
+        norm = np.sqrt(total) if total > 0.0 else 1.0
         first[k] = low if high >= 0 else 0
         count[k] = stop - start
         for t in range(start, stop):
-            cols[k, t - start], vals[k, t - start] = ind[t], dat[t]
+            cols[k, t - start] = position[ind[t]]
+            vals[k, t - start] = dat[t] / norm
+        rhs[k] = (b[k] if k < m else e[k - m]) / norm
+        length[k] = norm
     for j in range(n):
         for side, sign in ((0, 1.0), (1, -1.0)):
             k = m + q + side * n + j
             cols[k, 0], vals[k, 0], count[k], first[k] = j, sign, 1, j
-    return cols, vals, count, first
+    return cols, vals, count, first, rhs, length
 
 
 @njit(cache=True)
 def dual_simplex(  # noqa: C901, D417, PLR0912, PLR0915
-    indptr, indices, data, b, eptr, eind, edata, e, lo, hi, artificial, c, width,
-    start, max_iterations, feasible, dual, scale,
+    indptr, indices, data, b, eptr, eind, edata, e, position, lo, hi, artificial, c,
+    width, start, max_iterations, feasible, dual,
 ):  # fmt: skip
     """The LP of the module docstring from the active set ``start``, (n,) ids.
 
-    ``indptr``, ``indices``, ``data``: A in CSR form, rows scaled to unit
-    length (and ``b`` with them); ``eptr``, ``eind``, ``edata``: E likewise.
-    ``artificial``: (2n,) upper then lower bounds that are the caller's
-    box, not the LP's (one active at the end: :data:`ARTIFICIAL`).
-    ``scale``: (m + q,) the rows' lengths before scaling; a row may keep an
-    excess of ``feasible max(1, |b|)`` in its own units (a bound likewise);
-    ``dual``: tolerance of a multiplier. Returns the status, z, the final
-    active set (ids) and the iterations (ratio-test pivots and repair steps).
+    ``indptr``, ``indices``, ``data``, ``b``: A z <= b in CSR form (the
+    caller's columns); ``eptr``, ``eind``, ``edata``, ``e``: E z = e
+    likewise; ``position``: (n,) each column's index in the solver's order,
+    which ``lo``, ``hi``, ``c`` (scaled to ``max |c| = 1``) and the returned
+    z follow. Rows are scaled to unit length here. ``artificial``: (2n,)
+    upper then lower bounds that are the caller's box, not the LP's (one
+    active at the end: :data:`ARTIFICIAL`). A row (a bound) may keep an
+    excess of ``feasible max(1, |b|)`` in its own units; ``dual``:
+    tolerance of a multiplier. Returns the status, z, the final active set
+    (ids) and the iterations (ratio-test pivots and repair steps).
     """
     m, q, n = len(b), len(e), len(c)
     kl = width - 1
     z = np.zeros(n)
-    cols, vals, count, first = _table(indptr, indices, data, eptr, eind, edata, n, width)
+    cols, vals, count, first, rhs_of, length = _table(
+        indptr, indices, data, b, eptr, eind, edata, e, position, width
+    )
     if len(first) and first[0] < 0:
         return TOO_WIDE, z, start.copy(), 0
     tolerance = np.empty(m + q + 2 * n)
     for i in range(m):
-        tolerance[i] = feasible * max(1.0 / scale[i], abs(b[i]))
+        tolerance[i] = feasible * max(1.0, abs(b[i])) / length[i]
     for k in range(q):
-        tolerance[m + k] = feasible * max(1.0 / scale[m + k], abs(e[k]))
+        tolerance[m + k] = feasible * max(1.0, abs(e[k])) / length[m + k]
     for j in range(n):
         tolerance[m + q + j] = feasible * max(1.0, abs(hi[j]))
         tolerance[m + q + n + j] = feasible * max(1.0, abs(lo[j]))
-    rhs_of = np.concatenate((b, e, hi, -lo))
+        rhs_of[m + q + j], rhs_of[m + q + n + j] = hi[j], -lo[j]
     free = np.zeros(m + q + 2 * n, dtype=np.bool_)
     free[m : m + q] = True
     for j in range(n):
@@ -174,7 +187,7 @@ def dual_simplex(  # noqa: C901, D417, PLR0912, PLR0915
                 unit = np.zeros(n)
                 unit[at] = 1.0
                 d = solve(ab, kl, kl, pivots, unit)
-                j = np.argmax(np.abs(d))
+                j = int(np.argmax(np.abs(d)))
                 if abs(d[j]) <= 1e-12:
                     return SINGULAR, z, W, iterations
                 active[W[at]] = False
@@ -225,7 +238,9 @@ def dual_simplex(  # noqa: C901, D417, PLR0912, PLR0915
         a = np.zeros(n)
         for t in range(count[enter]):
             a[cols[enter, t]] = sign * vals[enter, t]
-        for e_k in range(etas - 1, -1, -1):  # A_k^{-T} = A_{k-1}^{-T} (I - v u^T / delta)
+        for e_k in range(
+            etas - 1, -1, -1
+        ):  # A_k^{-T} = A_{k-1}^{-T} (I - v u^T / delta)
             dot = 0.0
             for i in range(n):
                 dot += eta_u[e_k, i] * a[i]

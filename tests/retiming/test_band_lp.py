@@ -32,7 +32,10 @@ def _lp(seed: int, segments: int = 30, per_segment: int = 6):
     E = sparse.csr_matrix(
         (
             np.column_stack([np.ones(segments), -np.ones(segments), -ds, -ds]).ravel(),
-            (np.repeat(i, 4), np.column_stack([i + 1, i, size + i, size + i + 1]).ravel()),
+            (
+                np.repeat(i, 4),
+                np.column_stack([i + 1, i, size + i, size + i + 1]).ravel(),
+            ),
         ),
         shape=(segments, n),
     )
@@ -52,7 +55,9 @@ def _lp(seed: int, segments: int = 30, per_segment: int = 6):
     b = A @ z0 + rng.uniform(0.0, 0.5, len(rows))
     bounds = np.column_stack([np.full(n, -np.inf), np.full(n, np.inf)])
     bounds[:size, 0] = 0.0
-    bounds[:size, 1] = np.where(rng.random(size) < 0.7, x0 + rng.uniform(0.1, 2.0, size), np.inf)
+    bounds[:size, 1] = np.where(
+        rng.random(size) < 0.7, x0 + rng.uniform(0.1, 2.0, size), np.inf
+    )
     bounds[size:, 0] = np.where(rng.random(size) < 0.5, u0 - 50.0, -np.inf)
     bounds[size:, 1] = np.where(rng.random(size) < 0.5, u0 + 50.0, np.inf)
     bounds[0] = x0[0]  # x_0 given, as a retime's start
@@ -75,7 +80,10 @@ def _reference(c, A, b, E, e, bounds):
     result = linprog(
         c, A_ub=A, b_ub=b, A_eq=E, b_eq=e, bounds=list(map(tuple, bounds)),
         method="highs",
-        options={"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10},
+        options={
+            "primal_feasibility_tolerance": 1e-10,
+            "dual_feasibility_tolerance": 1e-10,
+        },
     )  # fmt: skip
     return result
 
@@ -89,7 +97,9 @@ def _assert_optimal(z, c, A, b, E, e, bounds):
     assert np.all(np.abs(E @ z - e) <= 1e-9 * np.maximum(1.0, np.abs(e)))
     low, high = bounds[:, 0], bounds[:, 1]
     assert np.all(z >= low - 1e-9 * np.maximum(1.0, np.abs(low)))
-    assert np.all(z <= high + 1e-9 * np.maximum(1.0, np.abs(np.where(np.isinf(high), 0.0, high))))
+    assert np.all(
+        z <= high + 1e-9 * np.maximum(1.0, np.abs(np.where(np.isinf(high), 0.0, high)))
+    )
 
 
 @pytest.mark.parametrize("seed", range(3))
@@ -136,7 +146,8 @@ def _more_rows(rng, z, z0, count, first_key):
     cols = np.column_stack([seg, size + seg, size + seg + 1])
     values = rng.normal(size=cols.shape)
     A = sparse.csr_matrix(
-        (values.ravel(), (np.repeat(np.arange(count), 3), cols.ravel())), shape=(count, n)
+        (values.ravel(), (np.repeat(np.arange(count), 3), cols.ravel())),
+        shape=(count, n),
     )
     return A, A @ (0.5 * (z + z0)), first_key + np.arange(count)
 

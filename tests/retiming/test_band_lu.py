@@ -15,7 +15,7 @@ from rt_drake.retiming._band_lu import factor, solve, solve_transposed
 
 
 def _band(A: np.ndarray, kl: int, ku: int) -> np.ndarray:
-    """A in the storage of :mod:`._band_lu`: ``A[i, j]`` at ``ab[j, kl + ku + i - j]``."""
+    """A stored as :mod:`._band_lu` does: ``A[i, j]`` at ``ab[j, kl + ku + i - j]``."""
     n = len(A)
     ab = np.zeros((n, 2 * kl + ku + 1))
     for i in range(n):
@@ -33,7 +33,9 @@ def _random_band(rng: np.random.Generator, n: int, kl: int, ku: int) -> np.ndarr
     return A
 
 
-@pytest.mark.parametrize(("n", "kl", "ku", "seed"), [(40, 3, 3, 0), (31, 2, 4, 1), (7, 1, 1, 2)])
+@pytest.mark.parametrize(
+    ("n", "kl", "ku", "seed"), [(40, 3, 3, 0), (31, 2, 4, 1), (7, 1, 1, 2)]
+)
 def test_band_solves_match_numpy(n, kl, ku, seed):
     rng = np.random.default_rng(seed)
     A = _random_band(rng, n, kl, ku)
@@ -44,8 +46,12 @@ def test_band_solves_match_numpy(n, kl, ku, seed):
     b, c = rng.normal(size=n), rng.normal(size=n)
     scale = np.linalg.cond(A)
     x, y = solve(ab, kl, ku, pivots, b), solve_transposed(ab, kl, ku, pivots, c)
-    assert np.max(np.abs(x - np.linalg.solve(A, b))) <= 1e-13 * scale * np.max(np.abs(x))
-    assert np.max(np.abs(y - np.linalg.solve(A.T, c))) <= 1e-13 * scale * np.max(np.abs(y))
+    assert np.max(np.abs(x - np.linalg.solve(A, b))) <= 1e-13 * scale * np.max(
+        np.abs(x)
+    )
+    assert np.max(np.abs(y - np.linalg.solve(A.T, c))) <= 1e-13 * scale * np.max(
+        np.abs(y)
+    )
 
 
 def test_singular_band_matrix_is_refused():
