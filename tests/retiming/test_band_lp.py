@@ -9,7 +9,8 @@ optimal value (1e-9 relative) and every row and bound held (1e-9
 relative), also along a sequence of warm-started LPs whose costs and rows
 change and grow (as a retime's), on a degenerate LP (rows repeated and
 rows through the optimum) and from a guess. An infeasible LP, an unbounded
-one and one whose rows are too wide get no answer, with the reason.
+one and one whose rows are too wide get no answer, with the reason. The
+retimer's ``WarmLP`` answers with it, as HiGHS alone does.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from scipy import sparse
 from scipy.optimize import linprog
 
 from rt_drake.retiming._band_lp import BandLP
+from rt_drake.retiming._jerk_lp import WarmLP
 
 
 def _lp(seed: int, segments: int = 30, per_segment: int = 6):
@@ -192,3 +194,17 @@ def test_infeasible_unbounded_and_too_wide_lps_get_no_answer():
         E, e, bounds,
     )  # fmt: skip
     assert z is None and status == "A row spans too many columns"
+
+
+def test_warm_lp_answers_with_it_and_agrees_with_highs_alone():
+    """The retimer's WarmLP: no fallback to HiGHS, HiGHS's optimal value."""
+    c, A, b, keys, E, e, bounds, _ = _lp(2)
+    compiled, highs = WarmLP(), WarmLP(compiled=False)
+    always = np.zeros(len(b), dtype=bool)
+    for step in range(2):
+        cost = c * (1.0 + 0.2 * step * np.sin(np.arange(len(c))))
+        z, _ = compiled.solve(cost, A, b, keys, E, e, bounds, always)
+        z_highs, _ = highs.solve(cost, A, b, keys, E, e, bounds, always)
+        assert z is not None and z_highs is not None
+        assert cost @ z == pytest.approx(cost @ z_highs, rel=1e-7)
+    assert compiled.fallbacks == 0 and compiled.solves == 0  # no HiGHS run
