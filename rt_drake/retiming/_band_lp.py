@@ -10,12 +10,18 @@ LPs' ``z = [x_0..x_N, u_0..u_N]`` interleaved: ``x_0, u_0, x_1, u_1, ...``).
 Each LP starts from the last optimum's active set, its rows matched by key
 (:func:`._jerk_rows.key`): a cutting-plane method needs no rounds of its
 own, since the dual simplex only ever takes the rows its vertex breaks.
-The rows are scaled to unit length; an infinite bound becomes an
-artificial one, :data:`BOX` times the largest finite bound, and an
-optimum that keeps one active is refused (the LP may be unbounded). An
-answer is checked against every row and bound (:data:`FEASIBLE`) before it
-is returned; any other outcome returns None and the status's name, for
-the caller to solve the LP otherwise (:class:`._jerk_lp.WarmLP` runs HiGHS).
+The first LP (or one whose last active set lost a row) starts from
+:func:`._band_lp_kernels.crash` around the guess (or the last optimum).
+The rows are scaled to unit length. An infinite bound becomes an
+artificial one: around the guess on a crash start (:data:`RADIUS` times
+its largest |x|, or |u|, at least 1), else :data:`BOX` times the largest
+finite bound; while an optimum keeps one active, or an infeasibility
+proof leans on one, the box is widened (:data:`WIDEN`, three times) and
+the LP solved again from there; then it is refused (the LP may be
+unbounded). An answer is checked against every row and bound
+(:data:`FEASIBLE`) before it is returned; any other outcome returns None
+and the status's name, for the caller to solve the LP otherwise
+(:class:`._jerk_lp.WarmLP` runs HiGHS).
 """
 
 from __future__ import annotations
@@ -32,11 +38,12 @@ WIDTH = 4
 FEASIBLE = 1e-9
 #: Tolerance of a multiplier (the costs are scaled to ``max |c| = 1``).
 DUAL = 1e-9
-#: An infinite bound's artificial value, times ``max(1, largest finite |bound|)``
-#: (without a guess), or its distance from the guess in units of the guess's
-#: largest |x| (or |u|): widened by :data:`WIDEN` while one is active.
+#: An infinite bound's artificial value, times ``max(1, largest finite |bound|)``.
 BOX = 1e6
+#: On a crash start: its distance from the guess, times ``max(1, largest |x|)``
+#: (or |u|) of the guess.
 RADIUS = 1.0
+#: The factor by which the artificial box widens when it binds.
 WIDEN = 100.0
 #: Iterations per LP, at most, times the number of columns.
 ITERATIONS = 20
