@@ -14,8 +14,9 @@ the grasp constraint of the notebook at 100 grid points. For each MOVE:
     is shared) of one acceleration-limited and one jerk-limited retime
     (shipped limits), interleaved, ``--repeats`` times, median per MOVE;
     and the share of the jerk-limited retime spent in the LPs
-    (``WarmLP.solve``: HiGHS, warm-started, with its cutting planes), and
-    the CPU time of the first LP and of each later one;
+    (``WarmLP.solve``: the compiled dual simplex, HiGHS where it gives no
+    answer), the CPU time of the first LP and of each later one, and the
+    LPs left to HiGHS;
 (c) every limit of the jerk-limited MOVE (shipped limits) at 1 kHz:
     ``check_trajectory`` (velocity, acceleration, position, jerk from
     differences of the 1 kHz accelerations, grasp by Newton-Euler) and the
@@ -56,16 +57,21 @@ from rt_drake.simulation import OnlineMotions  # noqa: E402
 FACTORS = (5.0, 10.0, 20.0)
 #: CPU ms of each LP (``WarmLP.solve``) since the last reset, by :func:`timed_solve`.
 IN_LPS: list[float] = []
+#: LPs the compiled solver left to HiGHS (``WarmLP.fallbacks``), and all LPs.
+FALLBACKS = [0, 0]
 _SOLVE = _jerk_lp.WarmLP.solve
 
 
-def timed_solve(*args, **kwargs):  # noqa: ANN002, ANN003, ANN201
+def timed_solve(self, *args, **kwargs):  # noqa: ANN001, ANN002, ANN003, ANN201
     """``WarmLP.solve``, appending its thread CPU time (ms) to IN_LPS."""
+    before = getattr(self, "fallbacks", 0)
     start = time.thread_time()
     try:
-        return _SOLVE(*args, **kwargs)
+        return _SOLVE(self, *args, **kwargs)
     finally:
         IN_LPS.append(1e3 * (time.thread_time() - start))
+        FALLBACKS[0] += getattr(self, "fallbacks", 0) - before
+        FALLBACKS[1] += 1
 
 
 def planned_moves(
@@ -108,12 +114,14 @@ class JerkBench:
     moves: list[tuple[object, object]]
 
 
-def jerk_bench(description: str) -> JerkBench:
-    """Parse ``--n --seed --repeats``, build the arm, warm up, plan the MOVEs."""
+def jerk_bench(description: str, check: bool = False) -> JerkBench:
+    """Parse ``--n --seed --repeats`` (``--check``), build the arm, warm up, plan."""
     parser = argparse.ArgumentParser(description=description)
     parser.add_argument("--n", type=int, default=20)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--repeats", type=int, default=3)
+    if check:
+        parser.add_argument("--check", action="store_true")
     args = parser.parse_args()
     scenario = load_scenario(scenarios_dir() / "random_transport_paper.yaml")
     plant = make_arm_plant(scenario)
@@ -213,11 +221,12 @@ def main() -> None:
         f"jerk-limited median {statistics.median(cpu_jerk):.1f}, ratio "
         f"{statistics.median(cpu_jerk) / statistics.median(cpu_plain):.1f}; "
         f"LPs per jerk-limited retime median {statistics.median(lps):g}, max {max(lps)}"
-        f"; share of the jerk-limited retime in its LPs (HiGHS) median "
+        f"; share of the jerk-limited retime in its LPs (WarmLP.solve) median "
         f"{100 * statistics.median(highs):.0f} %; CPU ms of the first LP median "
         f"{statistics.median(first_lp):.1f}, of each later (warm-started) LP "
         f"median {statistics.median(warm_lp):.1f}"
     )
+    print(f"LPs the compiled solver left to HiGHS: {FALLBACKS[0]} of {FALLBACKS[1]}")
     print(
         f"\n(c) {passed}/{len(moves)} jerk-limited MOVEs hold every limit at 1 kHz "
         f"within 1e-3: worst check margin {worst_check:+.5f}, worst third-"

@@ -1,7 +1,7 @@
 """The jerk-limited retime's LP step, replayed: variants of it and HiGHS's floor.
 
 Run: ``PYTHONPATH=. nice python benchmarks/bench_jerk_replay.py [--n 20] [--seed 0]
-[--repeats 6]``.
+[--repeats 6] [--check]``.
 
 Every LP of the jerk-limited retimes of :mod:`bench_jerk`'s MOVEs (Table
 I's, shipped jerk limits, 100 grid points) is captured once: the
@@ -9,20 +9,31 @@ arguments of ``WarmLP.guess`` and ``WarmLP.solve`` and the optimum. Each
 retime's sequence of LPs is then replayed (the same LPs, whatever the
 variant returns) through:
 
-- ``shipped``: :class:`rt_drake.retiming._jerk_lp.WarmLP` as the retimer runs it;
-- ``dantzig``, ``unscaled``, ``one-thread``: the same with one HiGHS option
+- ``shipped``: :class:`rt_drake.retiming._jerk_lp.WarmLP` as the retimer runs it
+  (the compiled dual simplex, :class:`rt_drake.retiming._band_lp.BandLP`,
+  HiGHS where it gives no answer);
+- ``highs``: ``WarmLP(compiled=False)``, HiGHS alone with its cutting planes
+  (the LP step before session 8);
+- ``dantzig``, ``unscaled``, ``one-thread``: ``highs`` with one HiGHS option
   changed (Dantzig pricing, no scaling, ``threads`` 1);
-- ``knot-pairs``: a jerk row cut at one side of a knot brings the same
-  joint's row on the other side and at the neighbouring knots' sides, and
-  the first sub-LP takes the other side of every jerk row it takes
-  (:class:`KnotPairs`);
+- ``knot-pairs``: ``highs`` where a jerk row cut at one side of a knot brings
+  the same joint's row on the other side and at the neighbouring knots'
+  sides, and the first sub-LP takes the other side of every jerk row it
+  takes (:class:`KnotPairs`);
 
 interleaved per MOVE in a rotating order, ``--repeats`` times, CPU by
 ``time.process_time`` (the machine is shared: ratios, not milliseconds).
 Printed per variant: the median over MOVEs of its CPU in the LP step over
 ``shipped``'s in the same repeat, HiGHS runs and simplex iterations over
-the MOVEs, and the largest difference of an optimum from the captured one
+the MOVEs (``shipped``: its own iterations, and HiGHS's runs where it fell
+back), and the largest difference of an optimum from the captured one
 (relative to ``max(1, |z|)``).
+
+``--check``: each captured LP solved once more by ``shipped`` and by
+``scipy.optimize.linprog(method="highs")`` with feasibility tolerances of
+1e-10 (every row, not cutting planes): the largest relative difference of
+the optimal values and the largest excess of a row or bound of
+``shipped``'s optimum (relative to ``max(1, |bound|)``).
 
 Then HiGHS's floor on the solved model of every captured LP (median ms):
 ``run`` again with nothing changed (no iteration), ``passModel`` +
@@ -42,6 +53,7 @@ from collections.abc import Callable  # noqa: E402
 import highspy as _highspy  # noqa: E402
 import numpy as np  # noqa: E402
 from bench_jerk import jerk_bench  # noqa: E402
+from scipy.optimize import linprog  # noqa: E402
 
 from rt_drake.retiming import _jerk_lp, retime  # noqa: E402
 from rt_drake.retiming._jerk_problem import Kind  # noqa: E402
@@ -69,7 +81,10 @@ def _with_neighbours(keys: np.ndarray, rows: np.ndarray, offsets) -> np.ndarray:
 
 
 class KnotPairs(_jerk_lp.WarmLP):
-    """WarmLP whose jerk cuts bring their knot's other side and its neighbours."""
+    """HiGHS's WarmLP whose jerk cuts bring their knot's other side and neighbours."""
+
+    def __init__(self) -> None:  # noqa: D107
+        super().__init__(compiled=False)
 
     def solve(self, c, A_ub, b_ub, keys, A_eq, b_eq, bounds, always):  # noqa: ANN001, ANN201, D102
         # The rows WarmLP.solve's first sub-LP takes, and their jerk pairs.
@@ -93,7 +108,7 @@ def with_option(name: str, value: object) -> Callable[[], _jerk_lp.WarmLP]:
     """A WarmLP factory with one HiGHS option changed."""
 
     def make() -> _jerk_lp.WarmLP:
-        solver = _jerk_lp.WarmLP()
+        solver = _jerk_lp.WarmLP(compiled=False)
         solver._highs.setOptionValue(name, value)
         return solver
 
@@ -102,6 +117,7 @@ def with_option(name: str, value: object) -> Callable[[], _jerk_lp.WarmLP]:
 
 VARIANTS: dict[str, Callable[[], _jerk_lp.WarmLP]] = {
     "shipped": _jerk_lp.WarmLP,
+    "highs": lambda: _jerk_lp.WarmLP(compiled=False),
     "dantzig": with_option("simplex_dual_edge_weight_strategy", 0),
     "unscaled": with_option("simplex_scale_strategy", 0),
     "one-thread": with_option("threads", 1),
@@ -144,6 +160,7 @@ def replay(make: Callable[[], _jerk_lp.WarmLP], trace: Trace) -> tuple[float, ..
     start = time.process_time()
     solver = make()
     worst = 0.0
+    band = solver._band
     for item in trace:
         if item[0] == "guess":
             solver.guess(item[1])
@@ -152,14 +169,52 @@ def replay(make: Callable[[], _jerk_lp.WarmLP], trace: Trace) -> tuple[float, ..
         ref = item[2]
         apart = np.abs(z - ref) / np.maximum(1.0, np.abs(ref))
         worst = max(worst, float(np.max(apart)))
-    return time.process_time() - start, solver.solves, solver.iterations, worst
+    seconds = time.process_time() - start
+    iterations = solver.iterations + (0 if band is None else band.iterations)
+    return seconds, solver.solves, iterations, worst
+
+
+def check(traces: list[Trace]) -> tuple[float, float, int]:
+    """Largest relative difference from scipy's optimal value, largest excess."""
+    gap = excess = 0.0
+    fallbacks = 0
+    for trace in traces:
+        solver = _jerk_lp.WarmLP()
+        for item in trace:
+            if item[0] == "guess":
+                solver.guess(item[1])
+                continue
+            c, A_ub, b_ub, keys, A_eq, b_eq, bounds, always = item[1]
+            before = solver.fallbacks
+            z, _ = solver.solve(*item[1])
+            fallbacks += solver.fallbacks - before
+            reference = linprog(
+                c, A_ub=A_ub, b_ub=b_ub, A_eq=A_eq, b_eq=b_eq,
+                bounds=list(map(tuple, bounds)), method="highs",
+                options={
+                    "primal_feasibility_tolerance": 1e-10,
+                    "dual_feasibility_tolerance": 1e-10,
+                },
+            )  # fmt: skip
+            assert reference.status == 0, reference.message
+            gap = max(gap, abs(c @ z - reference.fun) / max(1.0, abs(reference.fun)))
+            over = [
+                (A_ub @ z - b_ub) / np.maximum(1.0, np.abs(b_ub)),
+                np.abs(A_eq @ z - b_eq) / np.maximum(1.0, np.abs(b_eq)),
+            ]
+            for side, sign in ((0, -1.0), (1, 1.0)):
+                finite = np.isfinite(bounds[:, side])
+                limit = bounds[finite, side]
+                over.append(sign * (z[finite] - limit) / np.maximum(1.0, np.abs(limit)))
+            excess = max(excess, max(float(np.max(o)) for o in over if o.size))
+    return gap, excess, fallbacks
 
 
 def floor(traces: list[Trace], repeats: int) -> dict[str, list[float]]:
     """HiGHS's ms on each captured LP's solved model (module docstring)."""
     out: dict[str, list[float]] = {"run again": [], "passModel": [], "kept": []}
     for trace in traces:
-        solver = _jerk_lp.WarmLP()
+        solver = _jerk_lp.WarmLP(compiled=False)
         for item in trace:
             if item[0] == "guess":
                 solver.guess(item[1])
@@ -233,8 +288,17 @@ def _model_keys(solver: _jerk_lp.WarmLP) -> np.ndarray:
 
 def main() -> None:
     """Print the variants' CPU, runs, iterations and optima, then the floor."""
-    bench = jerk_bench(__doc__.splitlines()[0])
+    bench = jerk_bench(__doc__.splitlines()[0], check=True)
     traces = capture(bench)
+    if bench.args.check:
+        gap, excess, fallbacks = check(traces)
+        print(
+            f"{sum(len(t) - 1 for t in traces)} LPs against scipy's HiGHS (tolerances "
+            f"1e-10): largest relative difference of the optimal value {gap:.1e}, "
+            f"largest relative excess of a row or bound {excess:.1e}; the "
+            f"compiled solver fell back to HiGHS on {fallbacks} LPs"
+        )
+        return
     names = list(VARIANTS)
     ratios: dict[str, list[float]] = {name: [] for name in names}
     shipped_ms: list[float] = []

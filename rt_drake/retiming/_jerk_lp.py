@@ -21,6 +21,7 @@ import highspy
 import numpy as np
 from scipy import sparse
 
+from rt_drake.retiming._band_lp import BandLP
 from rt_drake.retiming._jerk_row_kernels import csr_product, csr_rows
 
 _STATUS = np.array(
@@ -40,9 +41,18 @@ FEASIBLE = 1e-7
 
 
 class WarmLP:
-    """One retime's sequence of LPs on one HiGHS instance (not thread-safe)."""
+    """One retime's sequence of LPs (not thread-safe).
 
-    def __init__(self) -> None:
+    Each LP goes to the compiled dual simplex (:class:`._band_lp.BandLP`)
+    first, unless ``compiled`` is False; an LP it does not answer (see
+    there), and every LP when ``compiled`` is False, goes to HiGHS.
+    """
+
+    def __init__(self, compiled: bool = True) -> None:
+        """``compiled``: try :class:`._band_lp.BandLP` before HiGHS."""
+        self._band = BandLP() if compiled else None
+        #: LPs the compiled solver did not answer (solved by HiGHS).
+        self.fallbacks = 0
         self._highs = highspy.Highs()
         self._highs.setOptionValue("output_flag", False)
         self._highs.setOptionValue("presolve", "off")
@@ -63,6 +73,8 @@ class WarmLP:
     def guess(self, z: np.ndarray) -> None:
         """Start the first LP near ``z`` (rows tight there in, and nonbasic)."""
         self._start = np.asarray(z, dtype=float)
+        if self._band is not None:
+            self._band.guess(self._start)
 
     def solve(
         self,
@@ -89,6 +101,12 @@ class WarmLP:
         (HiGHS keeps its basis) and it is solved again, until none is
         broken: then its optimum is the LP's.
         """
+        if self._band is not None:
+            z, _ = self._band.solve(c, A_ub, b_ub, keys, A_eq, b_eq, bounds)
+            if z is not None:
+                self._keys, self._start = None, z  # HiGHS, if next: near z
+                return z, "Optimal"
+            self.fallbacks += 1
         working = always.copy()
         slack = np.maximum(1.0, np.abs(b_ub))
         if self._start is not None:

@@ -23,6 +23,7 @@ from rt_drake.retiming import _segments as sub_points
 from rt_drake.retiming import (
     stage_rows as rows,
 )
+from rt_drake.retiming._band_lp import BandLP
 from rt_drake.retiming._between_kernels import position_excess
 from rt_drake.retiming._jerk_kernels import grasp_screen, jerk_ratios
 from rt_drake.retiming._jerk_row_kernels import csr_product, csr_rows
@@ -98,6 +99,16 @@ def warm_up() -> None:
     matrix = sparse.csr_matrix(np.eye(3))
     csr_product(matrix.indptr, matrix.indices, matrix.data, grid)
     csr_rows(matrix.indptr, matrix.indices, matrix.data, every)
+    # Its LP solver: one segment, z = [x_0, x_1, u_0, u_1], continuity and
+    # x_1 <= 1; from a guess (the crash), then warm.
+    solver = BandLP()
+    solver.guess(np.array([0.0, 0.5, 0.0, 0.0]))
+    continuity = sparse.csr_matrix(np.array([[-1.0, 1.0, -0.5, -0.5]]))
+    cap = sparse.csr_matrix(np.array([[0.0, 1.0, 0.0, 0.0]]))
+    box = np.array([[0.0, 0.0], [0.0, np.inf], [-1.0, 1.0], [-1.0, 1.0]])
+    for _ in range(2):
+        solver.solve(-grid[[0, 1, 2, 2]], cap, np.ones(1), np.zeros(1, dtype=np.int64),
+                   continuity, np.zeros(1), box)  # fmt: skip
     # The object wrench on a serial chain (rt_drake.dynamics.chain): two joints.
     q, steps = np.zeros((3, 2)), np.tile(np.eye(4), (2, 1, 1))
     z, o = np.empty((3, 2, 3)), np.empty((3, 2, 3))
