@@ -194,11 +194,14 @@ def move_reference(motions: OnlineMotions, q_grasp, obj, reach, played, args) ->
             np.array_equal(optimized.path.waypoints, played.planned.path.waypoints)
         ),
         "shaped_acc_s": optimized.duration,
+        "improved": optimized.improved,
     }
     # The jerk-bounded KTO starts from the shaped MOVE as played (its
     # jerk-limited retime), the other from its acceleration-limited retime.
     played_retime = motions.retime_on_profile(optimized.path, grasp, optimized.retimed)
     as_played = dataclasses.replace(optimized, retimed=played_retime)
+    if not optimized.improved:  # Kto starts from the spline path's retime then
+        as_played = dataclasses.replace(as_played, spline_retimed=played_retime)
     for name, kind, start in (("acc", Kto, optimized), ("jerk", JerkKto, as_played)):
 
         def solve_once(options, extra, kind=kind, start=start):  # noqa: ANN001, ANN202
