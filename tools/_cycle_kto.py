@@ -181,23 +181,9 @@ class PickKto(Kto):
 
     def program(self, setup, scene, guess, collision):  # noqa: ANN001, ANN201
         """(KTO, its program), initial guess ``guess`` (module docstring)."""
-        limits = self.limits
-        kto = KinematicTrajectoryOptimization(
-            self.n, self.args.control_points, self.args.order, self.T0
-        )
-        prog = kto.get_mutable_prog()
-        kto.AddDurationCost(1.0)
-        kto.AddPositionBounds(scene.lower, scene.upper)
-        kto.AddVelocityBounds(-limits.velocity, limits.velocity)
-        kto.AddAccelerationBounds(-limits.acceleration, limits.acceleration)
-        if limits.jerk is not None:
-            _from_and_to_rest(kto, limits.jerk)
-        kto.AddDurationConstraint(0.2 * self.T0, 2.0 * self.T0)
-        zero = np.zeros(self.n)
-        kto.AddPathPositionConstraint(self.q0, self.q0, 0.0)
-        kto.AddPathPositionConstraint(self.q1, self.q1, 1.0)
-        kto.AddPathVelocityConstraint(zero, zero, 0.0)
-        kto.AddPathVelocityConstraint(zero, zero, 1.0)
+        kto, prog = self.rest_to_rest(scene, self.limits)
+        if self.limits.jerk is not None:
+            _from_and_to_rest(kto, self.limits.jerk)
         if self.retreat:
             kto.AddPathPositionConstraint(self.q_up, self.q_up, self.tau_up)
         kto.AddPathPositionConstraint(self.q_down, self.q_down, self.tau_down)

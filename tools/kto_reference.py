@@ -324,22 +324,33 @@ class Kto:
         )
         prog.AddConstraint(evaluate, lower, upper, variables, f"sample {tau:.3f}")
 
-    def program(self, setup, scene, guess, collision):
-        """(KTO, its program) with the current rows, initial guess ``guess``."""
+    def rest_to_rest(self, scene, limits):
+        """(KTO, its program): minimum T from rest at q0 to rest at q1.
+
+        ``args.control_points`` control points of order ``args.order`` over
+        [0, 1], T in [0.2, 2] T0; the joint position bounds of ``scene`` and
+        the velocity and acceleration bounds of ``limits`` on the control
+        points.
+        """
         kto = KinematicTrajectoryOptimization(
             self.n, self.args.control_points, self.args.order, self.T0
         )
         prog = kto.get_mutable_prog()
         kto.AddDurationCost(1.0)
         kto.AddPositionBounds(scene.lower, scene.upper)
-        kto.AddVelocityBounds(-setup.limits.velocity, setup.limits.velocity)
-        kto.AddAccelerationBounds(-setup.limits.acceleration, setup.limits.acceleration)
+        kto.AddVelocityBounds(-limits.velocity, limits.velocity)
+        kto.AddAccelerationBounds(-limits.acceleration, limits.acceleration)
         kto.AddDurationConstraint(0.2 * self.T0, 2.0 * self.T0)
         zero = np.zeros(self.n)
         kto.AddPathPositionConstraint(self.q0, self.q0, 0.0)
         kto.AddPathPositionConstraint(self.q1, self.q1, 1.0)
         kto.AddPathVelocityConstraint(zero, zero, 0.0)
         kto.AddPathVelocityConstraint(zero, zero, 1.0)
+        return kto, prog
+
+    def program(self, setup, scene, guess, collision):
+        """(KTO, its program) with the current rows, initial guess ``guess``."""
+        kto, prog = self.rest_to_rest(scene, setup.limits)
         kto.AddPathPositionConstraint(self.q_up, self.q_up, self.tau_up)
         kto.AddPathPositionConstraint(self.q_down, self.q_down, self.tau_down)
         cp, T = kto.control_points(), kto.duration()
