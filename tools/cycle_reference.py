@@ -65,6 +65,7 @@ from kto_reference import (
 )
 
 from rt_drake import check_trajectory
+from rt_drake.errors import RtDrakeError
 from rt_drake.experiments import cycle_floors
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.model.scenario import load_scenario
@@ -252,10 +253,29 @@ def main() -> int:
     add_kto_arguments(parser)
     parser.set_defaults(time_limit=30.0)
     args = parser.parse_args()
+    try:
+        return run(args)
+    except RtDrakeError as error:
+        print(f"cycle_reference.py: {error}", file=sys.stderr)
+        return 2
+
+
+def run(args: argparse.Namespace) -> int:
+    """The reference of ``args.scenario``'s cycle (module docstring); exit status.
+
+    Raises:
+        RtDrakeError: the scenario cannot be loaded or its cycle planned.
+    """
     scenario = load_scenario(resolve_scenario_path(args.scenario))
     if not scenario.planning.optimize_move:
         print(f"{args.scenario}: planning.optimize_move is off; the MOVE's KTO "
               "starts from the shaped MOVE", file=sys.stderr)  # fmt: skip
+        return 2
+    count = len(scenario.objects)
+    outside = [i for i in args.only or () if not 0 <= i < count]
+    if outside:
+        print(f"--only {outside[0]}: {args.scenario} has objects 0 to {count - 1}",
+              file=sys.stderr)  # fmt: skip
         return 2
     jerk = np.array(scenario.robot.jerk_limits) if scenario.robot.jerk_limits else None
     motions = OnlineMotions(scenario, seed=args.seed, jerk_limits=jerk is not None)
@@ -290,6 +310,8 @@ def main() -> int:
         q = move.q_end
     summary = summarise(rows, waits)
     print_tables(rows, summary)
+    if args.only is not None:
+        print(f"(means over objects {sorted(set(args.only))} only)")
     if args.json:
         args.json.parent.mkdir(parents=True, exist_ok=True)
         args.json.write_text(json.dumps({"rows": rows, "summary": summary}, indent=1))
