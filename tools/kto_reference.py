@@ -324,22 +324,33 @@ class Kto:
         )
         prog.AddConstraint(evaluate, lower, upper, variables, f"sample {tau:.3f}")
 
-    def program(self, setup, scene, guess, collision):
-        """(KTO, its program) with the current rows, initial guess ``guess``."""
+    def rest_to_rest(self, scene, limits):
+        """(KTO, its program): minimum T from rest at q0 to rest at q1.
+
+        ``args.control_points`` control points of order ``args.order`` over
+        [0, 1], T in [0.2, 2] T0; the joint position bounds of ``scene`` and
+        the velocity and acceleration bounds of ``limits`` on the control
+        points.
+        """
         kto = KinematicTrajectoryOptimization(
             self.n, self.args.control_points, self.args.order, self.T0
         )
         prog = kto.get_mutable_prog()
         kto.AddDurationCost(1.0)
         kto.AddPositionBounds(scene.lower, scene.upper)
-        kto.AddVelocityBounds(-setup.limits.velocity, setup.limits.velocity)
-        kto.AddAccelerationBounds(-setup.limits.acceleration, setup.limits.acceleration)
+        kto.AddVelocityBounds(-limits.velocity, limits.velocity)
+        kto.AddAccelerationBounds(-limits.acceleration, limits.acceleration)
         kto.AddDurationConstraint(0.2 * self.T0, 2.0 * self.T0)
         zero = np.zeros(self.n)
         kto.AddPathPositionConstraint(self.q0, self.q0, 0.0)
         kto.AddPathPositionConstraint(self.q1, self.q1, 1.0)
         kto.AddPathVelocityConstraint(zero, zero, 0.0)
         kto.AddPathVelocityConstraint(zero, zero, 1.0)
+        return kto, prog
+
+    def program(self, setup, scene, guess, collision):
+        """(KTO, its program) with the current rows, initial guess ``guess``."""
+        kto, prog = self.rest_to_rest(scene, setup.limits)
         kto.AddPathPositionConstraint(self.q_up, self.q_up, self.tau_up)
         kto.AddPathPositionConstraint(self.q_down, self.q_down, self.tau_down)
         cp, T = kto.control_points(), kto.duration()
@@ -466,19 +477,63 @@ HEADER = (
 )
 
 
-def solve_and_check(setup, optimizer, move, grasp, result, args, extra=()):
+def solve_and_check(setup, optimizer, move, grasp, result, args, extra=(), kind=Kto):
     """(Kto, Solved, (path, s_up, s_down, taus), the planner's collision check).
 
-    ``extra``: collision samples (tau) added to the uniform ones.
+    ``extra``: collision samples (tau) added to the uniform ones; ``kind``:
+    the program (:class:`Kto` or a subclass).
     """
     planner = setup.planner
     scene = planner.prepare(Phase.MOVE, move.object, move.q_start, move.X_OC)
-    kto = Kto(optimizer, move, grasp, result, args)
+    kto = kind(optimizer, move, grasp, result, args)
     kto.collision_taus = list(extra)
     solved = kto.solve(setup, scene)
     path = path_of(solved.trajectory, kto)
     scene = planner.prepare(Phase.MOVE, move.object, move.q_start, move.X_OC)
     return kto, solved, path, check_path(scene, path[0])
+
+
+@dataclasses.dataclass
+class CollisionFree:
+    """What :func:`solve_collision_free` returns.
+
+    Attributes:
+        solution: The last ``solve_once`` result: (Kto, Solved, (path, s_up,
+            s_down, taus), the planner's collision check).
+        cpu_s: CPU time (s) of every solve.
+        retries: Solves after the first.
+    """
+
+    solution: tuple
+    cpu_s: float
+    retries: int
+
+
+def solve_collision_free(solve_once, args) -> CollisionFree:
+    """A KTO solved again until the planner's check finds its path clean.
+
+    ``solve_once(args, extra)`` solves one program (:func:`solve_and_check`'s
+    result), ``extra`` the collision samples (tau) added to the uniform ones.
+    While its path collides (at most ``args.collision_rounds`` times), it is
+    solved again from the same guess with collision constraints (40 uniform
+    samples if ``args.collision_samples`` asked for none) and three more
+    around each collision found (tau +- 0.005), within the vertical ends.
+    """
+    solution = solve_once(args, [])
+    kto, solved, (path, _, _, taus), collision = solution
+    cpu_s, retries, extra = solved.cpu_s, 0, []
+    again = argparse.Namespace(
+        **{**vars(args), "collision_samples": args.collision_samples or 40}
+    )
+    while not collision.ok and retries < args.collision_rounds:
+        retries += 1
+        hit = float(np.interp(collision.s, path.knots, taus))
+        extra += list(np.clip(hit + np.array([-0.005, 0.0, 0.005]),
+                              kto.tau_up, kto.tau_down))  # fmt: skip
+        solution = solve_once(again, extra)
+        kto, solved, (path, _, _, taus), collision = solution
+        cpu_s += solved.cpu_s
+    return CollisionFree(solution, cpu_s, retries)
 
 
 def measure(setup, optimizer, move, grasp, result, args, save=None) -> dict:
@@ -492,24 +547,13 @@ def measure(setup, optimizer, move, grasp, result, args, save=None) -> dict:
     spl100 = retime(plant, move.path, limits, grasp, 100, **kw).duration
     spl1k = retime(plant, move.path, limits, grasp, 1000, **kw).duration
     cma1k = retime(plant, result.path, limits, grasp, 1000, **kw).duration
-    kto, solved, (path, s_up, s_down, taus), collision = solve_and_check(
-        setup, optimizer, move, grasp, result, args
-    )
-    cpu_s, retries, extra = solved.cpu_s, 0, []
-    again = argparse.Namespace(
-        **{**vars(args), "collision_samples": args.collision_samples or 40}
-    )
-    while not collision.ok and retries < args.collision_rounds:
-        # Again from the same guess, with collision constraints (40 uniform
-        # if none were asked for) and three more around each collision found.
-        retries += 1
-        hit = float(np.interp(collision.s, path.knots, taus))
-        extra += list(np.clip(hit + np.array([-0.005, 0.0, 0.005]),
-                              kto.tau_up, kto.tau_down))  # fmt: skip
-        kto, solved, (path, s_up, s_down, taus), collision = solve_and_check(
-            setup, optimizer, move, grasp, result, again, extra
-        )
-        cpu_s += solved.cpu_s
+
+    def solve_once(args, extra):
+        return solve_and_check(setup, optimizer, move, grasp, result, args, extra)
+
+    found = solve_collision_free(solve_once, args)
+    kto, solved, (path, s_up, s_down, taus), collision = found.solution
+    cpu_s, retries = found.cpu_s, found.retries
     traj, T = solved.trajectory, solved.trajectory.end_time()
     tilt = chain.tilt(path.value(np.linspace(0, 1, 1000))).max()
     drift = max(
@@ -595,12 +639,8 @@ def summary(rows: list[dict]) -> dict:
     return out
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--scenario", default="random_transport")
-    parser.add_argument("--n", type=int, default=20)
-    parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--indices", type=int, nargs="+", default=None)
+def add_kto_arguments(parser: argparse.ArgumentParser) -> None:
+    """The KTO's options (module docstring), on ``parser``."""
     parser.add_argument("--order", type=int, default=5)
     parser.add_argument("--control-points", type=int, default=16)
     parser.add_argument("--samples", type=int, default=40)
@@ -615,6 +655,15 @@ def main() -> None:
     parser.add_argument("--clearance", type=float, default=0.002)
     parser.add_argument("--influence", type=float, default=0.02)
     parser.add_argument("--guess", choices=["optimised", "spline"], default="optimised")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--scenario", default="random_transport")
+    parser.add_argument("--n", type=int, default=20)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--indices", type=int, nargs="+", default=None)
+    add_kto_arguments(parser)
     parser.add_argument("--json", type=Path, default=None)
     parser.add_argument("--paths", type=Path, default=None)
     args = parser.parse_args()
