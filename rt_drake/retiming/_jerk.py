@@ -239,14 +239,14 @@ def jerk_limited(
             x, u = _split(z, len(s))
             duration = quadrature_duration(s, x, u)
             if not np.isfinite(duration):  # s' = 0 between the LP's points
-                chosen.active |= dense.maps.X @ z <= 0.0
+                chosen.active |= dense.maps.x(z) <= 0.0
                 chosen.fixed = None
             per_joint = points.per_joint(z, limits)
             if np.isfinite(duration) and (best is None or duration < best[0]):
                 best = (duration, z, per_joint)
             x_bar = x
-            x_dense = np.maximum(dense.maps.X @ z, 0.0)
-            x_jerk = np.maximum(points.maps.X @ z, 0.0)
+            x_dense = np.maximum(dense.maps.x(z), 0.0)
+            x_jerk = np.maximum(points.maps.x(z), 0.0)
             near = per_joint >= JOINT_SCREEN
             # Once in, a row stays in (dropping it again made LPs alternate).
             keep = chosen.jerk_keep
@@ -258,7 +258,7 @@ def jerk_limited(
             _refuse_stop(dense, z)
         z = best[1]
         jerk_ratio = points.ratio(z, problem.bounds, best[2])
-        x_z, u_z = dense.maps.X @ z, dense.maps.U @ z
+        x_z, u_z = dense.maps.x(z), dense.maps.u(z)
         grasp_over, grasp_max = None, None
         if grasp is not None:  # the pairs over the contract, each point's worst
             grasp_over, grasp_max, screened = grasp_check(
@@ -356,7 +356,7 @@ def _refuse_stop(dense: DensePoints, z: np.ndarray) -> NoReturn:
     linearised at the previous profile, allow no speed), the motion would
     stop there for good: no finite-time profile was found.
     """
-    x = dense.maps.X @ z
+    x = dense.maps.x(z)
     inside = np.zeros(len(x), dtype=bool)
     inside[1:-1] = True
     stopped = inside & (x <= 1e-9 * max(float(np.max(x)), 1e-12))

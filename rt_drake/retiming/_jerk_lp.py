@@ -23,6 +23,7 @@ from scipy import sparse
 
 from rt_drake.retiming._band_lp import BandLP
 from rt_drake.retiming._jerk_row_kernels import csr_product, csr_rows
+from rt_drake.retiming._jerk_rows import RowMatrix
 
 _STATUS = np.array(
     [highspy.HighsBasisStatus(v) for v in range(5)], dtype=object
@@ -79,7 +80,7 @@ class WarmLP:
     def solve(
         self,
         c: np.ndarray,
-        A_ub: sparse.csr_matrix,
+        A_ub: sparse.csr_matrix | RowMatrix,
         b_ub: np.ndarray,
         keys: np.ndarray,
         A_eq: sparse.csr_matrix,
@@ -176,7 +177,7 @@ class WarmLP:
     def _load(
         self,
         c: np.ndarray,
-        A_ub: sparse.csr_matrix,
+        A_ub: sparse.csr_matrix | RowMatrix,
         order: np.ndarray,
         b_ub: np.ndarray,
         keys: np.ndarray,
@@ -279,7 +280,7 @@ def _member(keys: np.ndarray, of: np.ndarray) -> np.ndarray:
 
 
 def _rows_of(
-    A: sparse.csr_matrix, rows: np.ndarray
+    A: sparse.csr_matrix | RowMatrix, rows: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The rows ``rows`` of A in CSR form: starts (len(rows) + 1,), indices, values.
 
@@ -289,7 +290,7 @@ def _rows_of(
     return csr_rows(A.indptr, A.indices, A.data, np.asarray(rows, dtype=np.int64))
 
 
-def _product(A: sparse.csr_matrix, z: np.ndarray) -> np.ndarray:
+def _product(A: sparse.csr_matrix | RowMatrix, z: np.ndarray) -> np.ndarray:
     """``A @ z`` (the same sums as scipy's), without scipy's dispatch."""
     return csr_product(A.indptr, A.indices, A.data, np.asarray(z, dtype=float))
 
