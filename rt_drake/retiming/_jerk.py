@@ -69,6 +69,7 @@ from rt_drake.retiming._jerk_problem import (
     bernstein_rows,
     continuity,
     grid_caps,
+    middle_rows,
     solve_lp,
     variable_bounds,
 )
@@ -186,8 +187,9 @@ def jerk_limited(
     rest = rest_bounds(spline, s, kinds, limits.jerk)
     middle = np.flatnonzero(dense.k == len(DENSE) // 2)
     problem = Problem(
-        s, kinds, dense, points, limits, rest, middle, dense.maps.X[middle].T.tocsr(),
-        bernstein_rows(s, kinds), continuity(s, kinds),
+        s, kinds, dense, points, limits, rest, middle,
+        middle_rows(dense.band, middle, len(s)), bernstein_rows(s, kinds),
+        continuity(s, kinds),
         variable_bounds(
             s, kinds, grid_caps(dense, kinds), rest, sd_start, sd_end, sdd_start
         ),
@@ -195,7 +197,7 @@ def jerk_limited(
     solver = WarmLP()
     x_ref = np.interp(dense.s, s_topp, x_topp)
     u_ref = _topp_u(s_topp, x_topp, dense.s)
-    active = np.isin(dense.k, FIRST_DENSE)
+    active = _one_of(dense.k, FIRST_DENSE)
     rows = None
     if grasp is not None:
         # Only the active points' rows enter the LPs: screened there alone.
@@ -216,7 +218,7 @@ def jerk_limited(
         active=active,
         rows=rows,
         keep=dense.joint_ratios(x_ref, u_ref, limits).at_least(JOINT_SCREEN),
-        jerk_active=np.isin(points.k, FIRST_JERK),
+        jerk_active=_one_of(points.k, FIRST_JERK),
         pairs=pairs,
         torque_pairs=torques,
     )
@@ -331,6 +333,11 @@ def _torque_pairs(dense: DensePoints, objects: SetGrasp) -> SetPairs | None:
     assert smp.torque is not None and smp.torque_set is not None
     table = torque_columns(smp.torque, smp.torque_set, objects.layout)
     return SetPairs(table, objects.torque, objects.layout, objects.torque.shape[1])
+
+
+def _one_of(k: np.ndarray, pair: tuple[int, int]) -> np.ndarray:
+    """``np.isin(k, pair)`` for two values, without its sort."""
+    return (k == pair[0]) | (k == pair[1])
 
 
 def _point_excess(problem: Problem, z: np.ndarray, jerk: np.ndarray) -> np.ndarray:

@@ -54,11 +54,7 @@ class WarmLP:
         self._band = BandLP() if compiled else None
         #: LPs the compiled solver did not answer (solved by HiGHS).
         self.fallbacks = 0
-        self._highs = highspy.Highs()
-        self._highs.setOptionValue("output_flag", False)
-        self._highs.setOptionValue("presolve", "off")
-        self._highs.setOptionValue("solver", "simplex")
-        self._highs.setOptionValue("simplex_dual_edge_weight_strategy", 1)  # Devex
+        self._solver: highspy.Highs | None = None  # made when first needed
         #: The last LP's inequality rows (keys, in the model's order) and
         #: their basis statuses; its equality rows' and columns' statuses.
         self._keys: np.ndarray | None = None
@@ -70,6 +66,22 @@ class WarmLP:
         #: Simplex iterations and sub-LPs so far.
         self.iterations = 0
         self.solves = 0
+
+    @property
+    def _highs(self) -> highspy.Highs:
+        """HiGHS, made on first use (the compiled solver answers most retimes)."""
+        if self._solver is None:
+            highs = self._solver = highspy.Highs()
+            highs.setOptionValue("output_flag", False)
+            highs.setOptionValue("presolve", "off")
+            highs.setOptionValue("solver", "simplex")
+            highs.setOptionValue("simplex_dual_edge_weight_strategy", 1)  # Devex
+        return self._solver
+
+    @_highs.setter
+    def _highs(self, highs: highspy.Highs) -> None:
+        """Use ``highs`` (tests wrap HiGHS to make it misbehave)."""
+        self._solver = highs
 
     def guess(self, z: np.ndarray) -> None:
         """Start the first LP near ``z`` (rows tight there in, and nonbasic)."""
