@@ -242,6 +242,10 @@ class RowMatrix(NamedTuple):
     data: np.ndarray
     shape: tuple[int, int]
 
+    def tocsr(self) -> sparse.csr_matrix:
+        """The same matrix as scipy's (for scipy's solvers and tests)."""
+        return sparse.csr_matrix((self.data, self.indices, self.indptr), self.shape)
+
 
 def stacked(blocks: list[Block], size: int) -> tuple[RowMatrix, np.ndarray, np.ndarray]:
     """The blocks as one (R, size) :class:`RowMatrix`, their bounds and keys."""
