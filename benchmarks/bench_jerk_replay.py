@@ -187,6 +187,7 @@ def check(traces: list[Trace]) -> tuple[float, float, int]:
             c, A_ub, b_ub, keys, A_eq, b_eq, bounds, always = item[1]
             before = solver.fallbacks
             z, _ = solver.solve(*item[1])
+            A_ub = A_ub.tocsr()  # scipy's, for linprog (a RowMatrix from solve_lp)
             fallbacks += solver.fallbacks - before
             reference = linprog(
                 c, A_ub=A_ub, b_ub=b_ub, A_eq=A_eq, b_eq=b_eq,

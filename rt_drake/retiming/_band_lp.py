@@ -31,6 +31,7 @@ from scipy import sparse
 
 from rt_drake.retiming import _dual_simplex as simplex
 from rt_drake.retiming._band_lp_kernels import NOT_HELD, band_solve
+from rt_drake.retiming._jerk_rows import RowMatrix
 
 #: Columns a row may span in the solver's column order.
 WIDTH = 4
@@ -85,7 +86,7 @@ class BandLP:
     def solve(
         self,
         c: np.ndarray,
-        A_ub: sparse.csr_matrix,
+        A_ub: sparse.csr_matrix | RowMatrix,
         b_ub: np.ndarray,
         keys: np.ndarray,
         A_eq: sparse.csr_matrix,

@@ -69,6 +69,7 @@ from rt_drake.retiming._jerk_problem import (
     bernstein_rows,
     continuity,
     grid_caps,
+    middle_rows,
     solve_lp,
     variable_bounds,
 )
@@ -186,8 +187,9 @@ def jerk_limited(
     rest = rest_bounds(spline, s, kinds, limits.jerk)
     middle = np.flatnonzero(dense.k == len(DENSE) // 2)
     problem = Problem(
-        s, kinds, dense, points, limits, rest, middle, dense.maps.X[middle].T.tocsr(),
-        bernstein_rows(s, kinds), continuity(s, kinds),
+        s, kinds, dense, points, limits, rest, middle,
+        middle_rows(dense.band, middle, len(s)), bernstein_rows(s, kinds),
+        continuity(s, kinds),
         variable_bounds(
             s, kinds, grid_caps(dense, kinds), rest, sd_start, sd_end, sdd_start
         ),
@@ -195,7 +197,7 @@ def jerk_limited(
     solver = WarmLP()
     x_ref = np.interp(dense.s, s_topp, x_topp)
     u_ref = _topp_u(s_topp, x_topp, dense.s)
-    active = np.isin(dense.k, FIRST_DENSE)
+    active = _one_of(dense.k, FIRST_DENSE)
     rows = None
     if grasp is not None:
         # Only the active points' rows enter the LPs: screened there alone.
@@ -216,7 +218,7 @@ def jerk_limited(
         active=active,
         rows=rows,
         keep=dense.joint_ratios(x_ref, u_ref, limits).at_least(JOINT_SCREEN),
-        jerk_active=np.isin(points.k, FIRST_JERK),
+        jerk_active=_one_of(points.k, FIRST_JERK),
         pairs=pairs,
         torque_pairs=torques,
     )
@@ -239,14 +241,14 @@ def jerk_limited(
             x, u = _split(z, len(s))
             duration = quadrature_duration(s, x, u)
             if not np.isfinite(duration):  # s' = 0 between the LP's points
-                chosen.active |= dense.maps.X @ z <= 0.0
+                chosen.active |= dense.maps.x(z) <= 0.0
                 chosen.fixed = None
             per_joint = points.per_joint(z, limits)
             if np.isfinite(duration) and (best is None or duration < best[0]):
                 best = (duration, z, per_joint)
             x_bar = x
-            x_dense = np.maximum(dense.maps.X @ z, 0.0)
-            x_jerk = np.maximum(points.maps.X @ z, 0.0)
+            x_dense = np.maximum(dense.maps.x(z), 0.0)
+            x_jerk = np.maximum(points.maps.x(z), 0.0)
             near = per_joint >= JOINT_SCREEN
             # Once in, a row stays in (dropping it again made LPs alternate).
             keep = chosen.jerk_keep
@@ -258,7 +260,7 @@ def jerk_limited(
             _refuse_stop(dense, z)
         z = best[1]
         jerk_ratio = points.ratio(z, problem.bounds, best[2])
-        x_z, u_z = dense.maps.X @ z, dense.maps.U @ z
+        x_z, u_z = dense.maps.x(z), dense.maps.u(z)
         grasp_over, grasp_max = None, None
         if grasp is not None:  # the pairs over the contract, each point's worst
             grasp_over, grasp_max, screened = grasp_check(
@@ -333,6 +335,11 @@ def _torque_pairs(dense: DensePoints, objects: SetGrasp) -> SetPairs | None:
     return SetPairs(table, objects.torque, objects.layout, objects.torque.shape[1])
 
 
+def _one_of(k: np.ndarray, pair: tuple[int, int]) -> np.ndarray:
+    """``np.isin(k, pair)`` for two values, without its sort."""
+    return (k == pair[0]) | (k == pair[1])
+
+
 def _point_excess(problem: Problem, z: np.ndarray, jerk: np.ndarray) -> np.ndarray:
     """Excess of the jerk, velocity or acceleration at the jerk points, (P,).
 
@@ -356,7 +363,7 @@ def _refuse_stop(dense: DensePoints, z: np.ndarray) -> NoReturn:
     linearised at the previous profile, allow no speed), the motion would
     stop there for good: no finite-time profile was found.
     """
-    x = dense.maps.X @ z
+    x = dense.maps.x(z)
     inside = np.zeros(len(x), dtype=bool)
     inside[1:-1] = True
     stopped = inside & (x <= 1e-9 * max(float(np.max(x)), 1e-12))

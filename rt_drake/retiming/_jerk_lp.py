@@ -23,6 +23,7 @@ from scipy import sparse
 
 from rt_drake.retiming._band_lp import BandLP
 from rt_drake.retiming._jerk_row_kernels import csr_product, csr_rows
+from rt_drake.retiming._jerk_rows import RowMatrix
 
 _STATUS = np.array(
     [highspy.HighsBasisStatus(v) for v in range(5)], dtype=object
@@ -53,11 +54,7 @@ class WarmLP:
         self._band = BandLP() if compiled else None
         #: LPs the compiled solver did not answer (solved by HiGHS).
         self.fallbacks = 0
-        self._highs = highspy.Highs()
-        self._highs.setOptionValue("output_flag", False)
-        self._highs.setOptionValue("presolve", "off")
-        self._highs.setOptionValue("solver", "simplex")
-        self._highs.setOptionValue("simplex_dual_edge_weight_strategy", 1)  # Devex
+        self._solver: highspy.Highs | None = None  # made when first needed
         #: The last LP's inequality rows (keys, in the model's order) and
         #: their basis statuses; its equality rows' and columns' statuses.
         self._keys: np.ndarray | None = None
@@ -70,6 +67,22 @@ class WarmLP:
         self.iterations = 0
         self.solves = 0
 
+    @property
+    def _highs(self) -> highspy.Highs:
+        """HiGHS, made on first use (the compiled solver answers most retimes)."""
+        if self._solver is None:
+            highs = self._solver = highspy.Highs()
+            highs.setOptionValue("output_flag", False)
+            highs.setOptionValue("presolve", "off")
+            highs.setOptionValue("solver", "simplex")
+            highs.setOptionValue("simplex_dual_edge_weight_strategy", 1)  # Devex
+        return self._solver
+
+    @_highs.setter
+    def _highs(self, highs: highspy.Highs) -> None:
+        """Use ``highs`` (tests wrap HiGHS to make it misbehave)."""
+        self._solver = highs
+
     def guess(self, z: np.ndarray) -> None:
         """Start the first LP near ``z`` (rows tight there in, and nonbasic)."""
         self._start = np.asarray(z, dtype=float)
@@ -79,7 +92,7 @@ class WarmLP:
     def solve(
         self,
         c: np.ndarray,
-        A_ub: sparse.csr_matrix,
+        A_ub: sparse.csr_matrix | RowMatrix,
         b_ub: np.ndarray,
         keys: np.ndarray,
         A_eq: sparse.csr_matrix,
@@ -176,7 +189,7 @@ class WarmLP:
     def _load(
         self,
         c: np.ndarray,
-        A_ub: sparse.csr_matrix,
+        A_ub: sparse.csr_matrix | RowMatrix,
         order: np.ndarray,
         b_ub: np.ndarray,
         keys: np.ndarray,
@@ -279,7 +292,7 @@ def _member(keys: np.ndarray, of: np.ndarray) -> np.ndarray:
 
 
 def _rows_of(
-    A: sparse.csr_matrix, rows: np.ndarray
+    A: sparse.csr_matrix | RowMatrix, rows: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The rows ``rows`` of A in CSR form: starts (len(rows) + 1,), indices, values.
 
@@ -289,7 +302,7 @@ def _rows_of(
     return csr_rows(A.indptr, A.indices, A.data, np.asarray(rows, dtype=np.int64))
 
 
-def _product(A: sparse.csr_matrix, z: np.ndarray) -> np.ndarray:
+def _product(A: sparse.csr_matrix | RowMatrix, z: np.ndarray) -> np.ndarray:
     """``A @ z`` (the same sums as scipy's), without scipy's dispatch."""
     return csr_product(A.indptr, A.indices, A.data, np.asarray(z, dtype=float))
 

@@ -213,7 +213,7 @@ class DensePoints:
         ``torque``: (P,) with a set of objects, its worst object's largest
         torque ratio at z; else the one object's torques (if limited).
         """
-        x, u = self.maps.X @ z, self.maps.U @ z
+        x, u = self.maps.x(z), self.maps.u(z)
         smp = self.samples
         x_cap = np.where(np.isfinite(smp.x_cap), smp.x_cap, np.inf)
         out = {
@@ -342,13 +342,13 @@ class JerkPoints:
 
     def acceleration_ratio(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
         """``|q'_j u + q''_j x| / a_j`` at every point, (P, n)."""
-        x, u = np.maximum(self.maps.X @ z, 0.0), self.maps.U @ z
+        x, u = np.maximum(self.maps.x(z), 0.0), self.maps.u(z)
         acceleration = np.abs(self.dq * u[:, None] + self.ddq * x[:, None])
         return acceleration / limits.acceleration
 
     def joint_ratio(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
         """The largest velocity or acceleration ratio at every point, (P,)."""
-        x, u = np.maximum(self.maps.X @ z, 0.0), self.maps.U @ z
+        x, u = np.maximum(self.maps.x(z), 0.0), self.maps.u(z)
         velocity = np.sqrt(_divide(x, self.x_cap))
         acceleration = np.abs(self.dq * u[:, None] + self.ddq * x[:, None])
         return np.maximum(velocity, np.max(acceleration / limits.acceleration, axis=1))

@@ -30,6 +30,7 @@ from rt_drake.retiming._jerk_points import (
 )
 from rt_drake.retiming._jerk_rows import (
     KIND_SHIFT,
+    Band,
     Block,
     Rows,
     affine_rows,
@@ -71,8 +72,9 @@ class Problem:
     limits: JointLimits
     bounds: dict[int, tuple[int, float]]
     middle: np.ndarray
-    #: x at the middle points as rows of z, transposed: (2(N+1), N).
-    X_middle_T: sparse.csr_matrix
+    #: x at the middle points as rows of z, transposed: (2(N+1), N)
+    #: (:func:`middle_rows`).
+    X_middle_T: sparse.csc_matrix
     bernstein: Rows
     equalities: tuple[sparse.csr_matrix, np.ndarray]
     variable_bounds: np.ndarray
@@ -133,7 +135,7 @@ def solve_lp(
     middle = problem.middle
     scale = max(float(np.max(x_bar)), 1e-12)
     x_middle = np.maximum(x_dense[middle], 1e-3 * scale)
-    width = (np.append(ds, 0.0) + np.insert(ds, 0, 0.0)) / 6.0
+    width = (np.concatenate([ds, [0.0]]) + np.concatenate([[0.0], ds])) / 6.0
     weight = -(problem.X_middle_T @ (4.0 / 6.0 * ds / (2.0 * x_middle**1.5)))
     weight[:size] -= width / (2.0 * np.maximum(x_bar, 1e-3 * scale) ** 1.5)
     A_ub, b_ub, keys = stacked([before, jerk, after], 2 * size)
@@ -205,7 +207,8 @@ def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Block], list[
     near = chosen.jerk_acceleration
     if near is None:
         near = np.zeros(points.dq.shape, dtype=bool)
-    added = added[~np.isin(points.k[added], (0, len(JERK_DENSE) - 1))]
+    k = points.k[added]
+    added = added[(k != 0) & (k != len(JERK_DENSE) - 1)]
     if added.size:  # where a limit was exceeded: velocity, acceleration too
         extra = points.band.take(added)
         for sign, offset in ((1.0, 0), (-1.0, 1)):
@@ -242,7 +245,8 @@ def _grasp_rows_at(dense: DensePoints, once: np.ndarray, mask: np.ndarray) -> Ro
     :func:`._jerk_rows.affine_rows` (point-major).
     """
     assert dense.grasp is not None and dense.samples.wrench is not None
-    p, r = np.nonzero(mask)
+    # (np.nonzero's order, row-major; a 1-D search is faster than a 2-D one)
+    p, r = np.divmod(np.flatnonzero(mask), mask.shape[1])
     at = once[p]
     a, b, c = (v[at] for v in dense.samples.wrench)
     F = dense.grasp.F[r]
@@ -277,6 +281,23 @@ def grid_caps(dense: DensePoints, kinds: np.ndarray) -> np.ndarray:
     capped = np.flatnonzero(_capped(kinds))
     caps[capped] = dense.samples.x_cap[capped * len(DENSE)]
     return caps
+
+
+def middle_rows(band: Band, middle: np.ndarray, size: int) -> sparse.csc_matrix:
+    """``X[middle].T``, (2 ``size``, M): x at the points ``middle`` as columns.
+
+    The CSR arrays of the rows ``X[middle]`` (three entries each, zeros
+    kept) read as CSC: its product with a vector sums each row of the
+    transpose in the order of the points, as the CSR transpose does.
+    """
+    return sparse.csc_matrix(
+        (
+            band.X[middle].ravel(),
+            band.cols[middle].ravel(),
+            3 * np.arange(len(middle) + 1),
+        ),
+        shape=(2 * size, len(middle)),
+    )
 
 
 def bernstein_rows(s: np.ndarray, kinds: np.ndarray) -> Rows:
@@ -350,9 +371,10 @@ def continuity(
     v[stop] = np.column_stack(
         [0 * ds[stop], np.ones(stop.sum()), 1.5 * ds[stop], 0 * ds[stop]]
     )  # x_{N-1} = -1.5 ds u_{N-1}
-    r = np.repeat(i, 4)
-    c, v = c.ravel(), v.ravel()
-    A = sparse.csr_matrix((v, (r, c)), shape=(len(kinds), 2 * size))
+    # CSR straight away, each row's columns sorted (x_i, x_{i+1}, u_i, u_{i+1}).
+    c, v = c[:, [1, 0, 2, 3]].ravel(), v[:, [1, 0, 2, 3]].ravel()
+    indptr = 4 * np.arange(len(kinds) + 1)
+    A = sparse.csr_matrix((v, c, indptr), shape=(len(kinds), 2 * size))
     return A, np.zeros(len(kinds))
 
 
@@ -363,6 +385,7 @@ __all__ = [
     "bernstein_rows",
     "continuity",
     "grid_caps",
+    "middle_rows",
     "solve_lp",
     "variable_bounds",
 ]

@@ -4,8 +4,8 @@ The LP variables are ``z = [x_0..x_N, u_0..u_N]``: ``x = s'^2`` and the path
 acceleration ``u = s''`` at the grid points (1/s^2). At a point ``sigma`` of
 segment i, ``x``, ``u`` and ``k = du/ds`` are linear in z
 (:mod:`._jerk_timed_path`): :meth:`Band.maps` gives the sparse rows
-``X z``, ``U z``, ``K z``. Every limit but the jerk is then linear in z, and
-exact at the point:
+``X z``, ``U z`` (k's three entries stay in :class:`Band`). Every limit
+but the jerk is then linear in z, and exact at the point:
 
 - velocity ``x <= min_j v_j^2 / q'_j^2`` and ``x >= 0``;
 - acceleration ``|q'_j u + q''_j x| <= a_j``;
@@ -28,16 +28,28 @@ from typing import NamedTuple
 import numpy as np
 from scipy import sparse
 
-from rt_drake.retiming._jerk_row_kernels import affine_block, jerk_block
+from rt_drake.retiming._jerk_row_kernels import affine_block, csr_product, jerk_block
 from rt_drake.retiming._jerk_timed_path import Piece
 
 
 class PointMaps(NamedTuple):
-    """``x``, ``u``, ``k`` at P points as sparse (P, 2(N+1)) rows of z."""
+    """``x`` and ``u`` at P points as sparse (P, 2(N+1)) rows of z."""
 
     X: sparse.csr_matrix
     U: sparse.csr_matrix
-    K: sparse.csr_matrix
+
+    def x(self, z: np.ndarray) -> np.ndarray:
+        """``X z``, (P,): scipy's product bit for bit, without its dispatch."""
+        return _times(self.X, z)
+
+    def u(self, z: np.ndarray) -> np.ndarray:
+        """``U z``, (P,), likewise."""
+        return _times(self.U, z)
+
+
+def _times(A: sparse.csr_matrix, z: np.ndarray) -> np.ndarray:
+    """``A @ z`` by :func:`._jerk_row_kernels.csr_product` (the same sums)."""
+    return csr_product(A.indptr, A.indices, A.data, np.asarray(z, dtype=float))
 
 
 class Band(NamedTuple):
@@ -97,7 +109,7 @@ class Band(NamedTuple):
                 (values.ravel(), indices, indptr), shape=(P, 2 * size)
             )
 
-        return PointMaps(matrix(self.X), matrix(self.U), matrix(self.K))
+        return PointMaps(matrix(self.X), matrix(self.U))
 
     def take(self, index: np.ndarray) -> Band:
         """The band at the points ``index``."""
@@ -217,19 +229,34 @@ def joined(blocks: list[Block]) -> Block:
     return Block(*(np.concatenate(parts) for parts in zip(*blocks, strict=True)))
 
 
-def stacked(
-    blocks: list[Block], size: int
-) -> tuple[sparse.csr_matrix, np.ndarray, np.ndarray]:
-    """The blocks as one sparse (R, size) matrix, their bounds and keys."""
+class RowMatrix(NamedTuple):
+    """A (R, ``shape[1]``) matrix in scipy's CSR arrays, without scipy's object.
+
+    ``indptr`` (R + 1,), ``indices`` int32 and ``data`` float64 as
+    :class:`scipy.sparse.csr_matrix` holds them: :class:`._jerk_lp.WarmLP`
+    reads only these (and ``shape``), so its LPs skip scipy's constructor.
+    """
+
+    indptr: np.ndarray
+    indices: np.ndarray
+    data: np.ndarray
+    shape: tuple[int, int]
+
+    def tocsr(self) -> sparse.csr_matrix:
+        """The same matrix as scipy's (for scipy's solvers and tests)."""
+        return sparse.csr_matrix((self.data, self.indices, self.indptr), self.shape)
+
+
+def stacked(blocks: list[Block], size: int) -> tuple[RowMatrix, np.ndarray, np.ndarray]:
+    """The blocks as one (R, size) :class:`RowMatrix`, their bounds and keys."""
     counts = np.concatenate([b.counts for b in blocks])
-    indptr = np.concatenate([[0], np.cumsum(counts)])
-    A = sparse.csr_matrix(
-        (
-            np.concatenate([b.values for b in blocks]),
-            np.concatenate([b.cols for b in blocks]),
-            indptr,
-        ),
-        shape=(len(counts), size),
+    indptr = np.zeros(len(counts) + 1, dtype=np.int32)
+    np.cumsum(counts, out=indptr[1:])
+    A = RowMatrix(
+        indptr,
+        np.concatenate([b.cols for b in blocks]).astype(np.int32),
+        np.concatenate([b.values for b in blocks]).astype(float),
+        (len(counts), size),
     )
     return (
         A,
@@ -284,6 +311,7 @@ __all__ = [
     "Band",
     "Block",
     "PointMaps",
+    "RowMatrix",
     "Rows",
     "affine_rows",
     "block",

@@ -66,19 +66,28 @@ class Piece(enum.IntEnum):
 
 
 def stumpff(z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``C0, C1, C2`` of the module docstring at ``z = k tau^2`` (any sign)."""
+    """``C0, C1, C2`` of the module docstring at ``z = k tau^2`` (any sign).
+
+    ``|z| < _SERIES``: their series to ``z^3``; else with ``r = sqrt|z|``,
+    ``cosh r, sinh r / r, 2 sinh^2(r/2) / r^2`` for z > 0 and ``cos``,
+    ``sin`` for z < 0 (each function evaluated only where it is taken).
+    """
     z = np.asarray(z, dtype=float)
+    c0, c1, c2 = (np.empty(z.shape) for _ in range(3))
     small = np.abs(z) < _SERIES
-    r = np.sqrt(np.abs(np.where(small, 1.0, z)))
-    positive = z > 0.0
-    c0 = np.where(positive, np.cosh(r), np.cos(r))
-    c1 = np.where(positive, np.sinh(r), np.sin(r)) / r
-    half = np.where(positive, np.sinh(0.5 * r), np.sin(0.5 * r))
-    c2 = 2.0 * half**2 / r**2
-    s0 = 1.0 + z / 2.0 + z**2 / 24.0 + z**3 / 720.0
-    s1 = 1.0 + z / 6.0 + z**2 / 120.0 + z**3 / 5040.0
-    s2 = 0.5 + z / 24.0 + z**2 / 720.0 + z**3 / 40320.0
-    return np.where(small, s0, c0), np.where(small, s1, c1), np.where(small, s2, c2)
+    for where, (even, odd) in (
+        (~small & (z > 0.0), (np.cosh, np.sinh)),
+        (~small & (z <= 0.0), (np.cos, np.sin)),
+    ):
+        r = np.sqrt(np.abs(z[where]))
+        c0[where] = even(r)
+        c1[where] = odd(r) / r
+        c2[where] = 2.0 * odd(0.5 * r) ** 2 / r**2
+    w = z[small]
+    c0[small] = 1.0 + w / 2.0 + w**2 / 24.0 + w**3 / 720.0
+    c1[small] = 1.0 + w / 6.0 + w**2 / 120.0 + w**3 / 5040.0
+    c2[small] = 0.5 + w / 24.0 + w**2 / 720.0 + w**3 / 40320.0
+    return c0, c1, c2
 
 
 def _lowest_x(x: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -119,3 +119,47 @@ def test_the_sparse_kernels_are_scipys_product_and_row_selection():
     np.testing.assert_array_equal(start, taken.indptr)
     np.testing.assert_array_equal(index, taken.indices)
     np.testing.assert_array_equal(value, taken.data)
+
+
+def test_stacked_is_scipys_matrix_of_the_blocks():
+    """``stacked``'s RowMatrix has the CSR arrays scipy builds from the blocks.
+
+    Reference: ``scipy.sparse.csr_matrix`` of the blocks' entries, and its
+    product with z, to the bit (the compiled solver and HiGHS read the
+    arrays; scipy's solvers take ``tocsr()``).
+    """
+    from scipy import sparse
+
+    from rt_drake.retiming._jerk_row_kernels import csr_product
+    from rt_drake.retiming._jerk_rows import affine_rows, stacked
+
+    rng = np.random.default_rng(11)
+    s, band = _random_band(rng)
+    P, n = len(band.cols), 2 * len(s)
+    points = np.arange(P)
+    blocks = [
+        affine_rows(band, points, kind, rng.normal(size=(P, 2)),
+                    rng.normal(size=(P, 2)), rng.normal(size=(P, 2)))
+        for kind in (2, 3)
+    ]  # fmt: skip
+    A, bound, keys = stacked(blocks, n)
+    counts = np.concatenate([b.counts for b in blocks])
+    reference = sparse.csr_matrix(
+        (
+            np.concatenate([b.values for b in blocks]),
+            np.concatenate([b.cols for b in blocks]),
+            np.concatenate([[0], np.cumsum(counts)]),
+        ),
+        shape=(len(counts), n),
+    )
+    assert A.shape == reference.shape
+    for mine, theirs in zip(
+        A[:3], (reference.indptr, reference.indices, reference.data), strict=True
+    ):
+        assert mine.dtype == theirs.dtype
+        np.testing.assert_array_equal(mine, theirs)
+    z = rng.normal(size=n)
+    assert np.array_equal(csr_product(A.indptr, A.indices, A.data, z), reference @ z)
+    assert np.array_equal(A.tocsr() @ z, reference @ z)
+    np.testing.assert_array_equal(bound, np.concatenate([b.bound for b in blocks]))
+    np.testing.assert_array_equal(keys, np.concatenate([b.keys for b in blocks]))
