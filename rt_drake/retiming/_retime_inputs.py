@@ -33,6 +33,24 @@ def check_arguments(sd_start: float, sd_end: float, start_time: float) -> None:
         raise RetimeInputError(f"start_time must be finite, got {start_time!r}")
 
 
+def check_jerk_start(start: object, jerk: object) -> None:
+    """Refuse a ``jerk_start`` without jerk limits, or not a retime's result."""
+    if jerk is None:
+        raise RetimeInputError("jerk_start given but limits.jerk is None")
+    s = np.asarray(getattr(start, "gridpoints", None), dtype=float)
+    sd = np.asarray(getattr(start, "sd", None), dtype=float)
+    if s.ndim != 1 or len(s) < 2 or s.shape != sd.shape:
+        raise RetimeInputError(
+            "jerk_start must be a RetimeResult (gridpoints and sd of one "
+            f"length), got {type(start).__name__}"
+        )
+    ends = s[0] == 0.0 and s[-1] == 1.0
+    if not (ends and np.isfinite(sd).all() and (sd >= 0.0).all()):
+        raise RetimeInputError(
+            "jerk_start: its sd must be finite and >= 0 on a grid from 0 to 1"
+        )
+
+
 def check_objects(
     plant: object, limits: object, grasp: object, context: object, cup: object
 ) -> None:

@@ -80,7 +80,11 @@ from rt_drake.retiming._joint_path import (
 )
 from rt_drake.retiming._position_limits import check_position_limits
 from rt_drake.retiming._retime_errors import RetimeInputError
-from rt_drake.retiming._retime_inputs import check_arguments, check_objects
+from rt_drake.retiming._retime_inputs import (
+    check_arguments,
+    check_jerk_start,
+    check_objects,
+)
 from rt_drake.retiming._retime_result import (
     RetimeResult,
     jerk_result,
@@ -125,6 +129,7 @@ def retime(
     context: Context | None = None,
     engine: Engine | str = Engine.COMPILED,
     cup: CupFrame | None = None,
+    jerk_start: RetimeResult | None = None,
 ) -> RetimeResult:
     """Retime ``path`` time-optimally under ``limits`` and ``grasp``.
 
@@ -154,6 +159,11 @@ def retime(
             ``"toppra"`` are taken too.
         cup: The cup frame C (default: the plant's ``suction_cup``); build it
             once with ``CupFrame.of(plant, ...)`` when retiming often.
+        jerk_start: With jerk limits: an earlier jerk-limited retime of the
+            same path, whose ``s'^2`` (linear between its grid points) the
+            LPs start from instead of TOPP-RA's profile (on a finer grid,
+            from the profile they already found; the result may still be
+            longer: keep the shorter). None: TOPP-RA's.
 
     Raises:
         RetimeInputError: malformed path, limits or grid, a path that
@@ -170,6 +180,8 @@ def retime(
     check_arguments(sd_start, sd_end, start_time)
     engine = Engine.of(engine)
     check_objects(plant, limits, grasp, context, cup)
+    if jerk_start is not None:
+        check_jerk_start(jerk_start, limits.jerk)
     spline = as_joint_path(path)  # checks the path
     n = spline.num_joints
     if n != plant.num_positions() or n != limits.num_joints:
@@ -262,8 +274,9 @@ def retime(
     s = samples.s
     if limits.jerk is not None:
         single = grasp is not None and not isinstance(family, SetRows)
+        x_first = profile.x if jerk_start is None else _start_profile(jerk_start, s)
         jerk = jerk_limited(
-            spline, sample, s, profile.x, limits,
+            spline, sample, s, x_first, limits,
             grasp.F if single and grasp is not None else None,
             grasp.g if single and grasp is not None else None,
             SetGrasp(family.normals, family.layout, family.torque_normals)
@@ -274,6 +287,11 @@ def retime(
     return profile_result(
         spline, samples, profile, limits, family, start_time, refinements, total_cuts
     )
+
+
+def _start_profile(start: RetimeResult, s: np.ndarray) -> np.ndarray:
+    """``start``'s ``s'^2`` at ``s`` (1/s^2), linear between its grid points."""
+    return np.interp(s, start.gridpoints, start.sd**2)
 
 
 def _check_torque(samples: PathSamples, limits: JointLimits) -> None:

@@ -20,6 +20,7 @@ planner's spline path and never returns a slower one. Modules:
   coefficients and clamped splines (numba);
 - :mod:`._clearance`: the search's cheap clearance estimate;
 - :mod:`._finish`: the final retime on an adaptive grid, the vertical check;
+- :mod:`._jerk_grid`: that grid refined for the jerk-limited retime;
 - :mod:`._shape_task`: what one run of the stages shapes, their clock;
 - :mod:`._pick_shaping`: :func:`shape_pick`, the pick's transit between
   its retreat and descent lines shaped by the same search (no grasp);
@@ -34,6 +35,7 @@ from rt_drake.shaping._finish import (
     retime_adaptive,
     vertical_drift,
 )
+from rt_drake.shaping._jerk_grid import END_HALVINGS, JERK_GRID_STEP, jerk_grid
 from rt_drake.shaping._optimizer import (
     MoveOptimizer,
     optimize_move,
@@ -48,7 +50,9 @@ from rt_drake.shaping._pick_shaping import ShapedPick, shape_pick
 
 __all__ = [
     "ADAPTIVE_WEIGHT",
+    "END_HALVINGS",
     "FamilyError",
+    "JERK_GRID_STEP",
     "MoveOptimizer",
     "MoveOptimizerError",
     "MoveOptimizerOptions",
@@ -56,6 +60,7 @@ __all__ = [
     "OptimizedMove",
     "ShapedPick",
     "adaptive_grid",
+    "jerk_grid",
     "optimize_move",
     "retime_adaptive",
     "shape_pick",

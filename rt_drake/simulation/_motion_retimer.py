@@ -41,7 +41,16 @@ from rt_drake.retiming import (
     RetimeResult,
     retime,
 )
-from rt_drake.shaping import ADAPTIVE_WEIGHT, adaptive_grid, retime_adaptive
+from rt_drake.shaping import (
+    ADAPTIVE_WEIGHT,
+    END_HALVINGS,
+    adaptive_grid,
+    jerk_grid,
+    retime_adaptive,
+)
+
+#: Passes of :meth:`MotionRetimer._refined` (the jerk-limited retime's grid).
+JERK_GRID_PASSES = 2
 
 
 @dataclasses.dataclass(frozen=True)
@@ -130,18 +139,66 @@ class MotionRetimer:
         grid = adaptive_grid(
             profile.gridpoints, profile.sd, self.gridpoints, ADAPTIVE_WEIGHT
         )
+        limits = self.limits if grasp is None else self.grasp_limits
         try:
-            return retime(
-                self.plant,
-                path,
-                self.limits if grasp is None else self.grasp_limits,
-                grasp,
-                gridpoints=grid,
-                context=self.context,
-                cup=self.cup,
-            )
+            result = self._retime_on(path, grasp, limits, grid)
         except RetimeError:
             return self.retime_path(path, grasp)
+        if limits.jerk is None:
+            return result
+        return self._refined(path, grasp, limits, grid, result)
+
+    def _refined(
+        self,
+        path: GeometricPath,
+        grasp: GraspConstraint | None,
+        limits: JointLimits,
+        grid: np.ndarray,
+        result: RetimeResult,
+    ) -> RetimeResult:
+        """``result`` retimed again on its :func:`~rt_drake.shaping.jerk_grid`, twice.
+
+        Each pass refines the last pass's grid (the first also halves its
+        end segments at rest, :data:`~rt_drake.shaping.END_HALVINGS` times)
+        and starts its LPs from the shortest profile so far
+        (``jerk_start``); the shortest of the three
+        (each holds every limit). A pass the retimer fails on, or that adds
+        no point, ends the refinement.
+        """
+        best = result
+        for index in range(JERK_GRID_PASSES):
+            halvings = END_HALVINGS if index == 0 else 0  # the ends once
+            refined = jerk_grid(best.gridpoints, best.sd, grid, end_halvings=halvings)
+            if len(refined) <= len(grid):
+                break
+            try:
+                again = self._retime_on(path, grasp, limits, refined, start=best)
+            except RetimeError:
+                break
+            if again.duration < best.duration:
+                best = again
+            grid = refined
+        return best
+
+    def _retime_on(
+        self,
+        path: GeometricPath,
+        grasp: GraspConstraint | None,
+        limits: JointLimits,
+        grid: np.ndarray,
+        start: RetimeResult | None = None,
+    ) -> RetimeResult:
+        """:func:`~rt_drake.retiming.retime` on ``grid``, LPs from ``start``."""
+        return retime(
+            self.plant,
+            path,
+            limits,
+            grasp,
+            gridpoints=grid,
+            context=self.context,
+            cup=self.cup,
+            jerk_start=start,
+        )
 
     def grasp_price(
         self,
