@@ -8,6 +8,10 @@ jerk limits): the retime on 100 uniform points, and after one
 divided by Ruckig's time-optimal double-S along the line (the path's
 optimum: on a line every joint's limits map to bounds on s).
 
+With ``--end-points N [N ...]``, part 1 adds a column per N: the uniform
+retime with N points halving towards each end at rest instead of the
+retimer's ``END_POINTS`` (6), and part 2 likewise on the adaptive grid.
+
 Part 2, the cycle's picks (each object's blended pick as ``rt-drake run``
 plans it; the first from home) retimed without a grasp: on the adaptive
 grid (as before this change); refined once with the LPs started from
@@ -21,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import time
+from unittest import mock
 
 import numpy as np
 import ruckig
@@ -31,6 +36,7 @@ from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.model.scenario import load_scenario
 from rt_drake.planning import CyclePlanner
 from rt_drake.retiming import JointLimits, RetimeError, check_trajectory, retime
+from rt_drake.retiming import _jerk as jerk_module
 from rt_drake.shaping import ADAPTIVE_WEIGHT, adaptive_grid, jerk_grid, retime_adaptive
 
 
@@ -55,10 +61,20 @@ def checked(plant, result, limits) -> float:  # noqa: ANN001
     return float(result.duration)
 
 
-def lines(plant, limits: JointLimits, count: int) -> None:  # noqa: ANN001
+def with_end_points(count: int, plant, path, limits, grid) -> float:  # noqa: ANN001
+    """Duration on ``grid``, ``count`` halving points at each end (nan: refused)."""
+    with mock.patch.object(jerk_module, "END_POINTS", count):
+        try:
+            return checked(plant, retime(plant, path, limits, None, grid), limits)
+        except RetimeError:
+            return float("nan")
+
+
+def lines(plant, limits: JointLimits, count: int, ends: list[int]) -> None:  # noqa: ANN001
     """Part 1 (module docstring)."""
-    print("| line | uniform / Ruckig | refined / Ruckig | Ruckig (s) |")
-    print("|---|---:|---:|---:|")
+    extra = "".join(f" {n} end points / Ruckig |" for n in ends)
+    print(f"| line | uniform / Ruckig | refined / Ruckig |{extra} Ruckig (s) |")
+    print("|---|---:|---:|" + "---:|" * len(ends) + "---:|")
     rng = np.random.default_rng(0)
     base = np.linspace(0.0, 1.0, 101)
     for index in range(count):
@@ -72,10 +88,10 @@ def lines(plant, limits: JointLimits, count: int) -> None:  # noqa: ANN001
         again = retime(plant, line, limits, None, grid, jerk_start=first)
         best = min(checked(plant, first, limits), checked(plant, again, limits))
         optimum = ruckig_line(step, limits)
-        print(
-            f"| {index} | {first.duration / optimum:.4f} | {best / optimum:.4f} "
-            f"| {optimum:.4f} |"
-        )
+        cells = [first.duration, best]
+        cells += [with_end_points(n, plant, line, limits, base) for n in ends]
+        ratios = " | ".join(f"{c / optimum:.4f}" for c in cells)
+        print(f"| {index} | {ratios} | {optimum:.4f} |")
 
 
 def timed_retime(plant, path, limits, points, start, cpu: list):  # noqa: ANN001, ANN201
@@ -90,10 +106,12 @@ def timed_retime(plant, path, limits, points, start, cpu: list):  # noqa: ANN001
         cpu.append(time.process_time() - begin)
 
 
-def picks(scenario, plant, limits: JointLimits, seed: int) -> None:  # noqa: ANN001
+def picks(scenario, plant, limits: JointLimits, seed: int, ends: list[int]) -> None:  # noqa: ANN001
     """Part 2 (module docstring)."""
-    print("| pick | adaptive | refined, TOPP-RA start | refined | twice | CPU (s) |")
-    print("|---|---:|---:|---:|---:|---|")
+    extra = "".join(f" {n} end points |" for n in ends)
+    head = "| pick | adaptive | refined, TOPP-RA start | refined | twice |"
+    print(f"{head}{extra} CPU (s) |")
+    print("|---|---:|---:|---:|---:|" + "---:|" * len(ends) + "---|")
     planner = CyclePlanner(scenario, seed=seed)
     q = planner.q_home
     for index, obj in enumerate(scenario.objects):
@@ -118,6 +136,7 @@ def picks(scenario, plant, limits: JointLimits, seed: int) -> None:  # noqa: ANN
         if second is not None and second.duration < best.duration:
             best = second
         cells.append(checked(plant, best, limits))
+        cells += [with_end_points(n, plant, path, limits, grid) for n in ends]
         times = " | ".join(f"{c:.4f}" for c in cells)
         spent = " / ".join(f"{c:.3f}" for c in cpu)
         print(f"| {obj.name} | {times} | {spent} |")
@@ -129,14 +148,15 @@ def main() -> None:
     parser.add_argument("scenario", nargs="?", default="stack_four_objects")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--lines", type=int, default=6)
+    parser.add_argument("--end-points", type=int, nargs="*", default=[])
     args = parser.parse_args()
     scenario = load_scenario(resolve_scenario_path(args.scenario))
     if not scenario.robot.jerk_limits:
         parser.error(f"{args.scenario}: robot.jerk_limits is empty")
     plant = make_arm_plant(scenario)
     limits = JointLimits.from_plant(plant, scenario.robot, jerk=True)
-    lines(plant, limits, args.lines)
-    picks(scenario, plant, limits, args.seed)
+    lines(plant, limits, args.lines, args.end_points)
+    picks(scenario, plant, limits, args.seed, args.end_points)
 
 
 if __name__ == "__main__":
