@@ -1041,6 +1041,11 @@ def api_cases() -> list[Case]:
             ("joints",),
         ),
         (
+            "retime.jerk_start_file_name",
+            plant + "result = retime(plant, W0, limits, jerk_start='profile.npz')",
+            ("jerk_start", "str"),
+        ),
+        (
             "retime.path_jumps",
             plant
             + "from pydrake.trajectories import CompositeTrajectory, PiecewisePolynomial\n"

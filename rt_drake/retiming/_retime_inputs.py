@@ -34,9 +34,7 @@ def check_arguments(sd_start: float, sd_end: float, start_time: float) -> None:
 
 
 def check_jerk_start(start: object, jerk: object) -> None:
-    """Refuse a ``jerk_start`` without jerk limits, or not a retime's result."""
-    if jerk is None:
-        raise RetimeInputError("jerk_start given but limits.jerk is None")
+    """Refuse a ``jerk_start`` that is not a retime's result, or without jerk limits."""
     s = np.asarray(getattr(start, "gridpoints", None), dtype=float)
     sd = np.asarray(getattr(start, "sd", None), dtype=float)
     if s.ndim != 1 or len(s) < 2 or s.shape != sd.shape:
@@ -44,6 +42,8 @@ def check_jerk_start(start: object, jerk: object) -> None:
             "jerk_start must be a RetimeResult (gridpoints and sd of one "
             f"length), got {type(start).__name__}"
         )
+    if jerk is None:
+        raise RetimeInputError("jerk_start given but limits.jerk is None")
     ends = s[0] == 0.0 and s[-1] == 1.0
     if not (ends and np.isfinite(sd).all() and (sd >= 0.0).all()):
         raise RetimeInputError(
