@@ -29,12 +29,12 @@ from unittest import mock
 
 import numpy as np
 import ruckig
+from _cycle_picks import cycle_picks
 from pydrake.trajectories import PiecewisePolynomial
 
 from rt_drake.model.plant import make_arm_plant
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.model.scenario import load_scenario
-from rt_drake.planning import CyclePlanner
 from rt_drake.retiming import JointLimits, RetimeError, check_trajectory, retime
 from rt_drake.retiming import _jerk as jerk_module
 from rt_drake.shaping import ADAPTIVE_WEIGHT, adaptive_grid, jerk_grid, retime_adaptive
@@ -112,13 +112,7 @@ def picks(scenario, plant, limits: JointLimits, seed: int, ends: list[int]) -> N
     head = "| pick | adaptive | refined, TOPP-RA start | refined | twice |"
     print(f"{head}{extra} CPU (s) |")
     print("|---|---:|---:|---:|---:|" + "---:|" * len(ends) + "---|")
-    planner = CyclePlanner(scenario, seed=seed)
-    q = planner.q_home
-    for index, obj in enumerate(scenario.objects):
-        for k, other in enumerate(scenario.objects):
-            pose = other.goal if k < index else other.start
-            planner.set_object_pose(other.name, pose.GetDeterministicValue())
-        pick = planner.plan_pick(q, obj.name, index > 0)
+    for obj, pick in cycle_picks(scenario, seed):
         path = pick.path.path
         profile = retime_adaptive(plant, path, limits.without_jerk(), None)
         grid = adaptive_grid(profile.gridpoints, profile.sd, 100, ADAPTIVE_WEIGHT)
@@ -140,7 +134,6 @@ def picks(scenario, plant, limits: JointLimits, seed: int, ends: list[int]) -> N
         times = " | ".join(f"{c:.4f}" for c in cells)
         spent = " / ".join(f"{c:.3f}" for c in cpu)
         print(f"| {obj.name} | {times} | {spent} |")
-        q = planner.plan_move(pick.path.q_goal, obj.name, reach=pick.path).q_goal
 
 
 def main() -> None:

@@ -33,12 +33,12 @@ import time
 from unittest import mock
 
 import numpy as np
+from _cycle_picks import cycle_picks
 
 from rt_drake.experiments import cycle_floors
 from rt_drake.model.plant import make_arm_plant
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.model.scenario import load_scenario
-from rt_drake.planning import CyclePlanner
 from rt_drake.retiming import JointLimits, RetimeError, retime
 from rt_drake.retiming import _jerk as jerk_module
 from rt_drake.shaping import ADAPTIVE_WEIGHT, adaptive_grid, retime_adaptive
@@ -60,19 +60,13 @@ def main() -> None:
     shaped = scenario.planning.optimize_move
     floors = cycle_floors(scenario, args.seed, jerk=jerk, shaped=shaped)
     bare = cycle_floors(scenario, args.seed, shaped=shaped)
-    planner = CyclePlanner(scenario, seed=args.seed)
-    q = planner.q_home
     grid = args.grids[0]
     head = ["object", "no jerk", *(f"jerk ({n})" for n in args.grids)]
     head += [f"adaptive ({grid})", f"strict ({grid})", "floor", "floor no jerk"]
     head += ["CPU jerk / adaptive / strict"]
     print("| " + " | ".join(head) + " |")
     print("|---|" + "---:|" * (len(head) - 1))
-    for index, obj in enumerate(scenario.objects):
-        for k, other in enumerate(scenario.objects):
-            pose = other.goal if k < index else other.start
-            planner.set_object_pose(other.name, pose.GetDeterministicValue())
-        pick = planner.plan_pick(q, obj.name, index > 0)
+    for index, (obj, pick) in enumerate(cycle_picks(scenario, args.seed)):
         path = pick.path.path
         times = [retime(plant, path, no_jerk, gridpoints=grid).duration]
         cpu = []
@@ -102,7 +96,6 @@ def main() -> None:
         spent = f"{cpu[0]:.2f} / {cpu[-1]:.2f} / {strict_cpu:.2f} s"
         cells = [f"{t:.3f}" for t in times] + [spent]
         print(f"| {obj.name} | " + " | ".join(cells) + " |")
-        q = planner.plan_move(pick.path.q_goal, obj.name, reach=pick.path).q_goal
 
 
 if __name__ == "__main__":
