@@ -69,6 +69,58 @@ def jerk_ratios(cols, X, U, K, z, dq, ddq, dddq, jerk, inner, out):  # noqa: D41
 
 
 @njit(cache=True)
+def _x_u(cols, X, U, z, p):  # noqa: D417
+    """The x (clipped at 0) and u at point p: the band times z, in the maps' order."""
+    x, u = 0.0, 0.0
+    for e in range(3):
+        x += X[p, e] * z[cols[p, e]]
+        u += U[p, e] * z[cols[p, e]]
+    return max(x, 0.0), u
+
+
+@njit(cache=True, error_model="numpy")  # x / 0 is inf (a cap of 0: a stop)
+def joint_ratios(cols, X, U, z, dq, ddq, x_cap, acceleration, out):  # noqa: D417
+    """The largest velocity or acceleration ratio at every point, in place.
+
+    At point p, x (clipped at 0) and u from the band (as :func:`jerk_ratios`),
+    the velocity ratio ``sqrt(x / x_cap)`` (0 where x is 0) and the
+    acceleration ratios ``|q'_j u + q''_j x| / a_j``; ``out[p]`` the largest
+    (numpy's ``np.maximum(velocity, max_j ...)``). ``dq``, ``ddq``: (P, n);
+    ``x_cap``, ``out``: (P,); ``acceleration``: (n,) 1/s^2 times rad.
+    """
+    for p in range(cols.shape[0]):
+        x, u = _x_u(cols, X, U, z, p)
+        most = -np.inf
+        for j in range(dq.shape[1]):
+            most = max(most, abs(dq[p, j] * u + ddq[p, j] * x) / acceleration[j])
+        velocity = np.sqrt(x / x_cap[p]) if x > 0.0 else 0.0
+        out[p] = max(velocity, most)
+
+
+@njit(cache=True)
+def acceleration_ratios(cols, X, U, z, dq, ddq, acceleration, at, out):  # noqa: D417
+    """``|q'_j u + q''_j x| / a_j`` at the points ``at``, in place; ``out`` (A, n).
+
+    x (clipped at 0) and u from the band as :func:`joint_ratios`.
+    """
+    for i in range(len(at)):
+        p = at[i]
+        x, u = _x_u(cols, X, U, z, p)
+        for j in range(dq.shape[1]):
+            out[i, j] = abs(dq[p, j] * u + ddq[p, j] * x) / acceleration[j]
+
+
+@njit(cache=True)
+def row_max(a, out):  # noqa: D417
+    """``np.max(a, axis=1)`` of a (P, n) array without NaN, in place."""
+    for p in range(a.shape[0]):
+        most = a[p, 0]
+        for j in range(1, a.shape[1]):
+            most = max(most, a[p, j])
+        out[p] = most
+
+
+@njit(cache=True)
 def _block_sum(a, start, n):  # noqa: D417
     """The pairwise sum (numpy's) of ``a[start : start + n]``, ``n <= 128``."""
     if n < 8:
@@ -164,7 +216,10 @@ def interior_duration(ds, x, u, u_next, rise, square, weights):  # noqa: D417
 
 
 __all__ = [
+    "acceleration_ratios",
     "grasp_screen",
     "interior_duration",
     "jerk_ratios",
+    "joint_ratios",
+    "row_max",
 ]

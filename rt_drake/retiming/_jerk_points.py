@@ -18,7 +18,13 @@ from collections.abc import Callable
 import numpy as np
 
 from rt_drake.retiming._check import Margin
-from rt_drake.retiming._jerk_kernels import grasp_screen, jerk_ratios
+from rt_drake.retiming._jerk_kernels import (
+    acceleration_ratios,
+    grasp_screen,
+    jerk_ratios,
+    joint_ratios,
+    row_max,
+)
 from rt_drake.retiming._jerk_rows import (
     Band,
     PointMaps,
@@ -335,23 +341,42 @@ class JerkPoints:
         ``per_joint``: (P, n) :meth:`per_joint` at z. Start and stop pieces
         in closed form, ``(|u| / bound)^1.5``.
         """
-        out = np.max(per_joint, axis=1)
+        out = np.empty(len(per_joint))
+        row_max(per_joint, out)
         for segment, (variable, bound) in bounds.items():
             out[self.segment == segment] = (abs(z[variable]) / bound) ** 1.5
         return out
 
-    def acceleration_ratio(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
-        """``|q'_j u + q''_j x| / a_j`` at every point, (P, n)."""
-        x, u = np.maximum(self.maps.x(z), 0.0), self.maps.u(z)
-        acceleration = np.abs(self.dq * u[:, None] + self.ddq * x[:, None])
-        return acceleration / limits.acceleration
+    def acceleration_ratio(
+        self, z: np.ndarray, limits: JointLimits, at: np.ndarray
+    ) -> np.ndarray:
+        """``|q'_j u + q''_j x| / a_j`` at the points ``at``, (A, n).
+
+        :func:`._jerk_kernels.acceleration_ratios` (x clipped at 0).
+        """
+        band = self.band
+        out = np.empty((len(at), self.dq.shape[1]))
+        acceleration_ratios(
+            band.cols, band.X, band.U, np.ascontiguousarray(z, dtype=float),
+            self.dq, self.ddq, np.array(limits.acceleration, dtype=float),
+            np.asarray(at, dtype=np.int64), out,
+        )  # fmt: skip
+        return out
 
     def joint_ratio(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
-        """The largest velocity or acceleration ratio at every point, (P,)."""
-        x, u = np.maximum(self.maps.x(z), 0.0), self.maps.u(z)
-        velocity = np.sqrt(_divide(x, self.x_cap))
-        acceleration = np.abs(self.dq * u[:, None] + self.ddq * x[:, None])
-        return np.maximum(velocity, np.max(acceleration / limits.acceleration, axis=1))
+        """The largest velocity or acceleration ratio at every point, (P,).
+
+        :func:`._jerk_kernels.joint_ratios`: ``max(sqrt(x / x_cap), max_j
+        |q'_j u + q''_j x| / a_j)``, x clipped at 0.
+        """
+        band = self.band
+        out = np.empty(len(self.s))
+        joint_ratios(
+            band.cols, band.X, band.U, np.ascontiguousarray(z, dtype=float),
+            self.dq, self.ddq, self.x_cap, np.array(limits.acceleration, dtype=float),
+            out,
+        )  # fmt: skip
+        return out
 
     def margins(self, ratio: np.ndarray) -> np.ndarray:
         """``1 - ratio`` at the grid points (segment starts, and the end).

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 import enum
+import functools
 
 import numpy as np
 from scipy import sparse
@@ -78,6 +79,23 @@ class Problem:
     bernstein: Rows
     equalities: tuple[sparse.csr_matrix, np.ndarray]
     variable_bounds: np.ndarray
+
+    @functools.cached_property
+    def tail(self) -> Block:
+        """The last LP rows, the same in every LP of the retime.
+
+        ``-x <= 0`` at the middle point of each segment, then the
+        Bernstein rows (``x >= 0`` all along each segment).
+        """
+        middle = self.middle
+        zeros = np.zeros((len(middle), 1))
+        band = self.dense.band.take(middle)
+        return joined(
+            [
+                affine_rows(band, middle, Kind.MIDDLE, zeros, zeros - 1.0, zeros),
+                block([self.bernstein]),
+            ]
+        )
 
 
 @dataclasses.dataclass
@@ -174,27 +192,41 @@ def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Block], list[
     band = dense.band.take(once)
     smp = dense.samples
     dq, ddq = smp.dq[once], smp.ddq[once]
-    blocks: list[Block] = []
-
-    def add(kind: int, alpha: np.ndarray, beta: np.ndarray, bound: np.ndarray) -> None:
-        blocks.append(affine_rows(band, once, kind, alpha, beta, bound))
-
-    zeros = np.zeros((len(once), 1))
+    # The rows at the dense points, kind by kind, made in one compiled pass:
+    # (kinds, P, n) coefficients and bounds (inf: no row; x's rows in column
+    # 0 alone).
+    n = dq.shape[1]
+    torque = dense.one_torque and limits.torque is not None
+    kinds = [Kind.VELOCITY, Kind.POSITIVE, Kind.ACCELERATION]
+    kinds += [Kind.TORQUE] if torque else []
+    kinds += [Kind.ACCELERATION + 1]  # the sign -1's
+    kinds += [Kind.TORQUE + 1] if torque else []
+    alpha = np.zeros((len(kinds), len(once), n))
+    beta = np.zeros((len(kinds), len(once), n))
+    bound = np.full((len(kinds), len(once), n), np.inf)
     # At the start of an interior segment x is x_i: its cap is a bound of z.
     grid = (dense.k[once] == 0) & _capped(problem.kinds)[once // len(DENSE)]
-    velocity = np.where(grid, np.inf, smp.x_cap[once])
-    add(Kind.VELOCITY, zeros, zeros + 1.0, velocity[:, None])
-    inside = ((dense.k[once] > 0) & (dense.k[once] < last))[:, None]
-    add(Kind.POSITIVE, zeros, zeros - 1.0, np.where(inside, 0.0, np.inf))  # x >= 0
+    beta[0, :, 0] = 1.0
+    bound[0, :, 0] = np.where(grid, np.inf, smp.x_cap[once])
+    inside = (dense.k[once] > 0) & (dense.k[once] < last)
+    beta[1, :, 0] = -1.0
+    bound[1, :, 0] = np.where(inside, 0.0, np.inf)  # x >= 0
     keep = chosen.keep
     acceleration = np.where(keep.acceleration[once], limits.acceleration, np.inf)
-    for sign, offset in ((1.0, 0), (-1.0, 1)):
-        add(Kind.ACCELERATION + offset, sign * dq, sign * ddq, acceleration)
-        if dense.one_torque and limits.torque is not None:
+    signs = (
+        (1.0, kinds.index(Kind.ACCELERATION)),
+        (-1.0, kinds.index(Kind.ACCELERATION + 1)),
+    )
+    for sign, at in signs:
+        alpha[at], beta[at], bound[at] = sign * dq, sign * ddq, acceleration
+        if torque:
             assert smp.torque is not None and keep.torque is not None
             a, b, c = (v[once] for v in smp.torque)
-            bound = np.where(keep.torque[once], limits.torque - sign * c, np.inf)
-            add(Kind.TORQUE + offset, sign * a, sign * b, bound)
+            alpha[at + 1], beta[at + 1] = sign * a, sign * b
+            bound[at + 1] = np.where(
+                keep.torque[once], limits.torque - sign * c, np.inf
+            )
+    blocks = [affine_rows(band, once, kinds, alpha, beta, bound)]
     if chosen.rows is not None and dense.grasp is not None and smp.wrench is not None:
         blocks.append(block([_grasp_rows_at(dense, once, chosen.rows[once])]))
     if chosen.pairs is not None and len(chosen.pairs):
@@ -209,31 +241,24 @@ def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Block], list[
         near = np.zeros(points.dq.shape, dtype=bool)
     k = points.k[added]
     added = added[(k != 0) & (k != len(JERK_DENSE) - 1)]
-    if added.size:  # where a limit was exceeded: velocity, acceleration too
-        extra = points.band.take(added)
-        for sign, offset in ((1.0, 0), (-1.0, 1)):
-            after.append(
-                affine_rows(
-                    extra, added, Kind.JERK_POINT_ACCELERATION + offset,
-                    sign * points.dq[added], sign * points.ddq[added],
-                    np.where(near[added], limits.acceleration, np.inf),
-                )
-            )  # fmt: skip
-        zeros = np.zeros((added.size, 1))
+    if added.size:  # where a limit was exceeded: acceleration, velocity too
+        n = points.dq.shape[1]
+        alpha = np.zeros((3, added.size, n))
+        beta = np.zeros((3, added.size, n))
+        bound = np.full((3, added.size, n), np.inf)
+        acceleration = np.where(near[added], limits.acceleration, np.inf)
+        for sign, at in ((1.0, 0), (-1.0, 1)):
+            alpha[at], beta[at] = sign * points.dq[added], sign * points.ddq[added]
+            bound[at] = acceleration
+        beta[2, :, 0], bound[2, :, 0] = 1.0, points.x_cap[added]
+        kinds = [Kind.JERK_POINT_ACCELERATION + v for v in (0, 1)]
         after.append(
             affine_rows(
-                extra, added, Kind.JERK_POINT_VELOCITY, zeros, zeros + 1.0,
-                points.x_cap[added][:, None],
+                points.band.take(added), added, [*kinds, Kind.JERK_POINT_VELOCITY],
+                alpha, beta, bound,
             )
         )  # fmt: skip
-    middle = problem.middle
-    zeros = np.zeros((len(middle), 1))
-    after.append(  # x >= 0 in the middle of each segment
-        affine_rows(
-            dense.band.take(middle), middle, Kind.MIDDLE, zeros, zeros - 1.0, zeros
-        )
-    )
-    after.append(block([problem.bernstein]))  # x >= 0 all along each segment
+    after.append(problem.tail)  # x >= 0 in the middle of and all along each segment
     return blocks, after
 
 

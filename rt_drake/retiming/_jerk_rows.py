@@ -156,7 +156,7 @@ class Block(NamedTuple):
 def affine_rows(
     band: Band,
     points: np.ndarray,
-    kind: int,
+    kind: int | list[int],
     alpha: np.ndarray,
     beta: np.ndarray,
     bound: np.ndarray,
@@ -166,8 +166,14 @@ def affine_rows(
     ``band``: the P points; ``points``: (P,) their indices among all points
     (for the keys); ``alpha``, ``beta``: broadcast to ``bound``'s (P, M).
     Pairs (p, m) in row-major order, compressed
-    (:func:`._jerk_kernels.affine_block`).
+    (:func:`._jerk_row_kernels.affine_block`). With B kinds (a list),
+    ``bound`` is (B, P, M): B blocks one after the other, block b's keys
+    of ``kind[b]``.
     """
+    kinds = np.atleast_1d(np.asarray(kind, dtype=np.int64))
+    bound = np.asarray(bound, dtype=float)
+    if bound.ndim == 2:
+        bound = bound[None]
     # Copies: writable and contiguous, so that one compiled form serves.
     alpha, beta = (
         np.array(np.broadcast_to(v, bound.shape), dtype=float) for v in (alpha, beta)
@@ -176,7 +182,7 @@ def affine_rows(
         *affine_block(
             np.ascontiguousarray(band.cols), np.ascontiguousarray(band.X),
             np.ascontiguousarray(band.U), np.asarray(points, dtype=np.int64), alpha,
-            beta, np.ascontiguousarray(bound, dtype=float), int(kind), KIND_SHIFT,
+            beta, np.ascontiguousarray(bound), kinds, KIND_SHIFT,
         )
     )  # fmt: skip
 

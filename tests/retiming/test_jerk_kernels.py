@@ -124,3 +124,52 @@ def test_the_compiled_quadrature_is_numpys_bit_for_bit_and_exact_where_x_is_flat
     one = np.ones(1)
     stops = interior_duration(one, one, -2.0 * one, 2.0 * one, rise, square, weights)
     assert stops == np.inf
+
+
+def test_joint_and_acceleration_ratios_are_numpys_to_the_bit():
+    """``joint_ratios``, ``acceleration_ratios`` and ``row_max`` against numpy.
+
+    Reference: the numpy forms they replaced in ``JerkPoints``: x and u by
+    scipy's sparse product of the band's maps (x clipped at 0), the
+    velocity ratio ``sqrt(x / x_cap)`` (0 where x is 0) and ``|q' u + q''
+    x| / a`` per joint, reduced by ``np.max``; on random points, with
+    profiles that go negative (x clipped), caps of 0 and inf.
+    """
+    from rt_drake.retiming._jerk_kernels import (
+        acceleration_ratios,
+        joint_ratios,
+        row_max,
+    )
+    from rt_drake.retiming._jerk_rows import Band
+    from rt_drake.retiming._jerk_timed_path import Piece
+
+    rng = np.random.default_rng(11)
+    segments, P, n = 6, 60, 7
+    s = np.sort(np.concatenate([[0.0, 1.0], rng.random(segments - 1)]))
+    kinds = np.full(segments, Piece.INTERIOR)
+    band = Band.of(s, kinds, rng.integers(0, segments, P), rng.random(P))
+    maps = band.maps(len(s))
+    dq, ddq = rng.normal(size=(P, n)), rng.normal(size=(P, n))
+    x_cap = 0.5 + rng.random(P)
+    x_cap[:3] = 0.0, np.inf, 1e-300
+    acceleration = 0.5 + rng.random(n)
+    for _ in range(5):
+        z = rng.normal(size=2 * len(s))  # some x < 0 at the points
+        x, u = np.maximum(maps.X @ z, 0.0), maps.U @ z
+        with np.errstate(divide="ignore", invalid="ignore"):
+            velocity = np.sqrt(np.where(x > 0.0, x / x_cap, 0.0))
+        ratio = np.abs(dq * u[:, None] + ddq * x[:, None]) / acceleration
+        expected = np.maximum(velocity, np.max(ratio, axis=1))
+        out = np.empty(P)
+        joint_ratios(band.cols, band.X, band.U, z, dq, ddq, x_cap, acceleration, out)
+        np.testing.assert_array_equal(out, expected)
+        at = np.sort(rng.choice(P, 20, replace=False))
+        some = np.empty((20, n))
+        acceleration_ratios(
+            band.cols, band.X, band.U, z, dq, ddq, acceleration, at, some
+        )
+        np.testing.assert_array_equal(some, ratio[at])
+        largest = np.empty(P)
+        row_max(ratio, largest)
+        np.testing.assert_array_equal(largest, np.max(ratio, axis=1))
+    assert np.any(maps.X @ z < 0.0)  # the clipping was exercised
