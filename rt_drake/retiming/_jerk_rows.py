@@ -23,6 +23,7 @@ the jerk is ``u_1^1.5 K_j(sigma)`` in closed form, a bound on u_1
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import NamedTuple
 
 import numpy as np
@@ -156,7 +157,7 @@ class Block(NamedTuple):
 def affine_rows(
     band: Band,
     points: np.ndarray,
-    kind: int | list[int],
+    kind: int | Sequence[int],
     alpha: np.ndarray,
     beta: np.ndarray,
     bound: np.ndarray,
@@ -166,7 +167,7 @@ def affine_rows(
     ``band``: the P points; ``points``: (P,) their indices among all points
     (for the keys); ``alpha``, ``beta``: broadcast to ``bound``'s (P, M).
     Pairs (p, m) in row-major order, compressed
-    (:func:`._jerk_row_kernels.affine_block`). With B kinds (a list),
+    (:func:`._jerk_row_kernels.affine_block`). With B kinds (a sequence),
     ``bound`` is (B, P, M): B blocks one after the other, block b's keys
     of ``kind[b]``.
     """
