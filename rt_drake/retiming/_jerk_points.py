@@ -13,6 +13,7 @@ pieces as a bound on their path acceleration (:mod:`._jerk_rows`).
 from __future__ import annotations
 
 import dataclasses
+import functools
 from collections.abc import Callable
 
 import numpy as np
@@ -54,6 +55,11 @@ class GraspRows:
     def scaled(self) -> np.ndarray:
         """``F_r / g_r``, (R, 6): ``F_r w / g_r = scaled_r w``."""
         return self.F / self.g[:, None]
+
+    @functools.cached_property
+    def scaled_t(self) -> np.ndarray:
+        """:attr:`scaled` transposed, (6, R), C-contiguous (the compiled screen's)."""
+        return np.ascontiguousarray(self.scaled.T, dtype=float)
 
 
 def rest_bounds(
@@ -186,23 +192,14 @@ class DensePoints:
         points to evaluate (the others: no pair, largest -inf); None: all.
         """
         assert self.grasp is not None and self.samples.wrench is not None
-        index = np.arange(len(x)) if at is None else at
-        a, b, c = (
-            np.ascontiguousarray(v[index], dtype=float) for v in self.samples.wrench
-        )
-        scaled = np.ascontiguousarray(self.grasp.scaled.T, dtype=float)
-        over = np.zeros((len(x), scaled.shape[1]), dtype=bool)
+        index = np.arange(len(x)) if at is None else np.asarray(at, dtype=np.int64)
+        a, b, c = (np.ascontiguousarray(v, dtype=float) for v in self.samples.wrench)
+        x, u = (np.ascontiguousarray(v, dtype=float) for v in (x, u))
+        over = np.zeros((len(x), len(self.grasp.g)), dtype=bool)
         largest = np.full(len(x), -np.inf)
-        some_over = np.empty((len(index), scaled.shape[1]), dtype=bool)
-        some_largest = np.empty(len(index))
         grasp_screen(
-            a, b, c, np.ascontiguousarray(x[index], dtype=float),
-            np.ascontiguousarray(u[index], dtype=float), scaled, float(threshold),
-            some_over, some_largest,
-        )  # fmt: skip
-        if at is None:
-            return some_over, some_largest
-        over[index], largest[index] = some_over, some_largest
+            a, b, c, x, u, self.grasp.scaled_t, float(threshold), index, over, largest
+        )
         return over, largest
 
     def ratios(
