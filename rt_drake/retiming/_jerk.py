@@ -353,7 +353,9 @@ def _grasp_rows(chosen: Selection) -> int:
     """(point, row) pairs of the grasp (or (point, row, vertex) of a set) in the LPs."""
     if chosen.pairs is not None:
         return len(chosen.pairs)
-    return 0 if chosen.rows is None else int(chosen.rows[chosen.active].sum())
+    if chosen.rows is None:
+        return 0
+    return int(np.count_nonzero(chosen.rows[chosen.active]))
 
 
 def _refuse_stop(dense: DensePoints, z: np.ndarray) -> NoReturn:

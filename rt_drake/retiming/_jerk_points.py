@@ -57,6 +57,11 @@ class GraspRows:
         return self.F / self.g[:, None]
 
     @functools.cached_property
+    def largest_norm(self) -> float:
+        """``max_r |F_r / g_r|_2``: the largest change of a ratio per unit of wrench."""
+        return float(np.max(np.linalg.norm(self.scaled, axis=1)))
+
+    @functools.cached_property
     def scaled_t(self) -> np.ndarray:
         """:attr:`scaled` transposed, (6, R), C-contiguous (the compiled screen's)."""
         return np.ascontiguousarray(self.scaled.T, dtype=float)
@@ -223,17 +228,15 @@ class DensePoints:
             Margin.VELOCITY: np.where(
                 np.isfinite(x_cap), np.sqrt(_divide(np.maximum(x, 0.0), x_cap)), 0.0
             ),
-            Margin.ACCELERATION: np.max(
-                np.abs(smp.dq * u[:, None] + smp.ddq * x[:, None])
-                / limits.acceleration,
-                axis=1,
+            Margin.ACCELERATION: _row_max(
+                np.abs(smp.dq * u[:, None] + smp.ddq * x[:, None]) / limits.acceleration
             ),
         }
         if self.one_torque and limits.torque is not None:
             assert smp.torque is not None
             a, b, c = smp.torque
             tau = a * u[:, None] + b * x[:, None] + c
-            out[Margin.TORQUE] = np.max(np.abs(tau) / limits.torque, axis=1)
+            out[Margin.TORQUE] = _row_max(np.abs(tau) / limits.torque)
         if torque is not None:
             out[Margin.TORQUE] = torque
         if grasp is None and self.grasp is not None:
@@ -250,7 +253,18 @@ class DensePoints:
 
 def largest_excess(ratios: dict[Margin, np.ndarray]) -> np.ndarray:
     """Largest relative excess over a limit at every point, (P,)."""
-    return np.max(np.column_stack(list(ratios.values())), axis=1) - 1.0
+    values = list(ratios.values())
+    largest = values[0]
+    for more in values[1:]:  # (np.max over a stacked copy costs more)
+        largest = np.maximum(largest, more)
+    return largest - 1.0
+
+
+def _row_max(a: np.ndarray) -> np.ndarray:
+    """``np.max(a, axis=1)`` of a (P, n) array (:func:`._jerk_kernels.row_max`)."""
+    out = np.empty(len(a))
+    row_max(np.ascontiguousarray(a, dtype=float), out)
+    return out
 
 
 def _divide(x: np.ndarray, cap: np.ndarray) -> np.ndarray:
@@ -338,8 +352,7 @@ class JerkPoints:
         ``per_joint``: (P, n) :meth:`per_joint` at z. Start and stop pieces
         in closed form, ``(|u| / bound)^1.5``.
         """
-        out = np.empty(len(per_joint))
-        row_max(per_joint, out)
+        out = _row_max(per_joint)
         for segment, (variable, bound) in bounds.items():
             out[self.segment == segment] = (abs(z[variable]) / bound) ** 1.5
         return out
