@@ -285,8 +285,9 @@ def jerk_limited(
         chosen.keep = chosen.keep.with_full(over)
         chosen.jerk_active |= jerk_over
         # There the acceleration rows near their limit (once in, kept).
-        near = points.acceleration_ratio(z, limits) >= JOINT_SCREEN
-        near &= jerk_over[:, None]
+        at = np.flatnonzero(jerk_over)
+        near = np.zeros(points.dq.shape, dtype=bool)
+        near[at] = points.acceleration_ratio(z, limits, at) >= JOINT_SCREEN
         previous_near = chosen.jerk_acceleration
         chosen.jerk_acceleration = (
             near if previous_near is None else previous_near | near
@@ -352,7 +353,9 @@ def _grasp_rows(chosen: Selection) -> int:
     """(point, row) pairs of the grasp (or (point, row, vertex) of a set) in the LPs."""
     if chosen.pairs is not None:
         return len(chosen.pairs)
-    return 0 if chosen.rows is None else int(chosen.rows[chosen.active].sum())
+    if chosen.rows is None:
+        return 0
+    return int(np.count_nonzero(chosen.rows[chosen.active]))
 
 
 def _refuse_stop(dense: DensePoints, z: np.ndarray) -> NoReturn:

@@ -18,26 +18,45 @@ from numba import njit
 
 
 @njit(cache=True)
-def grasp_screen(a, b, c, x, u, scaled_t, threshold, over, largest):  # noqa: D417
+def grasp_screen(a, b, c, x, u, scaled_t, threshold, at, over, largest):  # noqa: D417
     """``over[p, r] = F_r w_p / g_r >= threshold``; ``largest[p]`` the max over r.
 
-    ``a``, ``b``, ``c``: (P, 6); ``x``, ``u``: (P,); ``scaled_t``: (6, R),
-    ``(F / g)`` transposed (the loop over rows innermost, vectorised);
-    ``over``: (P, R) bool and ``largest``: (P,), written in place.
+    At the points ``p`` in ``at`` (the others are not written). ``a``,
+    ``b``, ``c``: (P, 6); ``x``, ``u``: (P,); ``scaled_t``: (6, R), ``(F /
+    g)`` transposed (each ratio summed from 0 over the wrench's six
+    components in order; the loop over rows innermost, vectorised); ``at``:
+    (A,) int64; ``over``: (P, R) bool, False on entry at ``at`` (a row is
+    written only where its largest ratio reaches ``threshold``) and
+    ``largest``: (P,), written in place.
     """
     rows = scaled_t.shape[1]
     ratio = np.empty(rows)
-    for p in range(a.shape[0]):
-        ratio[:] = 0.0
-        for k in range(a.shape[1]):
-            w = a[p, k] * u[p] + b[p, k] * x[p] + c[p, k]
-            for r in range(rows):
-                ratio[r] += w * scaled_t[k, r]
-        most = -np.inf
-        for r in range(rows):
-            over[p, r] = ratio[r] >= threshold
-            most = max(most, ratio[r])
+    w = np.empty(6)
+    s0, s1, s2 = scaled_t[0], scaled_t[1], scaled_t[2]
+    s3, s4, s5 = scaled_t[3], scaled_t[4], scaled_t[5]
+    for i in range(len(at)):
+        p = at[i]
+        for k in range(6):
+            w[k] = a[p, k] * u[p] + b[p, k] * x[p] + c[p, k]
+        w0, w1, w2, w3, w4, w5 = w[0], w[1], w[2], w[3], w[4], w[5]
+        for r in range(rows):  # summed from 0 in the order of w (vectorised over r)
+            ratio[r] = (
+                ((((0.0 + w0 * s0[r]) + w1 * s1[r]) + w2 * s2[r]) + w3 * s3[r])
+                + w4 * s4[r]
+            ) + w5 * s5[r]
+        # The largest in four interleaved runs (max is exact: the same value).
+        m0 = m1 = m2 = m3 = -np.inf
+        quad = rows - rows % 4
+        for r in range(0, quad, 4):
+            m0, m1 = max(m0, ratio[r]), max(m1, ratio[r + 1])
+            m2, m3 = max(m2, ratio[r + 2]), max(m3, ratio[r + 3])
+        for r in range(quad, rows):
+            m0 = max(m0, ratio[r])
+        most = max(max(m0, m1), max(m2, m3))
         largest[p] = most
+        if most >= threshold:
+            for r in range(rows):
+                over[p, r] = ratio[r] >= threshold
 
 
 @njit(cache=True)
@@ -66,6 +85,58 @@ def jerk_ratios(cols, X, U, K, z, dq, ddq, dddq, jerk, inner, out):  # noqa: D41
         for j in range(out.shape[1]):
             bracket = dq[p, j] * k + 3.0 * ddq[p, j] * u + dddq[p, j] * x
             out[p, j] = abs(root * bracket / jerk[j])
+
+
+@njit(cache=True)
+def _x_u(cols, X, U, z, p):  # noqa: D417
+    """The x (clipped at 0) and u at point p: the band times z, in the maps' order."""
+    x, u = 0.0, 0.0
+    for e in range(3):
+        x += X[p, e] * z[cols[p, e]]
+        u += U[p, e] * z[cols[p, e]]
+    return max(x, 0.0), u
+
+
+@njit(cache=True, error_model="numpy")  # x / 0 is inf (a cap of 0: a stop)
+def joint_ratios(cols, X, U, z, dq, ddq, x_cap, acceleration, out):  # noqa: D417
+    """The largest velocity or acceleration ratio at every point, in place.
+
+    At point p, x (clipped at 0) and u from the band (as :func:`jerk_ratios`),
+    the velocity ratio ``sqrt(x / x_cap)`` (0 where x is 0) and the
+    acceleration ratios ``|q'_j u + q''_j x| / a_j``; ``out[p]`` the largest
+    (numpy's ``np.maximum(velocity, max_j ...)``). ``dq``, ``ddq``: (P, n);
+    ``x_cap``, ``out``: (P,); ``acceleration``: (n,) 1/s^2 times rad.
+    """
+    for p in range(cols.shape[0]):
+        x, u = _x_u(cols, X, U, z, p)
+        most = -np.inf
+        for j in range(dq.shape[1]):
+            most = max(most, abs(dq[p, j] * u + ddq[p, j] * x) / acceleration[j])
+        velocity = np.sqrt(x / x_cap[p]) if x > 0.0 else 0.0
+        out[p] = max(velocity, most)
+
+
+@njit(cache=True)
+def acceleration_ratios(cols, X, U, z, dq, ddq, acceleration, at, out):  # noqa: D417
+    """``|q'_j u + q''_j x| / a_j`` at the points ``at``, in place; ``out`` (A, n).
+
+    x (clipped at 0) and u from the band as :func:`joint_ratios`.
+    """
+    for i in range(len(at)):
+        p = at[i]
+        x, u = _x_u(cols, X, U, z, p)
+        for j in range(dq.shape[1]):
+            out[i, j] = abs(dq[p, j] * u + ddq[p, j] * x) / acceleration[j]
+
+
+@njit(cache=True)
+def row_max(a, out):  # noqa: D417
+    """``np.max(a, axis=1)`` of a (P, n) array without NaN, in place."""
+    for p in range(a.shape[0]):
+        most = a[p, 0]
+        for j in range(1, a.shape[1]):
+            most = max(most, a[p, j])
+        out[p] = most
 
 
 @njit(cache=True)
@@ -164,7 +235,10 @@ def interior_duration(ds, x, u, u_next, rise, square, weights):  # noqa: D417
 
 
 __all__ = [
+    "acceleration_ratios",
     "grasp_screen",
     "interior_duration",
     "jerk_ratios",
+    "joint_ratios",
+    "row_max",
 ]

@@ -13,12 +13,19 @@ pieces as a bound on their path acceleration (:mod:`._jerk_rows`).
 from __future__ import annotations
 
 import dataclasses
+import functools
 from collections.abc import Callable
 
 import numpy as np
 
 from rt_drake.retiming._check import Margin
-from rt_drake.retiming._jerk_kernels import grasp_screen, jerk_ratios
+from rt_drake.retiming._jerk_kernels import (
+    acceleration_ratios,
+    grasp_screen,
+    jerk_ratios,
+    joint_ratios,
+    row_max,
+)
 from rt_drake.retiming._jerk_rows import (
     Band,
     PointMaps,
@@ -48,6 +55,16 @@ class GraspRows:
     def scaled(self) -> np.ndarray:
         """``F_r / g_r``, (R, 6): ``F_r w / g_r = scaled_r w``."""
         return self.F / self.g[:, None]
+
+    @functools.cached_property
+    def largest_norm(self) -> float:
+        """``max_r |F_r / g_r|_2``: the largest change of a ratio per unit of wrench."""
+        return float(np.max(np.linalg.norm(self.scaled, axis=1)))
+
+    @functools.cached_property
+    def scaled_t(self) -> np.ndarray:
+        """:attr:`scaled` transposed, (6, R), C-contiguous (the compiled screen's)."""
+        return np.ascontiguousarray(self.scaled.T, dtype=float)
 
 
 def rest_bounds(
@@ -180,23 +197,14 @@ class DensePoints:
         points to evaluate (the others: no pair, largest -inf); None: all.
         """
         assert self.grasp is not None and self.samples.wrench is not None
-        index = np.arange(len(x)) if at is None else at
-        a, b, c = (
-            np.ascontiguousarray(v[index], dtype=float) for v in self.samples.wrench
-        )
-        scaled = np.ascontiguousarray(self.grasp.scaled.T, dtype=float)
-        over = np.zeros((len(x), scaled.shape[1]), dtype=bool)
+        index = np.arange(len(x)) if at is None else np.asarray(at, dtype=np.int64)
+        a, b, c = (np.ascontiguousarray(v, dtype=float) for v in self.samples.wrench)
+        x, u = (np.ascontiguousarray(v, dtype=float) for v in (x, u))
+        over = np.zeros((len(x), len(self.grasp.g)), dtype=bool)
         largest = np.full(len(x), -np.inf)
-        some_over = np.empty((len(index), scaled.shape[1]), dtype=bool)
-        some_largest = np.empty(len(index))
         grasp_screen(
-            a, b, c, np.ascontiguousarray(x[index], dtype=float),
-            np.ascontiguousarray(u[index], dtype=float), scaled, float(threshold),
-            some_over, some_largest,
-        )  # fmt: skip
-        if at is None:
-            return some_over, some_largest
-        over[index], largest[index] = some_over, some_largest
+            a, b, c, x, u, self.grasp.scaled_t, float(threshold), index, over, largest
+        )
         return over, largest
 
     def ratios(
@@ -220,17 +228,15 @@ class DensePoints:
             Margin.VELOCITY: np.where(
                 np.isfinite(x_cap), np.sqrt(_divide(np.maximum(x, 0.0), x_cap)), 0.0
             ),
-            Margin.ACCELERATION: np.max(
-                np.abs(smp.dq * u[:, None] + smp.ddq * x[:, None])
-                / limits.acceleration,
-                axis=1,
+            Margin.ACCELERATION: _row_max(
+                np.abs(smp.dq * u[:, None] + smp.ddq * x[:, None]) / limits.acceleration
             ),
         }
         if self.one_torque and limits.torque is not None:
             assert smp.torque is not None
             a, b, c = smp.torque
             tau = a * u[:, None] + b * x[:, None] + c
-            out[Margin.TORQUE] = np.max(np.abs(tau) / limits.torque, axis=1)
+            out[Margin.TORQUE] = _row_max(np.abs(tau) / limits.torque)
         if torque is not None:
             out[Margin.TORQUE] = torque
         if grasp is None and self.grasp is not None:
@@ -247,7 +253,18 @@ class DensePoints:
 
 def largest_excess(ratios: dict[Margin, np.ndarray]) -> np.ndarray:
     """Largest relative excess over a limit at every point, (P,)."""
-    return np.max(np.column_stack(list(ratios.values())), axis=1) - 1.0
+    values = list(ratios.values())
+    largest = values[0]
+    for more in values[1:]:  # (np.max over a stacked copy costs more)
+        largest = np.maximum(largest, more)
+    return largest - 1.0
+
+
+def _row_max(a: np.ndarray) -> np.ndarray:
+    """``np.max(a, axis=1)`` of a (P, n) array (:func:`._jerk_kernels.row_max`)."""
+    out = np.empty(len(a))
+    row_max(np.ascontiguousarray(a, dtype=float), out)
+    return out
 
 
 def _divide(x: np.ndarray, cap: np.ndarray) -> np.ndarray:
@@ -335,23 +352,41 @@ class JerkPoints:
         ``per_joint``: (P, n) :meth:`per_joint` at z. Start and stop pieces
         in closed form, ``(|u| / bound)^1.5``.
         """
-        out = np.max(per_joint, axis=1)
+        out = _row_max(per_joint)
         for segment, (variable, bound) in bounds.items():
             out[self.segment == segment] = (abs(z[variable]) / bound) ** 1.5
         return out
 
-    def acceleration_ratio(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
-        """``|q'_j u + q''_j x| / a_j`` at every point, (P, n)."""
-        x, u = np.maximum(self.maps.x(z), 0.0), self.maps.u(z)
-        acceleration = np.abs(self.dq * u[:, None] + self.ddq * x[:, None])
-        return acceleration / limits.acceleration
+    def acceleration_ratio(
+        self, z: np.ndarray, limits: JointLimits, at: np.ndarray
+    ) -> np.ndarray:
+        """``|q'_j u + q''_j x| / a_j`` at the points ``at``, (A, n).
+
+        :func:`._jerk_kernels.acceleration_ratios` (x clipped at 0).
+        """
+        band = self.band
+        out = np.empty((len(at), self.dq.shape[1]))
+        acceleration_ratios(
+            band.cols, band.X, band.U, np.ascontiguousarray(z, dtype=float),
+            self.dq, self.ddq, np.array(limits.acceleration, dtype=float),
+            np.asarray(at, dtype=np.int64), out,
+        )  # fmt: skip
+        return out
 
     def joint_ratio(self, z: np.ndarray, limits: JointLimits) -> np.ndarray:
-        """The largest velocity or acceleration ratio at every point, (P,)."""
-        x, u = np.maximum(self.maps.x(z), 0.0), self.maps.u(z)
-        velocity = np.sqrt(_divide(x, self.x_cap))
-        acceleration = np.abs(self.dq * u[:, None] + self.ddq * x[:, None])
-        return np.maximum(velocity, np.max(acceleration / limits.acceleration, axis=1))
+        """The largest velocity or acceleration ratio at every point, (P,).
+
+        :func:`._jerk_kernels.joint_ratios`: ``max(sqrt(x / x_cap), max_j
+        |q'_j u + q''_j x| / a_j)``, x clipped at 0.
+        """
+        band = self.band
+        out = np.empty(len(self.s))
+        joint_ratios(
+            band.cols, band.X, band.U, np.ascontiguousarray(z, dtype=float),
+            self.dq, self.ddq, self.x_cap, np.array(limits.acceleration, dtype=float),
+            out,
+        )  # fmt: skip
+        return out
 
     def margins(self, ratio: np.ndarray) -> np.ndarray:
         """``1 - ratio`` at the grid points (segment starts, and the end).

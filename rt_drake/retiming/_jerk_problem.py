@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 import enum
+import functools
 
 import numpy as np
 from scipy import sparse
@@ -79,6 +80,34 @@ class Problem:
     equalities: tuple[sparse.csr_matrix, np.ndarray]
     variable_bounds: np.ndarray
 
+    @functools.cached_property
+    def simpson(self) -> tuple[np.ndarray, np.ndarray]:
+        """Simpson's weights of x^-1/2: (N+1,) at the grid points, (N,) in the middles.
+
+        ``(ds_{i-1} + ds_i) / 6`` at grid point i (``ds_{-1} = ds_N = 0``)
+        and ``4 ds_i / 6`` at the middle of segment i (s).
+        """
+        ds = np.diff(self.s)
+        width = (np.concatenate([ds, [0.0]]) + np.concatenate([[0.0], ds])) / 6.0
+        return width, 4.0 / 6.0 * ds
+
+    @functools.cached_property
+    def tail(self) -> Block:
+        """The last LP rows, the same in every LP of the retime.
+
+        ``-x <= 0`` at the middle point of each segment, then the
+        Bernstein rows (``x >= 0`` all along each segment).
+        """
+        middle = self.middle
+        zeros = np.zeros((len(middle), 1))
+        band = self.dense.band.take(middle)
+        return joined(
+            [
+                affine_rows(band, middle, Kind.MIDDLE, zeros, zeros - 1.0, zeros),
+                block([self.bernstein]),
+            ]
+        )
+
 
 @dataclasses.dataclass
 class Selection:
@@ -93,9 +122,10 @@ class Selection:
     pairs: SetPairs | None = None
     #: With a set of objects and torque limits: its torque triples.
     torque_pairs: SetPairs | None = None
-    #: The LP rows other than the jerk's (:func:`_fixed_rows`), while the
-    #: selection is unchanged; None: to be made.
-    fixed: tuple[Block, Block] | None = None
+    #: The LP rows other than the jerk's (:func:`_fixed_rows`: before and
+    #: after them) and which of them every sub-LP takes, while the selection
+    #: is unchanged; None: to be made.
+    fixed: tuple[Block, Block, np.ndarray, np.ndarray] | None = None
 
 
 def solve_lp(
@@ -115,13 +145,13 @@ def solve_lp(
     """
     limits, points = problem.limits, problem.jerk
     assert limits.jerk is not None
-    s, size = problem.s, len(problem.s)
+    size = len(problem.s)
     if chosen.fixed is None:  # made once per selection, kept compressed
-        rows_before, rows_after = _fixed_rows(problem, chosen)
-        chosen.fixed = joined(rows_before), joined(rows_after)
-    before, after = chosen.fixed
+        before, after = (joined(rows) for rows in _fixed_rows(problem, chosen))
+        chosen.fixed = before, after, _always(before), _always(after)
+    before, after, always_before, always_after = chosen.fixed
     index = np.flatnonzero(chosen.jerk_active & points.inner)
-    x_index = np.maximum(x_jerk, 1e-6 * max(float(np.max(x_jerk)), 1e-12))[index]
+    x_index = np.maximum(x_jerk[index], 1e-6 * max(float(np.max(x_jerk)), 1e-12))
     jerk_keep = np.ones((len(index), len(limits.jerk)), dtype=bool)
     if chosen.jerk_keep is not None:  # rows near the limit (where exceeded too)
         jerk_keep = chosen.jerk_keep[index]
@@ -129,14 +159,12 @@ def solve_lp(
         points.band, index, Kind.JERK, (points.dq, points.ddq, points.dddq),
         x_index, limits.jerk, jerk_keep,
     )  # fmt: skip
-    ds = np.diff(s)
     # Simpson's rule on each segment: T = sum ds / sqrt(x) at its ends and
     # middle, linearised at the previous profile (d/dx x^-1/2 = -x^-1.5 / 2).
-    middle = problem.middle
+    width, middle_width = problem.simpson
     scale = max(float(np.max(x_bar)), 1e-12)
-    x_middle = np.maximum(x_dense[middle], 1e-3 * scale)
-    width = (np.concatenate([ds, [0.0]]) + np.concatenate([[0.0], ds])) / 6.0
-    weight = -(problem.X_middle_T @ (4.0 / 6.0 * ds / (2.0 * x_middle**1.5)))
+    x_middle = np.maximum(x_dense[problem.middle], 1e-3 * scale)
+    weight = -(problem.X_middle_T @ (middle_width / (2.0 * x_middle**1.5)))
     weight[:size] -= width / (2.0 * np.maximum(x_bar, 1e-3 * scale) ** 1.5)
     A_ub, b_ub, keys = stacked([before, jerk, after], 2 * size)
     # Every sub-LP takes the velocity rows between grid points and the
@@ -144,8 +172,9 @@ def solve_lp(
     # the continuity rows they bound it. The rows x >= 0 inside a segment
     # are implied by the Bernstein rows (rest pieces: by u's bounds): they
     # join only if broken.
-    kind = keys >> KIND_SHIFT
-    always = (kind == int(Kind.VELOCITY)) | (kind == int(Kind.BERNSTEIN))
+    always = np.concatenate(
+        [always_before, np.zeros(len(jerk.keys), dtype=bool), always_after]
+    )
     z, status = solver.solve(
         weight / np.max(np.abs(weight)), A_ub, b_ub, keys, *problem.equalities,
         problem.variable_bounds, always,
@@ -155,6 +184,12 @@ def solve_lp(
             f"jerk-limited retiming: no admissible profile ({status})", s=0.0
         )
     return z
+
+
+def _always(rows: Block) -> np.ndarray:
+    """The rows every sub-LP takes: velocity and Bernstein rows (by their keys)."""
+    kind = rows.keys >> KIND_SHIFT
+    return (kind == int(Kind.VELOCITY)) | (kind == int(Kind.BERNSTEIN))
 
 
 def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Block], list[Block]]:
@@ -174,27 +209,23 @@ def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Block], list[
     band = dense.band.take(once)
     smp = dense.samples
     dq, ddq = smp.dq[once], smp.ddq[once]
-    blocks: list[Block] = []
-
-    def add(kind: int, alpha: np.ndarray, beta: np.ndarray, bound: np.ndarray) -> None:
-        blocks.append(affine_rows(band, once, kind, alpha, beta, bound))
-
-    zeros = np.zeros((len(once), 1))
     # At the start of an interior segment x is x_i: its cap is a bound of z.
     grid = (dense.k[once] == 0) & _capped(problem.kinds)[once // len(DENSE)]
-    velocity = np.where(grid, np.inf, smp.x_cap[once])
-    add(Kind.VELOCITY, zeros, zeros + 1.0, velocity[:, None])
-    inside = ((dense.k[once] > 0) & (dense.k[once] < last))[:, None]
-    add(Kind.POSITIVE, zeros, zeros - 1.0, np.where(inside, 0.0, np.inf))  # x >= 0
+    inside = (dense.k[once] > 0) & (dense.k[once] < last)
+    rows: dict[int, _Coefficients] = {
+        Kind.VELOCITY: (0.0, 1.0, np.where(grid, np.inf, smp.x_cap[once])),
+        Kind.POSITIVE: (0.0, -1.0, np.where(inside, 0.0, np.inf)),  # x >= 0
+    }
     keep = chosen.keep
     acceleration = np.where(keep.acceleration[once], limits.acceleration, np.inf)
     for sign, offset in ((1.0, 0), (-1.0, 1)):
-        add(Kind.ACCELERATION + offset, sign * dq, sign * ddq, acceleration)
+        rows[Kind.ACCELERATION + offset] = (sign * dq, sign * ddq, acceleration)
         if dense.one_torque and limits.torque is not None:
             assert smp.torque is not None and keep.torque is not None
             a, b, c = (v[once] for v in smp.torque)
             bound = np.where(keep.torque[once], limits.torque - sign * c, np.inf)
-            add(Kind.TORQUE + offset, sign * a, sign * b, bound)
+            rows[Kind.TORQUE + offset] = (sign * a, sign * b, bound)
+    blocks = [_affine_blocks(band, once, rows, dq.shape[1])]
     if chosen.rows is not None and dense.grasp is not None and smp.wrench is not None:
         blocks.append(block([_grasp_rows_at(dense, once, chosen.rows[once])]))
     if chosen.pairs is not None and len(chosen.pairs):
@@ -209,32 +240,39 @@ def _fixed_rows(problem: Problem, chosen: Selection) -> tuple[list[Block], list[
         near = np.zeros(points.dq.shape, dtype=bool)
     k = points.k[added]
     added = added[(k != 0) & (k != len(JERK_DENSE) - 1)]
-    if added.size:  # where a limit was exceeded: velocity, acceleration too
-        extra = points.band.take(added)
-        for sign, offset in ((1.0, 0), (-1.0, 1)):
-            after.append(
-                affine_rows(
-                    extra, added, Kind.JERK_POINT_ACCELERATION + offset,
-                    sign * points.dq[added], sign * points.ddq[added],
-                    np.where(near[added], limits.acceleration, np.inf),
-                )
-            )  # fmt: skip
-        zeros = np.zeros((added.size, 1))
-        after.append(
-            affine_rows(
-                extra, added, Kind.JERK_POINT_VELOCITY, zeros, zeros + 1.0,
-                points.x_cap[added][:, None],
-            )
-        )  # fmt: skip
-    middle = problem.middle
-    zeros = np.zeros((len(middle), 1))
-    after.append(  # x >= 0 in the middle of each segment
-        affine_rows(
-            dense.band.take(middle), middle, Kind.MIDDLE, zeros, zeros - 1.0, zeros
-        )
-    )
-    after.append(block([problem.bernstein]))  # x >= 0 all along each segment
+    if added.size:  # where a limit was exceeded: acceleration, velocity too
+        acceleration = np.where(near[added], limits.acceleration, np.inf)
+        dq, ddq = points.dq[added], points.ddq[added]
+        rows = {
+            Kind.JERK_POINT_ACCELERATION: (dq, ddq, acceleration),
+            Kind.JERK_POINT_ACCELERATION + 1: (-1.0 * dq, -1.0 * ddq, acceleration),
+            Kind.JERK_POINT_VELOCITY: (0.0, 1.0, points.x_cap[added]),
+        }
+        after.append(_affine_blocks(points.band.take(added), added, rows, dq.shape[1]))
+    after.append(problem.tail)  # x >= 0 in the middle of and all along each segment
     return blocks, after
+
+
+#: A kind of affine rows at P points: ``alpha``, ``beta`` and ``bound`` of
+#: :func:`._jerk_rows.affine_rows`, (P, n) per joint, or (P,) for a row in
+#: x alone (its column 0; alpha and beta scalars).
+_Coefficients = tuple[np.ndarray | float, np.ndarray | float, np.ndarray]
+
+
+def _affine_blocks(
+    band: Band, points: np.ndarray, rows: dict[int, _Coefficients], n: int
+) -> Block:
+    """The rows of each kind (in the dict's order), one compiled pass.
+
+    Stacked into (kinds, P, n) coefficients and bounds for
+    :func:`._jerk_rows.affine_rows` (inf: no row).
+    """
+    shape = (len(rows), len(points), n)
+    alpha, beta, bound = np.zeros(shape), np.zeros(shape), np.full(shape, np.inf)
+    for at, (a, b, limit) in enumerate(rows.values()):
+        m = slice(None) if np.ndim(limit) == 2 else 0
+        alpha[at, :, m], beta[at, :, m], bound[at, :, m] = a, b, limit
+    return affine_rows(band, points, list(rows), alpha, beta, bound)
 
 
 def _grasp_rows_at(dense: DensePoints, once: np.ndarray, mask: np.ndarray) -> Rows:

@@ -80,43 +80,48 @@ def jerk_block(  # noqa: D417
 
 
 @njit(cache=True)
-def affine_block(cols, X, U, points, alpha, beta, bound, kind, shift):  # noqa: D417
+def affine_block(cols, X, U, points, alpha, beta, bound, kinds, shift):  # noqa: D417
     """The rows of :func:`._jerk_rows.affine_rows` (its docstring), compressed.
 
-    At each point i (``cols``, ``X``, ``U``: (I, 3), its band) and column m
-    with ``bound[i, m]`` finite: the row ``alpha[i, m] U + beta[i, m] X <=
-    bound[i, m]`` (pairs in row-major order, zero entries dropped, as
-    :func:`._jerk_rows.block`), key ``kind << shift + points[i] << 24 + m``.
-    ``alpha``, ``beta``, ``bound``: (I, M). Returns the block's ``values``,
-    ``cols``, ``counts``, ``bound`` and ``keys``.
+    B blocks of rows, one after the other: in block ``b``, at each point i
+    (``cols``, ``X``, ``U``: (I, 3), its band) and column m with ``bound[b,
+    i, m]`` finite, the row ``alpha[b, i, m] U + beta[b, i, m] X <= bound[b,
+    i, m]`` (pairs in row-major order, zero entries dropped, as
+    :func:`._jerk_rows.block`), key ``kinds[b] << shift + points[i] << 24 +
+    m``. ``alpha``, ``beta``, ``bound``: (B, I, M). Returns the blocks'
+    ``values``, ``cols``, ``counts``, ``bound`` and ``keys``.
     """
     rows = 0
-    for i in range(bound.shape[0]):
-        for m in range(bound.shape[1]):
-            if np.isfinite(bound[i, m]):
-                rows += 1
+    for b in range(bound.shape[0]):
+        for i in range(bound.shape[1]):
+            for m in range(bound.shape[2]):
+                if np.isfinite(bound[b, i, m]):
+                    rows += 1
     values = np.empty(3 * rows)
     columns = np.empty(3 * rows, dtype=cols.dtype)
     counts = np.empty(rows, dtype=np.int64)
     bounds = np.empty(rows)
     keys = np.empty(rows, dtype=np.int64)
     row = entries = 0
-    for i in range(bound.shape[0]):
-        for m in range(bound.shape[1]):
-            if not np.isfinite(bound[i, m]):
-                continue
-            count = 0
-            for e in range(3):
-                value = alpha[i, m] * U[i, e] + beta[i, m] * X[i, e]
-                if value != 0.0:
-                    values[entries] = value
-                    columns[entries] = cols[i, e]
-                    entries += 1
-                    count += 1
-            counts[row] = count
-            bounds[row] = bound[i, m]
-            keys[row] = (np.int64(kind) << shift) + (np.int64(points[i]) << 24) + m
-            row += 1
+    for b in range(bound.shape[0]):
+        kind = np.int64(kinds[b]) << shift
+        for i in range(bound.shape[1]):
+            point = np.int64(points[i]) << 24
+            for m in range(bound.shape[2]):
+                if not np.isfinite(bound[b, i, m]):
+                    continue
+                count = 0
+                for e in range(3):
+                    value = alpha[b, i, m] * U[i, e] + beta[b, i, m] * X[i, e]
+                    if value != 0.0:
+                        values[entries] = value
+                        columns[entries] = cols[i, e]
+                        entries += 1
+                        count += 1
+                counts[row] = count
+                bounds[row] = bound[b, i, m]
+                keys[row] = kind + point + m
+                row += 1
     return values[:entries], columns[:entries], counts, bounds, keys
 
 

@@ -23,6 +23,7 @@ the jerk is ``u_1^1.5 K_j(sigma)`` in closed form, a bound on u_1
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import NamedTuple
 
 import numpy as np
@@ -32,11 +33,32 @@ from rt_drake.retiming._jerk_row_kernels import affine_block, csr_product, jerk_
 from rt_drake.retiming._jerk_timed_path import Piece
 
 
-class PointMaps(NamedTuple):
-    """``x`` and ``u`` at P points as sparse (P, 2(N+1)) rows of z."""
+class RowMatrix(NamedTuple):
+    """A (R, ``shape[1]``) matrix in scipy's CSR arrays, without scipy's object.
 
-    X: sparse.csr_matrix
-    U: sparse.csr_matrix
+    ``indptr`` (R + 1,), ``indices`` int32 and ``data`` float64 as
+    :class:`scipy.sparse.csr_matrix` holds them: :class:`._jerk_lp.WarmLP`
+    reads only these (and ``shape``), so its LPs skip scipy's constructor.
+    """
+
+    indptr: np.ndarray
+    indices: np.ndarray
+    data: np.ndarray
+    shape: tuple[int, int]
+
+    def tocsr(self) -> sparse.csr_matrix:
+        """The same matrix as scipy's (for scipy's solvers and tests)."""
+        return sparse.csr_matrix((self.data, self.indices, self.indptr), self.shape)
+
+
+class PointMaps(NamedTuple):
+    """``x`` and ``u`` at P points as sparse (P, 2(N+1)) rows of z.
+
+    In scipy's CSR arrays (:class:`RowMatrix`; ``tocsr()`` for scipy's).
+    """
+
+    X: RowMatrix
+    U: RowMatrix
 
     def x(self, z: np.ndarray) -> np.ndarray:
         """``X z``, (P,): scipy's product bit for bit, without its dispatch."""
@@ -47,7 +69,7 @@ class PointMaps(NamedTuple):
         return _times(self.U, z)
 
 
-def _times(A: sparse.csr_matrix, z: np.ndarray) -> np.ndarray:
+def _times(A: RowMatrix, z: np.ndarray) -> np.ndarray:
     """``A @ z`` by :func:`._jerk_row_kernels.csr_product` (the same sums)."""
     return csr_product(A.indptr, A.indices, A.data, np.asarray(z, dtype=float))
 
@@ -101,13 +123,11 @@ class Band(NamedTuple):
     def maps(self, size: int) -> PointMaps:
         """The band as sparse (P, 2 ``size``) rows of z (zeros kept)."""
         P = len(self.cols)
-        indptr = 3 * np.arange(P + 1)
-        indices = self.cols.ravel()
+        indptr = 3 * np.arange(P + 1, dtype=np.int32)
+        indices = self.cols.ravel().astype(np.int32)
 
-        def matrix(values: np.ndarray) -> sparse.csr_matrix:
-            return sparse.csr_matrix(
-                (values.ravel(), indices, indptr), shape=(P, 2 * size)
-            )
+        def matrix(values: np.ndarray) -> RowMatrix:
+            return RowMatrix(indptr, indices, values.ravel(), (P, 2 * size))
 
         return PointMaps(matrix(self.X), matrix(self.U))
 
@@ -156,7 +176,7 @@ class Block(NamedTuple):
 def affine_rows(
     band: Band,
     points: np.ndarray,
-    kind: int,
+    kind: int | Sequence[int],
     alpha: np.ndarray,
     beta: np.ndarray,
     bound: np.ndarray,
@@ -166,8 +186,14 @@ def affine_rows(
     ``band``: the P points; ``points``: (P,) their indices among all points
     (for the keys); ``alpha``, ``beta``: broadcast to ``bound``'s (P, M).
     Pairs (p, m) in row-major order, compressed
-    (:func:`._jerk_kernels.affine_block`).
+    (:func:`._jerk_row_kernels.affine_block`). With B kinds (a sequence),
+    ``bound`` is (B, P, M): B blocks one after the other, block b's keys
+    of ``kind[b]``.
     """
+    kinds = np.atleast_1d(np.asarray(kind, dtype=np.int64))
+    bound = np.asarray(bound, dtype=float)
+    if bound.ndim == 2:
+        bound = bound[None]
     # Copies: writable and contiguous, so that one compiled form serves.
     alpha, beta = (
         np.array(np.broadcast_to(v, bound.shape), dtype=float) for v in (alpha, beta)
@@ -176,7 +202,7 @@ def affine_rows(
         *affine_block(
             np.ascontiguousarray(band.cols), np.ascontiguousarray(band.X),
             np.ascontiguousarray(band.U), np.asarray(points, dtype=np.int64), alpha,
-            beta, np.ascontiguousarray(bound, dtype=float), int(kind), KIND_SHIFT,
+            beta, np.ascontiguousarray(bound), kinds, KIND_SHIFT,
         )
     )  # fmt: skip
 
@@ -227,24 +253,6 @@ def block(rows: list[Rows]) -> Block:
 def joined(blocks: list[Block]) -> Block:
     """The blocks, one after the other."""
     return Block(*(np.concatenate(parts) for parts in zip(*blocks, strict=True)))
-
-
-class RowMatrix(NamedTuple):
-    """A (R, ``shape[1]``) matrix in scipy's CSR arrays, without scipy's object.
-
-    ``indptr`` (R + 1,), ``indices`` int32 and ``data`` float64 as
-    :class:`scipy.sparse.csr_matrix` holds them: :class:`._jerk_lp.WarmLP`
-    reads only these (and ``shape``), so its LPs skip scipy's constructor.
-    """
-
-    indptr: np.ndarray
-    indices: np.ndarray
-    data: np.ndarray
-    shape: tuple[int, int]
-
-    def tocsr(self) -> sparse.csr_matrix:
-        """The same matrix as scipy's (for scipy's solvers and tests)."""
-        return sparse.csr_matrix((self.data, self.indices, self.indptr), self.shape)
 
 
 def stacked(blocks: list[Block], size: int) -> tuple[RowMatrix, np.ndarray, np.ndarray]:

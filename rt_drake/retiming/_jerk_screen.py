@@ -60,7 +60,7 @@ def grasp_check(
     if reference is None:
         over, largest = dense.grasp_screen(x, u, threshold)
         return over, largest, ScreenReference(wrench, largest)
-    norm = float(np.max(np.linalg.norm(dense.grasp.scaled, axis=1)))
+    norm = dense.grasp.largest_norm
     bound = reference.largest + norm * np.linalg.norm(wrench - reference.wrench, axis=1)
     grid = (dense.k == 0) | (np.arange(len(x)) == len(x) - 1)
     at = np.flatnonzero(grid | (bound >= threshold - SAFETY))

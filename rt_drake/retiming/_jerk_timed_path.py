@@ -224,8 +224,9 @@ class JerkTimedPath(PathTrajectory):
 
         with np.errstate(over="ignore", invalid="ignore"):
             for _ in range(8):
-                c0, c1, c2 = stumpff(k * tau**2)
-                tau = tau - (reached(tau) - ds) / (sd * c0 + u * tau * c1)
+                c0, c1, c2 = stumpff(k * tau**2)  # reached(tau)'s, taken once
+                at = sd * tau * c1 + u * tau**2 * c2
+                tau = tau - (at - ds) / (sd * c0 + u * tau * c1)
             bad = ~(np.abs(reached(tau) - ds) <= 1e-12 * (1.0 + ds))
             if np.any(bad):
                 low = np.zeros(int(bad.sum()))

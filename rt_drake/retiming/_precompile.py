@@ -25,7 +25,13 @@ from rt_drake.retiming import (
 )
 from rt_drake.retiming._band_lp import BandLP
 from rt_drake.retiming._between_kernels import position_excess
-from rt_drake.retiming._jerk_kernels import grasp_screen, jerk_ratios
+from rt_drake.retiming._jerk_kernels import (
+    acceleration_ratios,
+    grasp_screen,
+    jerk_ratios,
+    joint_ratios,
+    row_max,
+)
 from rt_drake.retiming._jerk_row_kernels import csr_product, csr_rows
 from rt_drake.retiming._jerk_rows import Band, affine_rows, jerk_rows
 from rt_drake.retiming._jerk_timed_path import quadrature_duration
@@ -80,17 +86,25 @@ def warm_up() -> None:
     between.grasp_midpoint_rows(segments, coefficients, F, np.ones(12))
     position_excess(grid, path, path, path, -np.ones(1), np.ones(1), 1e-9)
     # The jerk-limited retimer's grasp screen: three points, twelve rows.
-    over = np.empty((3, 12), dtype=bool)
-    grasp_screen(wrench, wrench, wrench, grid, grid, normals, 0.5, over, np.empty(3))
+    over = np.zeros((3, 12), dtype=bool)
+    every = np.arange(3, dtype=np.int64)
+    grasp_screen(
+        wrench, wrench, wrench, grid, grid, normals, 0.5, every, over, np.empty(3)
+    )
     # Its jerk ratios: three points on one segment (z = [x_0, x_1, u_0, u_1]).
     cols = np.array([[0, 2, 3]] * 3, dtype=np.int64)
     entries = np.zeros((3, 3))
     jerk_ratios(cols, entries, entries, entries, np.ones(4), path, path, path,
                 np.ones(1), np.ones(3, dtype=bool), np.empty((3, 1)))  # fmt: skip
+    # Their velocity and acceleration ratios, and the largest per point.
+    joint_ratios(cols, entries, entries, np.ones(4), path, path, np.ones(3),
+                 np.ones(1), np.empty(3))  # fmt: skip
+    acceleration_ratios(cols, entries, entries, np.ones(4), path, path, np.ones(1),
+                        every, np.empty((3, 1)))  # fmt: skip
+    row_max(path, np.empty(3))
     # Its LP rows (jerk, affine) and its duration by quadrature.
     kinds = np.zeros(2, dtype=int)
     jerk_band = Band.of(grid, kinds, np.zeros(3, dtype=np.int64), grid)
-    every = np.arange(3, dtype=np.int64)
     jerk_rows(jerk_band, every, 7, (path, path, path), np.ones(3), np.ones(1),
               np.ones((3, 1), dtype=bool))  # fmt: skip
     affine_rows(jerk_band, every, 2, zeros, ones, ones)

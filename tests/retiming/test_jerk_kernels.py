@@ -14,7 +14,8 @@ def test_grasp_screen_matches_the_matrix_product():
 
     Reference: ``w = a u + b x + c`` and ``(w @ F.T) / g`` as dense numpy
     products (BLAS), on random wrenches and rows, with a threshold inside
-    the ratios' range so that both outcomes occur.
+    the ratios' range so that both outcomes occur; at every other point
+    (the others untouched).
     """
     rng = np.random.default_rng(3)
     a, b, c = (rng.normal(size=(40, 6)) for _ in range(3))
@@ -22,13 +23,17 @@ def test_grasp_screen_matches_the_matrix_product():
     F, g = rng.normal(size=(25, 6)), 0.5 + rng.random(25)
     ratio = ((a * u[:, None] + b * x[:, None] + c) @ F.T) / g
     threshold = float(np.median(ratio))
-    over, largest = np.empty((40, 25), dtype=bool), np.empty(40)
+    over, largest = np.zeros((40, 25), dtype=bool), np.full(40, -np.inf)
     scaled_t = np.ascontiguousarray((F / g[:, None]).T)
-    grasp_screen(a, b, c, x, u, scaled_t, threshold, over, largest)
-    np.testing.assert_allclose(largest, ratio.max(axis=1), rtol=1e-12, atol=1e-12)
-    near = np.abs(ratio - threshold) < 1e-12  # rounding may decide these
-    np.testing.assert_array_equal(over[~near], (ratio >= threshold)[~near])
-    assert 0 < over.sum() < over.size
+    at = np.arange(1, 40, 2)  # every other point: the others left as they were
+    grasp_screen(a, b, c, x, u, scaled_t, threshold, at, over, largest)
+    np.testing.assert_allclose(
+        largest[at], ratio[at].max(axis=1), rtol=1e-12, atol=1e-12
+    )
+    assert np.all(largest[::2] == -np.inf) and not over[::2].any()
+    near = np.abs(ratio[at] - threshold) < 1e-12  # rounding may decide these
+    np.testing.assert_array_equal(over[at][~near], (ratio[at] >= threshold)[~near])
+    assert 0 < over.sum() < over[at].size
 
 
 def test_jerk_ratios_match_the_jerk_by_finite_differences():
@@ -124,3 +129,52 @@ def test_the_compiled_quadrature_is_numpys_bit_for_bit_and_exact_where_x_is_flat
     one = np.ones(1)
     stops = interior_duration(one, one, -2.0 * one, 2.0 * one, rise, square, weights)
     assert stops == np.inf
+
+
+def test_joint_and_acceleration_ratios_are_numpys_to_the_bit():
+    """``joint_ratios``, ``acceleration_ratios`` and ``row_max`` against numpy.
+
+    Reference: the numpy forms they replaced in ``JerkPoints``: x and u by
+    scipy's sparse product of the band's maps (x clipped at 0), the
+    velocity ratio ``sqrt(x / x_cap)`` (0 where x is 0) and ``|q' u + q''
+    x| / a`` per joint, reduced by ``np.max``; on random points, with
+    profiles that go negative (x clipped), caps of 0 and inf.
+    """
+    from rt_drake.retiming._jerk_kernels import (
+        acceleration_ratios,
+        joint_ratios,
+        row_max,
+    )
+    from rt_drake.retiming._jerk_rows import Band
+    from rt_drake.retiming._jerk_timed_path import Piece
+
+    rng = np.random.default_rng(11)
+    segments, P, n = 6, 60, 7
+    s = np.sort(np.concatenate([[0.0, 1.0], rng.random(segments - 1)]))
+    kinds = np.full(segments, Piece.INTERIOR)
+    band = Band.of(s, kinds, rng.integers(0, segments, P), rng.random(P))
+    maps = band.maps(len(s))
+    dq, ddq = rng.normal(size=(P, n)), rng.normal(size=(P, n))
+    x_cap = 0.5 + rng.random(P)
+    x_cap[:3] = 0.0, np.inf, 1e-300
+    acceleration = 0.5 + rng.random(n)
+    for _ in range(5):
+        z = rng.normal(size=2 * len(s))  # some x < 0 at the points
+        x, u = np.maximum(maps.X.tocsr() @ z, 0.0), maps.U.tocsr() @ z
+        with np.errstate(divide="ignore", invalid="ignore"):
+            velocity = np.sqrt(np.where(x > 0.0, x / x_cap, 0.0))
+        ratio = np.abs(dq * u[:, None] + ddq * x[:, None]) / acceleration
+        expected = np.maximum(velocity, np.max(ratio, axis=1))
+        out = np.empty(P)
+        joint_ratios(band.cols, band.X, band.U, z, dq, ddq, x_cap, acceleration, out)
+        np.testing.assert_array_equal(out, expected)
+        at = np.sort(rng.choice(P, 20, replace=False))
+        some = np.empty((20, n))
+        acceleration_ratios(
+            band.cols, band.X, band.U, z, dq, ddq, acceleration, at, some
+        )
+        np.testing.assert_array_equal(some, ratio[at])
+        largest = np.empty(P)
+        row_max(ratio, largest)
+        np.testing.assert_array_equal(largest, np.max(ratio, axis=1))
+    assert np.any(maps.X.tocsr() @ z < 0.0)  # the clipping was exercised

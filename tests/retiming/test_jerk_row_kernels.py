@@ -99,6 +99,38 @@ def test_affine_rows_evaluate_the_affine_limit_where_it_is_finite():
     assert np.all(rows.values != 0.0)
 
 
+def test_affine_rows_of_several_kinds_are_each_kinds_rows_one_after_the_other():
+    """B kinds in one call: block b's rows, bounds and keys as numpy forms them.
+
+    Reference: per kind, ``alpha u + beta x`` at the band's (x, u) times z
+    (numpy), the finite bounds in row-major (point, column) order, the
+    kinds' rows concatenated in their order; no entry is zero.
+    """
+    from rt_drake.retiming._jerk_rows import KIND_SHIFT, affine_rows
+
+    rng = np.random.default_rng(8)
+    s, band = _random_band(rng)
+    P, M, kinds = len(band.cols), 3, [0, 1, 2, 9]
+    z = np.concatenate([1.0 + rng.random(len(s)), rng.normal(size=len(s))])
+    alpha, beta = rng.normal(size=(4, P, M)), rng.normal(size=(4, P, M))
+    alpha[0] = 0.0  # rows in x alone
+    bound = np.where(rng.random((4, P, M)) < 0.6, rng.normal(size=(4, P, M)), np.inf)
+    points = 7 + np.arange(P)
+    rows = affine_rows(band, points, kinds, alpha, beta, bound)
+    x = np.einsum("pe,pe->p", band.X, z[band.cols])
+    u = np.einsum("pe,pe->p", band.U, z[band.cols])
+    b, p, m = np.nonzero(np.isfinite(bound))
+    np.testing.assert_allclose(
+        _rows_at(rows, z), alpha[b, p, m] * u[p] + beta[b, p, m] * x[p], atol=1e-12
+    )
+    np.testing.assert_array_equal(rows.bound, bound[b, p, m])
+    np.testing.assert_array_equal(rows.keys >> KIND_SHIFT, np.array(kinds)[b])
+    np.testing.assert_array_equal((rows.keys >> 24) & 0xFFFFFFF, points[p])
+    np.testing.assert_array_equal(rows.keys & 0xFFFFFF, m)
+    assert np.all(rows.values != 0.0)
+    assert np.sum(rows.counts) == len(rows.values) < 3 * len(b)  # zeros dropped
+
+
 def test_the_sparse_kernels_are_scipys_product_and_row_selection():
     """``csr_product`` is scipy's ``A @ z`` to the bit; ``csr_rows`` is ``A[rows]``.
 
