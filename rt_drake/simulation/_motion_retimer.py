@@ -159,22 +159,29 @@ class MotionRetimer:
         """``result`` retimed again on its :func:`~rt_drake.shaping.jerk_grid`, twice.
 
         Each pass refines the last pass's grid (the first also halves its
-        end segments at rest, :data:`~rt_drake.shaping.END_HALVINGS` times)
-        and starts its LPs from the shortest profile so far
-        (``jerk_start``); the shortest of the three
-        (each holds every limit). A pass the retimer fails on, or that adds
-        no point, ends the refinement.
+        end segments at rest, :data:`~rt_drake.shaping.END_HALVINGS` times;
+        if the retimer refuses those ends, the pass runs again without
+        them) and starts its LPs from the shortest profile so far
+        (``jerk_start``); the shortest of the three (each holds every
+        limit). A pass the retimer refuses otherwise, or that adds no point,
+        ends the refinement.
         """
         best = result
-        for index in range(JERK_GRID_PASSES):
-            halvings = END_HALVINGS if index == 0 else 0  # the ends once
+        halvings = END_HALVINGS  # the ends in the first pass that runs
+        passes = 0
+        while passes < JERK_GRID_PASSES:
             refined = jerk_grid(best.gridpoints, best.sd, grid, end_halvings=halvings)
             if len(refined) <= len(grid):
                 break
             try:
                 again = self._retime_on(path, grasp, limits, refined, start=best)
             except RetimeError:
-                break
+                if halvings == 0:
+                    break
+                halvings = 0  # ends too fine for the LPs: the pass without them
+                continue
+            passes += 1
+            halvings = 0
             if again.duration < best.duration:
                 best = again
             grid = refined

@@ -131,3 +131,9 @@ def test_a_jerk_limited_pick_is_retimed_on_its_adaptive_grid(scenario, monkeypat
     monkeypatch.setattr(_motion_retimer, "JERK_GRID_PASSES", 0)
     adaptive = motions.retime_free(pick.planned.path).duration
     assert pick.duration < adaptive
+    # Ends halved too deep for the LPs (they stop the motion there): the
+    # refinement runs without them, and still shortens the pick.
+    monkeypatch.setattr(_motion_retimer, "JERK_GRID_PASSES", 2)
+    monkeypatch.setattr(_motion_retimer, "END_HALVINGS", 12)
+    too_deep = motions.retime_free(pick.planned.path).duration
+    assert too_deep < adaptive
