@@ -11,18 +11,22 @@ the jerk at the segment's other end is only ``sqrt(x_i / x_{i+1})`` of it:
 the retime ramps the acceleration slower than the limit allows wherever x
 changes by a large factor within a segment (the ramps from and to rest,
 and into and out of every dip of the speed at a turn). On a straight joint
-line from rest to rest, on 100 uniform points, that left the retime
-1.2-3.0 % (7 ms) longer than Ruckig's time-optimal double-S.
+line from rest to rest, on 100 uniform points, the ramps at its two ends
+left the retime 1.2-3.0 % (7 ms) longer than Ruckig's time-optimal
+double-S.
 
 :func:`jerk_grid` splits each segment of a jerk-limited profile whose
-``|ln(x_{i+1} / x_i)|`` exceeds ``step`` into equal parts, as many as make
-each part's change about ``step`` (with ``x`` linear in s between the
-profile's points), so that the jerk can stay within ``exp(-step / 2)`` of
-its limit across a segment. The first and last segments of the grid the
-profile was retimed on are kept whole (and the points the retimer added
-inside them, the ends at rest, dropped: the retimer adds them again),
-since near rest ``x -> 0`` and the retimer's closed-form end pieces
-(:mod:`rt_drake.retiming._jerk_timed_path`) carry the ramp there.
+``|ln(x_{i+1} / x_i)|`` exceeds ``step`` at equal steps of ``ln x`` (with
+``x`` linear in s between the profile's points), so that across each part
+the jerk can stay within about ``exp(-step / 2)`` of its limit. The first
+and last segments of the grid the profile was retimed on keep no point
+inside (the retimer's own halving points there are dropped: it adds them
+again); at an end at rest they are halved ``end_halvings`` times instead,
+so that the retimer's halving points and closed-form end piece
+(:mod:`rt_drake.retiming._jerk_timed_path`) start that much deeper, where
+the ramp from rest is. On the default cycle's picks and MOVEs that gave
+the most (BENCHMARKS.md); on a straight joint line the end piece is the
+exact constant-jerk ramp, and neither refinement shortens it.
 """
 
 from __future__ import annotations
