@@ -32,6 +32,7 @@ import ruckig
 from _cycle_picks import cycle_picks
 from pydrake.trajectories import PiecewisePolynomial
 
+from rt_drake.errors import RtDrakeError
 from rt_drake.model.plant import make_arm_plant
 from rt_drake.model.resources import resolve_scenario_path
 from rt_drake.model.scenario import load_scenario
@@ -143,7 +144,10 @@ def main() -> None:
     parser.add_argument("--lines", type=int, default=6)
     parser.add_argument("--end-points", type=int, nargs="*", default=[])
     args = parser.parse_args()
-    scenario = load_scenario(resolve_scenario_path(args.scenario))
+    try:
+        scenario = load_scenario(resolve_scenario_path(args.scenario))
+    except RtDrakeError as error:
+        parser.error(str(error))
     if not scenario.robot.jerk_limits:
         parser.error(f"{args.scenario}: robot.jerk_limits is empty")
     plant = make_arm_plant(scenario)

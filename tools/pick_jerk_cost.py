@@ -35,6 +35,7 @@ from unittest import mock
 import numpy as np
 from _cycle_picks import cycle_picks
 
+from rt_drake.errors import RtDrakeError
 from rt_drake.experiments import cycle_floors
 from rt_drake.model.plant import make_arm_plant
 from rt_drake.model.resources import resolve_scenario_path
@@ -50,7 +51,10 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--grids", type=int, nargs="+", default=[100, 400])
     args = parser.parse_args()
-    scenario = load_scenario(resolve_scenario_path(args.scenario))
+    try:
+        scenario = load_scenario(resolve_scenario_path(args.scenario))
+    except RtDrakeError as error:
+        parser.error(str(error))
     if not scenario.robot.jerk_limits:
         parser.error(f"{args.scenario}: robot.jerk_limits is empty (no jerk cost)")
     plant = make_arm_plant(scenario)
