@@ -29,13 +29,9 @@ from unittest import mock
 
 import numpy as np
 import ruckig
-from _cycle_picks import cycle_picks
+from _cycle_picks import cycle_picks, jerk_cell
 from pydrake.trajectories import PiecewisePolynomial
 
-from rt_drake.errors import RtDrakeError
-from rt_drake.model.plant import make_arm_plant
-from rt_drake.model.resources import resolve_scenario_path
-from rt_drake.model.scenario import load_scenario
 from rt_drake.retiming import JointLimits, RetimeError, check_trajectory, retime
 from rt_drake.retiming import _jerk as jerk_module
 from rt_drake.shaping import ADAPTIVE_WEIGHT, adaptive_grid, jerk_grid, retime_adaptive
@@ -144,14 +140,7 @@ def main() -> None:
     parser.add_argument("--lines", type=int, default=6)
     parser.add_argument("--end-points", type=int, nargs="*", default=[])
     args = parser.parse_args()
-    try:
-        scenario = load_scenario(resolve_scenario_path(args.scenario))
-    except RtDrakeError as error:
-        parser.error(str(error))
-    if not scenario.robot.jerk_limits:
-        parser.error(f"{args.scenario}: robot.jerk_limits is empty")
-    plant = make_arm_plant(scenario)
-    limits = JointLimits.from_plant(plant, scenario.robot, jerk=True)
+    scenario, plant, limits = jerk_cell(parser, args.scenario)
     lines(plant, limits, args.lines, args.end_points)
     picks(scenario, plant, limits, args.seed, args.end_points)
 

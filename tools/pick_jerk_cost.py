@@ -33,14 +33,10 @@ import time
 from unittest import mock
 
 import numpy as np
-from _cycle_picks import cycle_picks
+from _cycle_picks import cycle_picks, jerk_cell
 
-from rt_drake.errors import RtDrakeError
 from rt_drake.experiments import cycle_floors
-from rt_drake.model.plant import make_arm_plant
-from rt_drake.model.resources import resolve_scenario_path
-from rt_drake.model.scenario import load_scenario
-from rt_drake.retiming import JointLimits, RetimeError, retime
+from rt_drake.retiming import RetimeError, retime
 from rt_drake.retiming import _jerk as jerk_module
 from rt_drake.shaping import ADAPTIVE_WEIGHT, adaptive_grid, retime_adaptive
 
@@ -51,14 +47,7 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--grids", type=int, nargs="+", default=[100, 400])
     args = parser.parse_args()
-    try:
-        scenario = load_scenario(resolve_scenario_path(args.scenario))
-    except RtDrakeError as error:
-        parser.error(str(error))
-    if not scenario.robot.jerk_limits:
-        parser.error(f"{args.scenario}: robot.jerk_limits is empty (no jerk cost)")
-    plant = make_arm_plant(scenario)
-    limits = JointLimits.from_plant(plant, scenario.robot, jerk=True)
+    scenario, plant, limits = jerk_cell(parser, args.scenario)
     no_jerk = limits.without_jerk()
     jerk = np.array(scenario.robot.jerk_limits)
     shaped = scenario.planning.optimize_move
