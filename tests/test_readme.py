@@ -36,7 +36,12 @@ PRINTS = {
     ],
     "docs/guides/cycle-floor.md": ["whetstone_box 1.332 s of motion at least"],
     "docs/reference/cli.md": ["True", ", 6) scene"],
-    "docs/guides/jerk-limits.md": ["s with jerk limits", "jerk:", "holds: True"],
+    "docs/guides/jerk-limits.md": [
+        "s with jerk limits",
+        "jerk:",
+        "holds: True",
+        "s refined",
+    ],
     "docs/guides/export.md": ["points to", "joints shoulder_pan_joint", "end: True"],
 }
 
