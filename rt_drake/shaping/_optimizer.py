@@ -137,6 +137,7 @@ class MoveOptimizer:
         spline: PlannedPath,
         grasp: GraspConstraint,
         timings: dict[str, float] | None = None,
+        played: Callable[[GeometricPath, RetimeResult], RetimeResult] | None = None,
     ) -> OptimizedMove:
         """A MOVE as fast as found from the spline MOVE ``spline`` (same ends).
 
@@ -146,6 +147,13 @@ class MoveOptimizer:
             spline: The planner's MOVE (start: the grasp configuration).
             grasp: The carried object's grasp constraint ``F w <= g``.
             timings: Stage times (s) already spent (e.g. ``spline_plan``).
+            played: The retime the MOVE is played with, from a path and its
+                retime at the acceleration limits (e.g. the cycle's under
+                jerk limits), or None: that retime itself. With it the
+                finish keeps, of the ``finish_tries`` best candidates, the
+                one whose played retime is the shortest, if it is shorter
+                than the spline path's played retime
+                (:attr:`OptimizedMove.played`, ``spline_played``).
 
         Raises:
             RetimeError: the spline path cannot be retimed.
@@ -160,7 +168,7 @@ class MoveOptimizer:
             ShapeTask(
                 scene, spline, grasp, lambda via: self._family(spline, via),
                 lambda family, path: _certify(self.chain, family, scene, path, options),
-                options.tilt_bound, None, options.starts,
+                options.tilt_bound, None, options.starts, played,
             ),
             watch,
         )  # fmt: skip

@@ -52,6 +52,7 @@ under the unshrunk set); its retimes count as retiming.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import time
 import warnings
 from collections.abc import Callable
@@ -409,15 +410,28 @@ class OnlineMotions:
             grasp = self.grasp_for(obj, planned.X_OC)
         margin, ring = 0.0, ""
         if grasp is not None and self._optimizer is not None:
-            # the optimiser's search counts as planning, its final retime as retiming
-            optimized = self._optimizer.optimize(self._planner, planned, grasp)
+            # the optimiser's search counts as planning, its final retime as
+            # retiming. Under jerk limits (no ring) its finish compares the
+            # candidates and the spline path as played: a path faster at the
+            # acceleration limits can be slower under the jerk limits.
+            played = None
+            if self.jerk_limited and self._ring is None:
+                played = functools.partial(self._played_move, grasp=grasp)
+            optimized = self._optimizer.optimize(
+                self._planner, planned, grasp, played=played
+            )
             path = optimized.path
             planned = dataclasses.replace(planned, path=path, polyline=path.waypoints)
             result = acceleration_limited = optimized.retimed
             planned_s += optimized.wall_s - optimized.retime_wall_s
             retime_s = optimized.retime_wall_s
             margin = self._scenario.planning.fixed_margin
-            if self.jerk_limited or self._ring is not None:  # the kept path again
+            as_played = (
+                optimized.played if optimized.improved else optimized.spline_played
+            )
+            if as_played is not None:
+                result = as_played
+            elif self.jerk_limited or self._ring is not None:  # the kept path again
                 planned_s += retime_s
                 start = time.perf_counter()
                 profile = optimized.retimed
@@ -455,6 +469,12 @@ class OnlineMotions:
             grasp_price_s=price,
             grasp_margin=margin,
         )
+
+    def _played_move(
+        self, path: GeometricPath, profile: RetimeResult, grasp: GraspConstraint
+    ) -> RetimeResult:
+        """A MOVE path's retime as played under jerk limits, from its ``profile``."""
+        return self.retime_on_profile(path, grasp, profile)
 
     def _retime_move(
         self,

@@ -299,3 +299,49 @@ def test_kernels_only_take_the_layout_warm_up_compiles(moves):
                         kernel.py_func.__name__,
                         signature,
                     )
+
+
+def test_played_keeps_a_path_that_plays_no_slower_than_the_spline(setup, moves):
+    """With ``played`` (here: the retimer under the robot's jerk limits at
+    100 uniform points, called directly), the returned MOVE's played retime
+    is that of its path, and no slower than the spline path's."""
+    _, spline, grasp, options, _ = moves[0]
+    plant = setup.plant
+    jerky = JointLimits.from_plant(plant, setup.scenario.robot, jerk=True)
+    assert jerky.jerk is not None  # the shipped scenario sets jerk limits
+
+    def played(path, profile):
+        return retime(plant, path, jerky, grasp, gridpoints=100)
+
+    optimizer = MoveOptimizer(plant, setup.limits, options)
+    result = optimizer.optimize(setup.planner, spline, grasp, played=played)
+    assert result.played is not None and result.spline_played is not None
+    reference = retime(plant, spline.path, jerky, grasp, gridpoints=100)
+    assert result.spline_played.duration == reference.duration
+    kept = retime(plant, result.path, jerky, grasp, gridpoints=100)
+    assert result.played.duration == kept.duration
+    assert result.improved  # this transport's shaped path also plays faster
+    assert result.played.duration < reference.duration
+
+
+def test_played_that_slows_every_candidate_keeps_the_spline_path(setup, moves):
+    """A ``played`` under which every candidate is slower than the spline path
+    (candidates at a quarter of the limits: twice the time) must return the
+    spline path, though each candidate is faster at the full limits."""
+    _, spline, grasp, options, shaped = moves[0]
+    assert shaped.improved  # without ``played`` this MOVE is shaped
+    plant = setup.plant
+    slow = JointLimits(
+        setup.limits.velocity / 4.0, setup.limits.acceleration / 16.0
+    )
+
+    def played(path, profile):
+        if path is spline.path:
+            return profile
+        return retime(plant, path, slow, grasp, gridpoints=100)
+
+    optimizer = MoveOptimizer(plant, setup.limits, options)
+    result = optimizer.optimize(setup.planner, spline, grasp, played=played)
+    assert not result.improved
+    assert result.path is spline.path
+    assert result.rejected and all("not shorter" in r for r in result.rejected)
