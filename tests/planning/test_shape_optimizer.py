@@ -331,9 +331,7 @@ def test_played_that_slows_every_candidate_keeps_the_spline_path(setup, moves):
     _, spline, grasp, options, shaped = moves[0]
     assert shaped.improved  # without ``played`` this MOVE is shaped
     plant = setup.plant
-    slow = JointLimits(
-        setup.limits.velocity / 4.0, setup.limits.acceleration / 16.0
-    )
+    slow = JointLimits(setup.limits.velocity / 4.0, setup.limits.acceleration / 16.0)
 
     def played(path, profile):
         if path is spline.path:
