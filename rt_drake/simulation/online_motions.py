@@ -431,7 +431,7 @@ class OnlineMotions:
             )
             if as_played is not None:
                 result = as_played
-            elif self.jerk_limited or self._ring is not None:  # the kept path again
+            elif self._ring is not None:  # the kept path again, for the ring
                 planned_s += retime_s
                 start = time.perf_counter()
                 profile = optimized.retimed
